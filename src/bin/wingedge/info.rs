@@ -1,0 +1,87 @@
+//! `wingedge info`: counts and measures of one solid.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use wingedge::io::{read_obj, write_obj};
+use wingedge::mesh::{Solid, builders};
+
+pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf>) -> ExitCode {
+    let (name, solid) = match (file, builtin) {
+        (_, Some(name)) => match builders::by_name(&name) {
+            Some(solid) => (name, solid),
+            None => {
+                eprintln!(
+                    "error: unknown built-in solid '{name}'; choose one of: {}",
+                    builders::NAMES.join(", ")
+                );
+                return ExitCode::from(2);
+            }
+        },
+        (Some(path), None) => {
+            let solid = read_obj(&path).map_err(|e| e.to_string()).and_then(|soup| {
+                Solid::try_from_soup(&soup).map_err(|e| format!("{}: {e}", path.display()))
+            });
+            match solid {
+                Ok(solid) => (path.display().to_string(), solid),
+                Err(message) => {
+                    eprintln!("error: {message}");
+                    return ExitCode::from(2);
+                }
+            }
+        }
+        (None, None) => unreachable!("clap requires a file or --builtin"),
+    };
+    print!("{}", describe(&name, &solid));
+    if let Some(out) = write {
+        if let Err(e) = write_obj(&solid, &out) {
+            eprintln!("error: {}: cannot write: {e}", out.display());
+            return ExitCode::from(2);
+        }
+    }
+    ExitCode::SUCCESS
+}
+
+fn describe(name: &str, solid: &Solid) -> String {
+    let bounds = solid.bounding_box();
+    let shells = solid.shells();
+    let mut out = format!(
+        "{name}\n  vertices {}  edges {}  faces {}  euler characteristic {}\n  closed {}  shells {}\n",
+        solid.vertex_count(),
+        solid.edge_count(),
+        solid.face_count(),
+        solid.euler_characteristic(),
+        solid.is_closed(),
+        shells.len(),
+    );
+    for (i, shell) in shells.iter().enumerate() {
+        let genus = shell
+            .genus()
+            .map_or_else(|| "-".to_string(), |g| g.to_string());
+        out += &format!(
+            "    shell {i}: faces {}  edges {}  vertices {}  boundary edges {}  χ {}  genus {genus}  volume {:.10}\n",
+            shell.faces.len(),
+            shell.edge_count,
+            shell.vertex_count,
+            shell.boundary_edge_count,
+            shell.euler_characteristic,
+            shell.signed_volume,
+        );
+    }
+    let centroid = solid.centroid().map_or_else(
+        || "-".to_string(),
+        |c| format!("({:.10}, {:.10}, {:.10})", c.x, c.y, c.z),
+    );
+    out += &format!(
+        "  volume {:.10}  surface area {:.10}\n  centroid {centroid}\n  bounding box ({}, {}, {}) .. ({}, {}, {})\n",
+        solid.volume(),
+        solid.surface_area(),
+        bounds.min.x,
+        bounds.min.y,
+        bounds.min.z,
+        bounds.max.x,
+        bounds.max.y,
+        bounds.max.z,
+    );
+    out
+}

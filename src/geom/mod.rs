@@ -1,0 +1,49 @@
+//! Numbers: exact predicates, planes, boxes, rays and segments.
+//!
+//! This is the bottom layer. Signs are decided exactly by [`orient2d`] and
+//! [`orient3d`]; everything else here (plane coefficients, distances, box
+//! extents) is a floating-point construction that never decides a sign.
+
+mod aabb;
+mod plane;
+pub mod polygon;
+mod predicates;
+mod ray;
+mod tolerance;
+
+pub use aabb::Aabb;
+pub use plane::{Plane, PlaneError, PlaneFit, newell_vector_area};
+pub use predicates::{Sign, exact_fallbacks, orient2d, orient3d, reset_exact_fallbacks};
+pub use ray::{Ray, Segment};
+pub use tolerance::Tolerance;
+
+use glam::{DVec2, DVec3};
+
+/// Whether three points are exactly collinear (coincident points included).
+///
+/// Decided exactly: three points are collinear iff their projections onto all
+/// three axis planes are collinear.
+#[must_use]
+pub fn collinear3d(a: DVec3, b: DVec3, c: DVec3) -> bool {
+    let xy = |p: DVec3| DVec2::new(p.x, p.y);
+    let yz = |p: DVec3| DVec2::new(p.y, p.z);
+    let zx = |p: DVec3| DVec2::new(p.z, p.x);
+    orient2d(xy(a), xy(b), xy(c)) == Sign::Zero
+        && orient2d(yz(a), yz(b), yz(c)) == Sign::Zero
+        && orient2d(zx(a), zx(b), zx(c)) == Sign::Zero
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn collinearity_is_exact() {
+        let a = DVec3::new(0.1, 0.2, 0.3);
+        let b = DVec3::new(0.2, 0.4, 0.6);
+        assert!(collinear3d(a, a, b));
+        assert!(collinear3d(DVec3::ZERO, DVec3::ONE, DVec3::splat(3.0)));
+        // 0.3 = 3 * 0.1 is false in binary: these are not exactly collinear.
+        assert!(!collinear3d(DVec3::ZERO, a, DVec3::new(0.3, 0.6, 0.9)));
+    }
+}

@@ -1,0 +1,173 @@
+//! Polygons projected onto an axis plane (the seed's "ignore one coordinate").
+//!
+//! A planar polygon is projected onto the coordinate plane most nearly
+//! parallel to it: the one perpendicular to the largest component of its
+//! normal. Projection only drops a coordinate, so it is exact, and 2-D
+//! predicates on the projected points are exact statements about the input.
+
+use glam::{DVec2, DVec3};
+
+use super::{Sign, orient2d};
+
+/// A coordinate axis: the one dropped when projecting.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Axis {
+    /// Drop `x`: project onto the `yz` plane.
+    X,
+    /// Drop `y`: project onto the `zx` plane.
+    Y,
+    /// Drop `z`: project onto the `xy` plane.
+    Z,
+}
+
+/// The projection of a polygon with the normal `normal`: which axis to drop,
+/// and whether the projection reverses the winding.
+///
+/// Projected coordinates are chosen so that a polygon wound counter-clockwise
+/// around `normal` stays counter-clockwise in 2-D when `flipped` is false.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Projection {
+    /// The dropped axis.
+    pub axis: Axis,
+    /// Whether the normal points along the negative dropped axis, so that
+    /// counter-clockwise in 3-D is clockwise in 2-D.
+    pub flipped: bool,
+}
+
+impl Projection {
+    /// The projection onto the axis plane closest to the plane with normal
+    /// `normal` (largest absolute component dropped; ties go to `z`, then
+    /// `y`).
+    #[must_use]
+    pub fn along(normal: DVec3) -> Projection {
+        let a = normal.abs();
+        let (axis, component) = if a.z >= a.x && a.z >= a.y {
+            (Axis::Z, normal.z)
+        } else if a.y >= a.x {
+            (Axis::Y, normal.y)
+        } else {
+            (Axis::X, normal.x)
+        };
+        Projection {
+            axis,
+            flipped: component < 0.0,
+        }
+    }
+
+    /// `p` with the dropped coordinate removed; `(y, z)`, `(z, x)` or `(x, y)`,
+    /// which keeps right-handedness.
+    #[must_use]
+    pub fn apply(&self, p: DVec3) -> DVec2 {
+        match self.axis {
+            Axis::X => DVec2::new(p.y, p.z),
+            Axis::Y => DVec2::new(p.z, p.x),
+            Axis::Z => DVec2::new(p.x, p.y),
+        }
+    }
+}
+
+/// Whether a closed 2-D polygon is simple: no two non-adjacent edges touch,
+/// and no two adjacent edges fold back over each other. Decided exactly;
+/// `O(n²)`, meant for builder input, not for large meshes.
+///
+/// Returns the first pair of offending edge indices (edge `i` runs from vertex
+/// `i` to vertex `i + 1`), or `None` for a simple polygon.
+#[must_use]
+pub fn find_self_intersection(points: &[DVec2]) -> Option<(usize, usize)> {
+    let n = points.len();
+    let edge = |i: usize| (points[i], points[(i + 1) % n]);
+    for i in 0..n {
+        let (a, b) = edge(i);
+        // Adjacent edge i+1 folds back onto edge i.
+        let c = points[(i + 2) % n];
+        if n >= 3 && orient2d(a, b, c) == Sign::Zero && (b - a).dot(c - b) < 0.0 {
+            return Some((i, (i + 1) % n));
+        }
+        for j in i + 2..n {
+            if i == 0 && j == n - 1 {
+                continue;
+            }
+            let (c, d) = edge(j);
+            if segments_touch(a, b, c, d) {
+                return Some((i, j));
+            }
+        }
+    }
+    None
+}
+
+/// Whether the closed segments `ab` and `cd` share a point, decided exactly.
+#[must_use]
+pub fn segments_touch(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+    let abc = orient2d(a, b, c);
+    let abd = orient2d(a, b, d);
+    let cda = orient2d(c, d, a);
+    let cdb = orient2d(c, d, b);
+    if abc != Sign::Zero && abc == abd || cda != Sign::Zero && cda == cdb {
+        return false;
+    }
+    if abc == Sign::Zero && abd == Sign::Zero {
+        // Collinear: overlap of the projections on the longer axis.
+        let on = |p: DVec2, q: DVec2, r: DVec2| {
+            r.x >= p.x.min(q.x) && r.x <= p.x.max(q.x) && r.y >= p.y.min(q.y) && r.y <= p.y.max(q.y)
+        };
+        return on(a, b, c) || on(a, b, d) || on(c, d, a) || on(c, d, b);
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64) -> DVec2 {
+        DVec2::new(x, y)
+    }
+
+    #[test]
+    fn projection_keeps_counter_clockwise() {
+        for normal in [
+            DVec3::X,
+            DVec3::Y,
+            DVec3::Z,
+            -DVec3::X,
+            -DVec3::Y,
+            -DVec3::Z,
+        ] {
+            let p = Projection::along(normal);
+            // A triangle counter-clockwise around `normal`.
+            let (u, w) = (
+                normal.any_orthonormal_vector(),
+                normal.cross(normal.any_orthonormal_vector()),
+            );
+            let tri = [DVec3::ZERO, u, w].map(|q| p.apply(q));
+            let expected = if p.flipped {
+                Sign::Negative
+            } else {
+                Sign::Positive
+            };
+            assert_eq!(orient2d(tri[0], tri[1], tri[2]), expected, "{normal}");
+        }
+    }
+
+    #[test]
+    fn simple_and_non_simple_polygons() {
+        let square = [v(0., 0.), v(1., 0.), v(1., 1.), v(0., 1.)];
+        assert_eq!(find_self_intersection(&square), None);
+        let bowtie = [v(0., 0.), v(1., 1.), v(1., 0.), v(0., 1.)];
+        assert_eq!(find_self_intersection(&bowtie), Some((0, 2)));
+        let l_shape = [
+            v(0., 0.),
+            v(2., 0.),
+            v(2., 1.),
+            v(1., 1.),
+            v(1., 2.),
+            v(0., 2.),
+        ];
+        assert_eq!(find_self_intersection(&l_shape), None);
+        let folded = [v(0., 0.), v(2., 0.), v(1., 0.), v(1., 1.)];
+        assert!(find_self_intersection(&folded).is_some());
+        let touching = [v(0., 0.), v(2., 0.), v(2., 2.), v(1., 0.), v(0., 2.)];
+        assert!(find_self_intersection(&touching).is_some());
+    }
+}

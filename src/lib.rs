@@ -1,0 +1,25 @@
+//! # wingedge
+//!
+//! A B-rep polyhedron kernel built on Baumgart's winged-edge structure.
+//!
+//! ## Conventions
+//!
+//! - Right-handed coordinates, `f64` throughout ([`glam::DVec3`]).
+//! - A face's vertices run counter-clockwise seen from outside the solid, so
+//!   face normals point outward.
+//! - A plane is `A x + B y + C z + D = 0` with unit `(A, B, C)`;
+//!   `A x + B y + C z + D > 0` is the outside (the side the normal points to).
+//! - Signs are decided exactly ([`geom::orient3d`]); tolerances exist only for
+//!   user-level judgements and are relative to the model's bounding box
+//!   ([`geom::Tolerance`]).
+//!
+//! ## Layers
+//!
+//! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out).
+#![warn(missing_docs)]
+
+pub mod geom;
+pub mod io;
+pub mod mesh;
+
+pub use glam;

@@ -1,0 +1,471 @@
+//! Building a winged-edge solid from an indexed polygon soup.
+//!
+//! The build works in index space first (half-edges numbered by polygon
+//! corner, a compressed vertex → outgoing half-edges table to find twins),
+//! checks everything a winged-edge solid cannot represent, and only then
+//! fills the slotmap tables. It runs in time linear in the number of corners
+//! (twin search is proportional to vertex degree).
+
+use glam::DVec3;
+use slotmap::Key;
+use thiserror::Error;
+
+use crate::geom::Plane;
+
+use super::{Edge, EdgeId, Face, FaceId, PolygonSoup, Solid, Vertex, VertexId};
+
+/// Why a polygon soup cannot be built into a winged-edge solid.
+///
+/// Polygon and vertex numbers are 0-based indices into the soup; `line` is the
+/// OBJ line of a polygon when the soup came from a file.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum BuildError {
+    /// The soup holds no polygon at all.
+    #[error("there are no polygons to build a solid from")]
+    NoPolygons,
+    /// A polygon with fewer than three corners.
+    #[error("polygon {polygon}{} has {count} vertices; a face needs at least 3", at_line(*.line))]
+    TooFewVertices {
+        /// The polygon.
+        polygon: usize,
+        /// Its OBJ line.
+        line: Option<usize>,
+        /// How many vertices it has.
+        count: usize,
+    },
+    /// A polygon refers to a vertex that does not exist.
+    #[error("polygon {polygon}{} refers to vertex {index}, but there are only {len} vertices", at_line(*.line))]
+    IndexOutOfRange {
+        /// The polygon.
+        polygon: usize,
+        /// Its OBJ line.
+        line: Option<usize>,
+        /// The bad index.
+        index: usize,
+        /// The number of vertices.
+        len: usize,
+    },
+    /// A polygon visits the same vertex twice.
+    #[error("polygon {polygon}{} visits vertex {vertex} more than once", at_line(*.line))]
+    RepeatedVertex {
+        /// The polygon.
+        polygon: usize,
+        /// Its OBJ line.
+        line: Option<usize>,
+        /// The repeated vertex.
+        vertex: usize,
+    },
+    /// A vertex used by a polygon has a NaN or infinite coordinate.
+    #[error("vertex {vertex} has a non-finite position {position}")]
+    NonFinitePosition {
+        /// The vertex.
+        vertex: usize,
+        /// Its position.
+        position: DVec3,
+    },
+    /// An edge shared by three or more polygons.
+    #[error("edge {}–{} is used by {} polygons {polygons:?} (lines {lines:?}); a manifold edge has at most 2", .vertices[0], .vertices[1], .polygons.len())]
+    NonManifoldEdge {
+        /// The edge's end vertices.
+        vertices: [usize; 2],
+        /// Every polygon that uses the edge.
+        polygons: Vec<usize>,
+        /// Their OBJ lines, where known.
+        lines: Vec<Option<usize>>,
+    },
+    /// Two polygons run an edge in the same direction: their orientations
+    /// disagree.
+    #[error("edge {}–{} is run in the same direction by polygons {} and {} (lines {lines:?}): their orientations disagree", .vertices[0], .vertices[1], .polygons[0], .polygons[1])]
+    InconsistentOrientation {
+        /// The edge's vertices, in the direction both polygons use.
+        vertices: [usize; 2],
+        /// The two polygons.
+        polygons: [usize; 2],
+        /// Their OBJ lines, where known.
+        lines: [Option<usize>; 2],
+    },
+    /// The polygons around a vertex form more than one fan (a pinch point,
+    /// such as the shared tip of two cones).
+    #[error(
+        "vertex {vertex} is a pinch point: the polygons around it {polygons:?} form {fans} separate fans"
+    )]
+    NonManifoldVertex {
+        /// The vertex.
+        vertex: usize,
+        /// How many fans meet there.
+        fans: usize,
+        /// Every polygon at the vertex.
+        polygons: Vec<usize>,
+    },
+    /// A polygon given to a builder encloses no area.
+    #[error("the polygon has zero area")]
+    ZeroArea,
+    /// A polygon given to a builder crosses itself.
+    #[error("the polygon is not simple: its edges {0} and {1} meet")]
+    SelfIntersecting(usize, usize),
+    /// A sweep or apex that would give a flat solid.
+    #[error("the sweep vector or apex lies in the polygon's plane")]
+    Flat,
+}
+
+fn at_line(line: Option<usize>) -> String {
+    line.map(|l| format!(" (line {l})")).unwrap_or_default()
+}
+
+/// Half-edges in index space: corners of polygons, then holes' half-edges.
+struct HalfEdges {
+    from: Vec<usize>,
+    to: Vec<usize>,
+    /// The polygon of each face half-edge.
+    polygon: Vec<usize>,
+    next: Vec<usize>,
+    prev: Vec<usize>,
+    twin: Vec<usize>,
+    /// How many half-edges belong to polygons; the rest run around holes.
+    face_count: usize,
+}
+
+impl Solid {
+    /// Builds a solid from positions and polygons given as index lists.
+    ///
+    /// # Errors
+    ///
+    /// As for [`Solid::try_from_soup`].
+    pub fn try_from_polygons<P: AsRef<[usize]>>(
+        positions: &[DVec3],
+        polygons: impl IntoIterator<Item = P>,
+    ) -> Result<Solid, BuildError> {
+        Solid::try_from_soup(&PolygonSoup::new(positions.to_vec(), polygons))
+    }
+
+    /// Builds a winged-edge solid from a polygon soup.
+    ///
+    /// Each polygon becomes a face carrying its attributes; each referenced
+    /// soup vertex becomes a vertex (unreferenced ones are left out); each
+    /// unordered pair of consecutive corners becomes an edge. An edge used by
+    /// one polygon is kept as a boundary edge (open surfaces are
+    /// representable). Faces whose vertices are collinear get no plane.
+    ///
+    /// # Errors
+    ///
+    /// The first problem found, in polygon order: [`BuildError::NoPolygons`],
+    /// [`BuildError::TooFewVertices`], [`BuildError::IndexOutOfRange`],
+    /// [`BuildError::RepeatedVertex`], [`BuildError::NonFinitePosition`],
+    /// [`BuildError::NonManifoldEdge`] (three or more polygons on an edge),
+    /// [`BuildError::InconsistentOrientation`] (an edge run twice in one
+    /// direction) and [`BuildError::NonManifoldVertex`].
+    pub fn try_from_soup(soup: &PolygonSoup) -> Result<Solid, BuildError> {
+        if soup.polygons.is_empty() {
+            return Err(BuildError::NoPolygons);
+        }
+        check_polygons(soup)?;
+        let mut halves = corner_half_edges(soup);
+        let outgoing = Outgoing::new(soup.positions.len(), &halves.from);
+        pair_twins(soup, &mut halves, &outgoing)?;
+        link_holes(soup, &mut halves, &outgoing)?;
+        check_fans(soup, &halves, &outgoing)?;
+        Ok(assemble(soup, &halves))
+    }
+}
+
+fn check_polygons(soup: &PolygonSoup) -> Result<(), BuildError> {
+    let len = soup.positions.len();
+    let mut seen: Vec<usize> = Vec::new();
+    for (polygon, p) in soup.polygons.iter().enumerate() {
+        let line = p.attributes.line;
+        if p.vertices.len() < 3 {
+            return Err(BuildError::TooFewVertices {
+                polygon,
+                line,
+                count: p.vertices.len(),
+            });
+        }
+        if let Some(&index) = p.vertices.iter().find(|&&i| i >= len) {
+            return Err(BuildError::IndexOutOfRange {
+                polygon,
+                line,
+                index,
+                len,
+            });
+        }
+        seen.clear();
+        seen.extend_from_slice(&p.vertices);
+        seen.sort_unstable();
+        if let Some(w) = seen.windows(2).find(|w| w[0] == w[1]) {
+            return Err(BuildError::RepeatedVertex {
+                polygon,
+                line,
+                vertex: w[0],
+            });
+        }
+        if let Some(&vertex) = p.vertices.iter().find(|&&i| !soup.positions[i].is_finite()) {
+            return Err(BuildError::NonFinitePosition {
+                vertex,
+                position: soup.positions[vertex],
+            });
+        }
+    }
+    Ok(())
+}
+
+fn corner_half_edges(soup: &PolygonSoup) -> HalfEdges {
+    let corners: usize = soup.polygons.iter().map(|p| p.vertices.len()).sum();
+    let mut h = HalfEdges {
+        from: Vec::with_capacity(corners),
+        to: Vec::with_capacity(corners),
+        polygon: Vec::with_capacity(corners),
+        next: Vec::with_capacity(corners),
+        prev: Vec::with_capacity(corners),
+        twin: Vec::new(),
+        face_count: corners,
+    };
+    for (index, p) in soup.polygons.iter().enumerate() {
+        let base = h.from.len();
+        let n = p.vertices.len();
+        for i in 0..n {
+            h.from.push(p.vertices[i]);
+            h.to.push(p.vertices[(i + 1) % n]);
+            h.polygon.push(index);
+            h.next.push(base + (i + 1) % n);
+            h.prev.push(base + (i + n - 1) % n);
+        }
+    }
+    h.twin = vec![usize::MAX; corners];
+    h
+}
+
+/// Compressed table of the face half-edges leaving each soup vertex.
+struct Outgoing {
+    offsets: Vec<usize>,
+    list: Vec<usize>,
+}
+
+impl Outgoing {
+    fn new(vertex_count: usize, from: &[usize]) -> Outgoing {
+        let mut offsets = vec![0usize; vertex_count + 1];
+        for &v in from {
+            offsets[v + 1] += 1;
+        }
+        for i in 0..vertex_count {
+            offsets[i + 1] += offsets[i];
+        }
+        let mut fill = offsets.clone();
+        let mut list = vec![0usize; from.len()];
+        for (h, &v) in from.iter().enumerate() {
+            list[fill[v]] = h;
+            fill[v] += 1;
+        }
+        Outgoing { offsets, list }
+    }
+
+    fn of(&self, v: usize) -> &[usize] {
+        &self.list[self.offsets[v]..self.offsets[v + 1]]
+    }
+}
+
+fn pair_twins(soup: &PolygonSoup, h: &mut HalfEdges, out: &Outgoing) -> Result<(), BuildError> {
+    let line = |h: &HalfEdges, e: usize| soup.polygons[h.polygon[e]].attributes.line;
+    for e in 0..h.face_count {
+        let (a, b) = (h.from[e], h.to[e]);
+        let same: smallvec::SmallVec<[usize; 2]> = out
+            .of(a)
+            .iter()
+            .copied()
+            .filter(|&g| h.to[g] == b)
+            .collect();
+        let opposite: smallvec::SmallVec<[usize; 2]> = out
+            .of(b)
+            .iter()
+            .copied()
+            .filter(|&g| h.to[g] == a)
+            .collect();
+        if same.len() + opposite.len() >= 3 {
+            let mut users: Vec<usize> = same.iter().chain(&opposite).copied().collect();
+            users.sort_unstable();
+            return Err(BuildError::NonManifoldEdge {
+                vertices: [a.min(b), a.max(b)],
+                polygons: users.iter().map(|&g| h.polygon[g]).collect(),
+                lines: users.iter().map(|&g| line(h, g)).collect(),
+            });
+        }
+        if same.len() == 2 {
+            return Err(BuildError::InconsistentOrientation {
+                vertices: [a, b],
+                polygons: [h.polygon[same[0]], h.polygon[same[1]]],
+                lines: [line(h, same[0]), line(h, same[1])],
+            });
+        }
+        if let Some(&t) = opposite.first() {
+            h.twin[e] = t;
+        }
+    }
+    Ok(())
+}
+
+/// Gives every face half-edge without a twin a twin running around its hole,
+/// and links the hole half-edges into loops.
+fn link_holes(soup: &PolygonSoup, h: &mut HalfEdges, out: &Outgoing) -> Result<(), BuildError> {
+    let mut hole_from = vec![usize::MAX; soup.positions.len()];
+    for e in 0..h.face_count {
+        if h.twin[e] != usize::MAX {
+            continue;
+        }
+        let g = h.from.len();
+        let start = h.to[e];
+        if hole_from[start] != usize::MAX {
+            return Err(pinch(h, out, start));
+        }
+        hole_from[start] = g;
+        h.from.push(start);
+        h.to.push(h.from[e]);
+        h.twin.push(e);
+        h.twin[e] = g;
+    }
+    let holes = h.from.len() - h.face_count;
+    h.next.resize(h.from.len(), usize::MAX);
+    h.prev.resize(h.from.len(), usize::MAX);
+    for g in h.face_count..h.face_count + holes {
+        let next = hole_from[h.to[g]];
+        h.next[g] = next;
+        h.prev[next] = g;
+    }
+    Ok(())
+}
+
+fn check_fans(soup: &PolygonSoup, h: &HalfEdges, out: &Outgoing) -> Result<(), BuildError> {
+    // Every edge leaves each endpoint exactly once (as a face or a hole
+    // half-edge); a single fan visits them all from any of them.
+    let mut degree = vec![0usize; soup.positions.len()];
+    for &v in &h.from {
+        degree[v] += 1;
+    }
+    let mut done = vec![false; soup.positions.len()];
+    for e in 0..h.face_count {
+        let v = h.from[e];
+        if done[v] {
+            continue;
+        }
+        done[v] = true;
+        let mut steps = 0;
+        let mut g = e;
+        loop {
+            steps += 1;
+            g = h.twin[h.prev[g]];
+            if g == e || steps > degree[v] {
+                break;
+            }
+        }
+        if steps != degree[v] {
+            return Err(pinch(h, out, v));
+        }
+    }
+    Ok(())
+}
+
+fn pinch(h: &HalfEdges, out: &Outgoing, vertex: usize) -> BuildError {
+    let polygons: Vec<usize> = out.of(vertex).iter().map(|&g| h.polygon[g]).collect();
+    // Count fans by grouping the polygons at the vertex through shared edges.
+    let corners = out.of(vertex);
+    let mut group: Vec<usize> = (0..corners.len()).collect();
+    fn root(group: &mut [usize], mut i: usize) -> usize {
+        while group[i] != i {
+            group[i] = group[group[i]];
+            i = group[i];
+        }
+        i
+    }
+    for (i, &g) in corners.iter().enumerate() {
+        // The corner's incoming half-edge, seen from its other side, is
+        // outgoing in the neighbouring polygon of the same fan.
+        let across = h.twin.get(h.prev[g]).copied().unwrap_or(usize::MAX);
+        if let Some(j) = corners.iter().position(|&c| c == across) {
+            let (ri, rj) = (root(&mut group, i), root(&mut group, j));
+            group[ri] = rj;
+        }
+    }
+    let fans = (0..corners.len())
+        .filter(|&i| root(&mut group, i) == i)
+        .count();
+    let mut polygons = polygons;
+    polygons.sort_unstable();
+    BuildError::NonManifoldVertex {
+        vertex,
+        fans: fans.max(2),
+        polygons,
+    }
+}
+
+fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
+    let mut solid = Solid::default();
+    let mut vertex_ids = vec![VertexId::null(); soup.positions.len()];
+    for &v in &h.from[..h.face_count] {
+        if vertex_ids[v].is_null() {
+            vertex_ids[v] = solid.vertices.insert(Vertex {
+                position: soup.positions[v],
+                edge: EdgeId::null(),
+                source_index: Some(v),
+            });
+        }
+    }
+    // Faces first with placeholder edges, so that edges can name them.
+    let face_ids: Vec<FaceId> = soup
+        .polygons
+        .iter()
+        .enumerate()
+        .map(|(index, p)| {
+            let points: smallvec::SmallVec<[DVec3; 8]> =
+                p.vertices.iter().map(|&v| soup.positions[v]).collect();
+            let mut attributes = p.attributes.clone();
+            attributes.source_index = Some(index);
+            solid.faces.insert(Face {
+                plane: Plane::try_fit_newell(&points).ok().map(|fit| fit.plane),
+                edge: EdgeId::null(),
+                attributes,
+            })
+        })
+        .collect();
+    // One edge per twin pair, oriented like its first face half-edge.
+    let mut edge_of = vec![EdgeId::null(); h.from.len()];
+    for e in 0..h.face_count {
+        let t = h.twin[e];
+        if !edge_of[e].is_null() {
+            continue;
+        }
+        let right_face = (t < h.face_count).then(|| face_ids[h.polygon[t]]);
+        let id = solid.edges.insert(Edge {
+            origin: vertex_ids[h.from[e]],
+            dest: vertex_ids[h.to[e]],
+            left_face: face_ids[h.polygon[e]],
+            right_face,
+            cw_left: EdgeId::null(),
+            ccw_left: EdgeId::null(),
+            cw_right: EdgeId::null(),
+            ccw_right: EdgeId::null(),
+        });
+        edge_of[e] = id;
+        edge_of[t] = id;
+    }
+    // Wings: for each half-edge, the edges of its neighbours in its loop.
+    for g in 0..h.from.len() {
+        let id = edge_of[g];
+        let (next, prev) = (edge_of[h.next[g]], edge_of[h.prev[g]]);
+        let edge = &mut solid.edges[id];
+        if vertex_ids[h.from[g]] == edge.origin {
+            edge.ccw_left = next;
+            edge.cw_left = prev;
+        } else {
+            edge.ccw_right = next;
+            edge.cw_right = prev;
+        }
+    }
+    for e in 0..h.face_count {
+        solid.faces[face_ids[h.polygon[e]]].edge = edge_of[e];
+        solid.vertices[vertex_ids[h.from[e]]].edge = edge_of[e];
+    }
+    debug_assert!(
+        solid.check_consistency().is_ok(),
+        "{:?}",
+        solid.check_consistency()
+    );
+    solid
+}

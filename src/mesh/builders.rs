@@ -1,0 +1,305 @@
+//! Builders for the seed's "Creating polyhedra": the five Platonic solids, a
+//! box, prisms swept from any simple polygon, and pyramids.
+//!
+//! Every builder returns an outward-oriented closed solid that passes
+//! [`Solid::check_consistency`].
+
+use glam::DVec3;
+
+use crate::geom::polygon::{Projection, find_self_intersection};
+use crate::geom::{Plane, Sign, orient3d};
+
+use super::{BuildError, PolygonSoup, Solid};
+
+/// The golden ratio `φ = (1 + √5) / 2`.
+const PHI: f64 = 1.618_033_988_749_895;
+
+/// The names accepted by [`by_name`], in a stable order.
+pub const NAMES: [&str; 6] = [
+    "tetrahedron",
+    "cube",
+    "octahedron",
+    "dodecahedron",
+    "icosahedron",
+    "prism",
+];
+
+/// A built-in solid by name: the Platonic solids (`tetrahedron`, `cube`,
+/// `octahedron`, `dodecahedron`, `icosahedron`) and `prism`, an L-shaped
+/// (non-convex) prism. `None` for an unknown name.
+#[must_use]
+pub fn by_name(name: &str) -> Option<Solid> {
+    Some(match name {
+        "tetrahedron" => tetrahedron(),
+        "cube" | "hexahedron" => cube(),
+        "octahedron" => octahedron(),
+        "dodecahedron" => dodecahedron(),
+        "icosahedron" => icosahedron(),
+        "prism" => l_prism(),
+        _ => return None,
+    })
+}
+
+/// The regular tetrahedron with vertices `(1,1,1)`, `(1,−1,−1)`, `(−1,1,−1)`,
+/// `(−1,−1,1)`: edge `2√2`, volume `8/3`.
+#[must_use]
+pub fn tetrahedron() -> Solid {
+    let vertices = [
+        DVec3::new(1., 1., 1.),
+        DVec3::new(1., -1., -1.),
+        DVec3::new(-1., 1., -1.),
+        DVec3::new(-1., -1., 1.),
+    ];
+    // Each face is opposite a vertex: its normal is minus that vertex.
+    let normals: Vec<DVec3> = vertices.iter().map(|&v| -v).collect();
+    regular(&vertices, &normals, 3)
+}
+
+/// The cube `[−1, 1]³`: edge 2, volume 8.
+#[must_use]
+pub fn cube() -> Solid {
+    cuboid(DVec3::splat(-1.0), DVec3::splat(1.0)).expect("the unit cube is a valid box")
+}
+
+/// The regular octahedron with vertices `(±1, 0, 0)`, `(0, ±1, 0)`,
+/// `(0, 0, ±1)`: edge `√2`, volume `4/3`.
+#[must_use]
+pub fn octahedron() -> Solid {
+    let vertices = [
+        DVec3::X,
+        -DVec3::X,
+        DVec3::Y,
+        -DVec3::Y,
+        DVec3::Z,
+        -DVec3::Z,
+    ];
+    regular(&vertices, &cube_corners(), 3)
+}
+
+/// The regular icosahedron with vertices `(0, ±φ, ±1)` and their cyclic
+/// permutations: edge 2, volume `(5/12)(3 + √5)·8`.
+#[must_use]
+pub fn icosahedron() -> Solid {
+    regular(&icosahedron_vertices(), &dodecahedron_vertices(), 3)
+}
+
+/// The regular dodecahedron with vertices `(±1, ±1, ±1)`, `(0, ±1/φ, ±φ)` and
+/// cyclic permutations: edge `2/φ`, volume `((15 + 7√5)/4)(2/φ)³`.
+#[must_use]
+pub fn dodecahedron() -> Solid {
+    regular(&dodecahedron_vertices(), &icosahedron_vertices(), 5)
+}
+
+/// The axis-aligned box `[min, max]`, six quadrilateral faces.
+///
+/// # Errors
+///
+/// [`BuildError::NonFinitePosition`] for non-finite corners,
+/// [`BuildError::Flat`] unless `min < max` in every coordinate.
+pub fn cuboid(min: DVec3, max: DVec3) -> Result<Solid, BuildError> {
+    if !min.is_finite() || !max.is_finite() {
+        let position = if min.is_finite() { max } else { min };
+        return Err(BuildError::NonFinitePosition {
+            vertex: 0,
+            position,
+        });
+    }
+    if !min.cmplt(max).all() {
+        return Err(BuildError::Flat);
+    }
+    let bottom = [
+        DVec3::new(min.x, min.y, min.z),
+        DVec3::new(max.x, min.y, min.z),
+        DVec3::new(max.x, max.y, min.z),
+        DVec3::new(min.x, max.y, min.z),
+    ];
+    prism(&bottom, DVec3::new(0.0, 0.0, max.z - min.z))
+}
+
+/// The prism swept from a simple polygon along `sweep`: the polygon, a copy
+/// moved by `sweep`, and one quadrilateral per polygon edge. The polygon may
+/// be convex or not and wound either way; the solid is oriented outward.
+///
+/// # Errors
+///
+/// [`BuildError::TooFewVertices`], [`BuildError::RepeatedVertex`],
+/// [`BuildError::NonFinitePosition`] (also for a non-finite sweep),
+/// [`BuildError::ZeroArea`], [`BuildError::SelfIntersecting`], and
+/// [`BuildError::Flat`] when `sweep` lies in the polygon's plane (decided
+/// exactly).
+pub fn prism(profile: &[DVec3], sweep: DVec3) -> Result<Solid, BuildError> {
+    let base = checked_profile(profile)?;
+    if !sweep.is_finite() {
+        return Err(BuildError::NonFinitePosition {
+            vertex: profile.len(),
+            position: sweep,
+        });
+    }
+    let side = orient3d(
+        base.pivot[0],
+        base.pivot[1],
+        base.pivot[2],
+        base.pivot[0] + sweep,
+    );
+    let ring: Vec<DVec3> = match side {
+        Sign::Zero => return Err(BuildError::Flat),
+        Sign::Positive => profile.to_vec(),
+        Sign::Negative => profile.iter().rev().copied().collect(),
+    };
+    // `ring` now runs counter-clockwise seen from the sweep direction.
+    let n = ring.len();
+    let mut positions = ring.clone();
+    positions.extend(ring.iter().map(|&p| p + sweep));
+    let mut polygons: Vec<Vec<usize>> = Vec::with_capacity(n + 2);
+    polygons.push((0..n).rev().collect());
+    polygons.push((n..2 * n).collect());
+    for i in 0..n {
+        let j = (i + 1) % n;
+        polygons.push(vec![i, j, n + j, n + i]);
+    }
+    Solid::try_from_soup(&PolygonSoup::new(positions, polygons))
+}
+
+/// The pyramid over a simple polygon with the given apex.
+///
+/// # Errors
+///
+/// As for [`prism`], with [`BuildError::Flat`] when the apex lies in the
+/// polygon's plane.
+pub fn pyramid(base: &[DVec3], apex: DVec3) -> Result<Solid, BuildError> {
+    let checked = checked_profile(base)?;
+    if !apex.is_finite() {
+        return Err(BuildError::NonFinitePosition {
+            vertex: base.len(),
+            position: apex,
+        });
+    }
+    let side = orient3d(checked.pivot[0], checked.pivot[1], checked.pivot[2], apex);
+    let ring: Vec<DVec3> = match side {
+        Sign::Zero => return Err(BuildError::Flat),
+        Sign::Positive => base.to_vec(),
+        Sign::Negative => base.iter().rev().copied().collect(),
+    };
+    let n = ring.len();
+    let mut positions = ring;
+    positions.push(apex);
+    let mut polygons: Vec<Vec<usize>> = vec![(0..n).rev().collect()];
+    polygons.extend((0..n).map(|i| vec![i, (i + 1) % n, n]));
+    Solid::try_from_soup(&PolygonSoup::new(positions, polygons))
+}
+
+/// An L-shaped, non-convex prism of height 1 over the polygon
+/// `(0,0) (2,0) (2,1) (1,1) (1,2) (0,2)`: volume 3, 8 faces.
+#[must_use]
+pub fn l_prism() -> Solid {
+    let l = [(0., 0.), (2., 0.), (2., 1.), (1., 1.), (1., 2.), (0., 2.)]
+        .map(|(x, y)| DVec3::new(x, y, 0.));
+    prism(&l, DVec3::Z).expect("the L profile is simple")
+}
+
+struct CheckedProfile {
+    /// Three vertices spanning the polygon's plane, in its winding.
+    pivot: [DVec3; 3],
+}
+
+fn checked_profile(profile: &[DVec3]) -> Result<CheckedProfile, BuildError> {
+    let n = profile.len();
+    if n < 3 {
+        return Err(BuildError::TooFewVertices {
+            polygon: 0,
+            line: None,
+            count: n,
+        });
+    }
+    if let Some((vertex, &position)) = profile.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+        return Err(BuildError::NonFinitePosition { vertex, position });
+    }
+    for i in 0..n {
+        if profile[i + 1..].contains(&profile[i]) {
+            return Err(BuildError::RepeatedVertex {
+                polygon: 0,
+                line: None,
+                vertex: i,
+            });
+        }
+    }
+    let fit = Plane::try_fit_newell(profile).map_err(|_| BuildError::ZeroArea)?;
+    let projection = Projection::along(fit.plane.normal);
+    let flat: Vec<_> = profile.iter().map(|&p| projection.apply(p)).collect();
+    if let Some((a, b)) = find_self_intersection(&flat) {
+        return Err(BuildError::SelfIntersecting(a, b));
+    }
+    // The largest fan triangle from vertex 0 that agrees with the winding.
+    let a = profile[0];
+    let pivot = (1..n - 1)
+        .map(|i| [a, profile[i], profile[i + 1]])
+        .max_by(|s, t| {
+            let area = |q: &[DVec3; 3]| (q[1] - q[0]).cross(q[2] - q[0]).dot(fit.plane.normal);
+            area(s).total_cmp(&area(t))
+        })
+        .ok_or(BuildError::ZeroArea)?;
+    Ok(CheckedProfile { pivot })
+}
+
+fn cube_corners() -> Vec<DVec3> {
+    let mut v = Vec::with_capacity(8);
+    for x in [-1.0, 1.0] {
+        for y in [-1.0, 1.0] {
+            for z in [-1.0, 1.0] {
+                v.push(DVec3::new(x, y, z));
+            }
+        }
+    }
+    v
+}
+
+fn icosahedron_vertices() -> Vec<DVec3> {
+    let mut v = Vec::with_capacity(12);
+    for s in [-1.0, 1.0] {
+        for t in [-PHI, PHI] {
+            v.push(DVec3::new(0.0, t, s));
+            v.push(DVec3::new(t, s, 0.0));
+            v.push(DVec3::new(s, 0.0, t));
+        }
+    }
+    v
+}
+
+fn dodecahedron_vertices() -> Vec<DVec3> {
+    let mut v = cube_corners();
+    for s in [-1.0 / PHI, 1.0 / PHI] {
+        for t in [-PHI, PHI] {
+            v.push(DVec3::new(0.0, s, t));
+            v.push(DVec3::new(s, t, 0.0));
+            v.push(DVec3::new(t, 0.0, s));
+        }
+    }
+    v
+}
+
+/// A regular convex polyhedron from its vertices and the directions of its
+/// face normals (the vertices of its dual): each face is the `k` vertices
+/// farthest along its normal, ordered counter-clockwise around it.
+fn regular(vertices: &[DVec3], normals: &[DVec3], k: usize) -> Solid {
+    let polygons: Vec<Vec<usize>> = normals
+        .iter()
+        .map(|&normal| {
+            let mut ranked: Vec<usize> = (0..vertices.len()).collect();
+            ranked.sort_by(|&a, &b| vertices[b].dot(normal).total_cmp(&vertices[a].dot(normal)));
+            ranked.truncate(k);
+            let centre = ranked.iter().map(|&i| vertices[i]).sum::<DVec3>() / k as f64;
+            let u = (vertices[ranked[0]] - centre).normalize();
+            let w = normal.normalize().cross(u);
+            ranked.sort_by(|&a, &b| {
+                let angle = |i: usize| {
+                    let d = vertices[i] - centre;
+                    d.dot(w).atan2(d.dot(u))
+                };
+                angle(a).total_cmp(&angle(b))
+            });
+            ranked
+        })
+        .collect();
+    Solid::try_from_soup(&PolygonSoup::new(vertices.to_vec(), polygons))
+        .expect("a regular polyhedron's faces form a closed manifold")
+}

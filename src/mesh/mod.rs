@@ -1,0 +1,31 @@
+//! Topology: the winged-edge solid, its invariants, traversal, builders and
+//! measures.
+//!
+//! A [`Solid`] holds three slotmap tables — vertices, edges, faces — linked
+//! as in Baumgart's winged-edge structure (see [`Edge`]). Solids are built
+//! from an indexed [`PolygonSoup`] by [`Solid::try_from_soup`] or by the
+//! [`builders`]; the nine adjacency relations are iterators in
+//! [`traverse`](Solid::vertex_edges).
+
+mod build;
+pub mod builders;
+mod consistency;
+mod edge;
+mod face;
+mod ids;
+mod measure;
+mod solid;
+mod soup;
+mod traverse;
+mod vertex;
+
+pub use build::BuildError;
+pub use consistency::ConsistencyError;
+pub use edge::{Edge, EdgeUse, Side};
+pub use face::{Face, FaceAttributes};
+pub use ids::{EdgeId, FaceId, VertexId};
+pub use measure::Shell;
+pub use solid::Solid;
+pub use soup::{Polygon, PolygonSoup};
+pub use traverse::{LoopWalk, StarWalk};
+pub use vertex::Vertex;

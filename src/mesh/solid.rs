@@ -1,0 +1,184 @@
+//! The winged-edge solid: three tables and their accessors.
+
+use glam::DVec3;
+use slotmap::SlotMap;
+
+use crate::geom::{Sign, orient3d};
+
+use super::{Edge, EdgeId, Face, FaceId, Vertex, VertexId};
+
+/// A polyhedral boundary representation in winged-edge form.
+///
+/// # Invariants
+///
+/// Every invariant of [`Vertex`], [`Edge`] and [`Face`] holds, and every id
+/// stored in a table names an element of the same solid. Closed solids (no
+/// boundary edges) are oriented outward when built by the builders in this
+/// crate; imported ones are checked by validation. A `Solid` is only created
+/// through checked constructors and offers no mutable access to its tables,
+/// so the invariants cannot be broken from outside;
+/// [`Solid::check_consistency`] re-verifies all of them.
+#[derive(Clone, Debug, Default)]
+pub struct Solid {
+    pub(super) vertices: SlotMap<VertexId, Vertex>,
+    pub(super) edges: SlotMap<EdgeId, Edge>,
+    pub(super) faces: SlotMap<FaceId, Face>,
+}
+
+impl Solid {
+    /// The number of vertices.
+    #[must_use]
+    pub fn vertex_count(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// The number of edges.
+    #[must_use]
+    pub fn edge_count(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// The number of faces.
+    #[must_use]
+    pub fn face_count(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// The vertex `id`.
+    ///
+    /// # Panics
+    ///
+    /// If `id` is not a vertex of this solid (a programmer error: ids are
+    /// only valid for the solid that issued them). See [`Solid::get_vertex`].
+    #[must_use]
+    pub fn vertex(&self, id: VertexId) -> &Vertex {
+        &self.vertices[id]
+    }
+
+    /// The edge `id`.
+    ///
+    /// # Panics
+    ///
+    /// If `id` is not an edge of this solid.
+    #[must_use]
+    pub fn edge(&self, id: EdgeId) -> &Edge {
+        &self.edges[id]
+    }
+
+    /// The face `id`.
+    ///
+    /// # Panics
+    ///
+    /// If `id` is not a face of this solid.
+    #[must_use]
+    pub fn face(&self, id: FaceId) -> &Face {
+        &self.faces[id]
+    }
+
+    /// The vertex `id`, or `None` if it is not a vertex of this solid.
+    #[must_use]
+    pub fn get_vertex(&self, id: VertexId) -> Option<&Vertex> {
+        self.vertices.get(id)
+    }
+
+    /// The edge `id`, or `None` if it is not an edge of this solid.
+    #[must_use]
+    pub fn get_edge(&self, id: EdgeId) -> Option<&Edge> {
+        self.edges.get(id)
+    }
+
+    /// The face `id`, or `None` if it is not a face of this solid.
+    #[must_use]
+    pub fn get_face(&self, id: FaceId) -> Option<&Face> {
+        self.faces.get(id)
+    }
+
+    /// The position of vertex `id`.
+    ///
+    /// # Panics
+    ///
+    /// If `id` is not a vertex of this solid.
+    #[must_use]
+    pub fn position(&self, id: VertexId) -> DVec3 {
+        self.vertices[id].position
+    }
+
+    /// All vertices with their ids, in creation order.
+    pub fn vertices(&self) -> impl ExactSizeIterator<Item = (VertexId, &Vertex)> + '_ {
+        self.vertices.iter()
+    }
+
+    /// All edges with their ids, in creation order.
+    pub fn edges(&self) -> impl ExactSizeIterator<Item = (EdgeId, &Edge)> + '_ {
+        self.edges.iter()
+    }
+
+    /// All faces with their ids, in creation order.
+    pub fn faces(&self) -> impl ExactSizeIterator<Item = (FaceId, &Face)> + '_ {
+        self.faces.iter()
+    }
+
+    /// Whether every edge has two faces (the surface has no holes).
+    #[must_use]
+    pub fn is_closed(&self) -> bool {
+        self.edges.values().all(|e| e.right_face.is_some())
+    }
+
+    /// The edges with only one face: the rims of holes.
+    pub fn boundary_edges(&self) -> impl Iterator<Item = EdgeId> + '_ {
+        self.edges
+            .iter()
+            .filter(|(_, e)| e.right_face.is_none())
+            .map(|(id, _)| id)
+    }
+
+    /// Which side of face `face` the point `p` lies on, decided exactly.
+    ///
+    /// [`Sign::Positive`] means outside (the side the outward normal points
+    /// to), [`Sign::Negative`] inside and [`Sign::Zero`] exactly in the
+    /// plane. The decision is [`orient3d`] on three of the face's own vertices
+    /// (the first vertex and the two that span the largest triangle with it),
+    /// never the rounded plane coefficients. For a triangle this is exact with
+    /// respect to the face itself; for a polygon whose vertices are not
+    /// exactly coplanar it is exact with respect to that triangle's plane.
+    /// A face with zero area gives [`Sign::Zero`] everywhere.
+    ///
+    /// # Panics
+    ///
+    /// If `face` is not a face of this solid.
+    #[must_use]
+    pub fn face_side(&self, face: FaceId, p: DVec3) -> Sign {
+        match self.face_pivot(face) {
+            Some([a, b, c]) => orient3d(a, b, c, p),
+            None => Sign::Zero,
+        }
+    }
+
+    /// Three vertices of `face` spanning its plane, in the face's winding: the
+    /// first vertex and the pair that forms the largest triangle with it.
+    /// `None` for a face of zero area.
+    ///
+    /// # Panics
+    ///
+    /// If `face` is not a face of this solid.
+    #[must_use]
+    pub fn face_pivot(&self, face: FaceId) -> Option<[DVec3; 3]> {
+        let points: smallvec::SmallVec<[DVec3; 8]> =
+            self.face_vertices(face).map(|v| self.position(v)).collect();
+        let n = points.len();
+        if n == 3 {
+            return Some([points[0], points[1], points[2]]);
+        }
+        let normal = self.faces[face].plane?.normal;
+        let a = points[0];
+        let (mut best, mut best_area) = (None, 0.0);
+        for i in 1..n - 1 {
+            let area = (points[i] - a).cross(points[i + 1] - a).dot(normal);
+            if area > best_area {
+                best_area = area;
+                best = Some([a, points[i], points[i + 1]]);
+            }
+        }
+        best
+    }
+}
