@@ -23,3 +23,8 @@ pub mod io;
 pub mod mesh;
 
 pub use glam;
+
+/// The README's code blocks, compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
