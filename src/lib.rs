@@ -20,6 +20,7 @@
 
 pub mod geom;
 pub mod io;
+pub mod csg;
 pub mod mesh;
 
 pub use glam;

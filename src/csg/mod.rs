@@ -1,0 +1,45 @@
+//! Ray-cast CSG (Roth's method, the seed's part (c)): trees of primitives
+//! combined by union, intersection and difference, answered along rays.
+//!
+//! - A [`Primitive`] answers a ray with whether its origin is inside and the
+//!   sorted crossings `t > 0`, a point with a [`Containment`], and gives its
+//!   bounds. Kinds: [`HalfSpace`] (exact), [`AxisBox`], [`Sphere`],
+//!   [`Cylinder`] and [`Transformed`].
+//! - A [`Csg`] tree (built from a [`CsgExpr`]) combines two children's
+//!   answers with the seed's four-state machine ([`merge`]).
+//! - Answers: [`Spans`] of a ray, the [`FirstHit`] with its normal when
+//!   asked, point classification right at coincident faces, and volume by
+//!   integrating span lengths ([`VolumeEstimate`]).
+//! - Every query adds to a [`Stats`] value, so tests can check that only the
+//!   needed work was done.
+//! - [`Scene`] reads the JSON scene format.
+
+mod axis_box;
+mod classify;
+mod containment;
+mod cylinder;
+mod halfspace;
+mod merge;
+mod primitive;
+
+mod sphere;
+mod stats;
+mod trace;
+mod transform;
+mod tree;
+mod volume;
+
+pub use axis_box::{AxisBox, AxisBoxError};
+pub use classify::Neighbourhood;
+pub use containment::Containment;
+pub use cylinder::{Cylinder, CylinderError};
+pub use halfspace::{HalfSpace, HalfSpaceError};
+pub use merge::{CsgOp, Hit, MergeState, merge, oriented_normal};
+pub use primitive::{Crossing, Primitive, SurfaceId, normal_alignment, perturbed_side};
+
+pub use sphere::{Sphere, SphereError};
+pub use stats::Stats;
+pub use trace::{FirstHit, Spans};
+pub use transform::{TransformError, Transformed};
+pub use tree::{Csg, CsgError, CsgExpr, Leaf, LeafId};
+pub use volume::{VolumeError, VolumeEstimate};

@@ -1,0 +1,135 @@
+//! The leaf interface of a CSG tree: what a primitive tells about a ray and a
+//! point.
+
+use std::fmt::Debug;
+
+use glam::DVec3;
+
+use super::{Containment, Stats};
+use crate::geom::{Aabb, Ray, Sign};
+
+/// Which surface of a primitive a crossing lies on: a face index for a box
+/// or a polyhedron, 0 for a sphere, side/base/top for a cylinder. Only
+/// [`Primitive::normal`] interprets it.
+pub type SurfaceId = u32;
+
+/// One place where a ray crosses a primitive's boundary.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing {
+    /// The ray parameter, `t > 0`.
+    pub t: f64,
+    /// The surface crossed there.
+    pub surface: SurfaceId,
+}
+
+/// A solid that answers rays and points: a leaf of a CSG tree (the seed's
+/// "primitive object": one "for which we have a ray-object intersection
+/// algorithm").
+///
+/// # Contract
+///
+/// - [`intersect_ray`](Primitive::intersect_ray) returns the seed's `INOUT`
+///   — whether the ray's origin is inside — and appends the crossings with
+///   `t > 0` in strictly ascending order. "Origin inside" means inside just
+///   after the origin along the ray (for an origin in the interior that is
+///   the plain answer; for an origin exactly on the boundary it says which
+///   way the ray leaves it), so the crossings always alternate starting from
+///   that state and a ray never produces a zero-length span.
+/// - A ray that lies exactly in a plane of a flat face is decided by the
+///   crate-wide symbolic perturbation [`perturbed_side`]: the origin is moved
+///   by `ε (1, ε, ε²)`. Every primitive uses the same rule, so two boxes that
+///   share a face agree on which of them the grazing ray is in.
+/// - [`classify_point`](Primitive::classify_point) is `Inside`, `Outside` or
+///   `OnBoundary`; [`boundary_normal`](Primitive::boundary_normal) gives the
+///   outward normal at a boundary point on a smooth part of the surface
+///   (inside a face, not on an edge or corner), which lets the tree decide
+///   points on coincident faces.
+/// - [`bounds`](Primitive::bounds) holds the whole solid (infinite for a
+///   half-space).
+pub trait Primitive: Debug + Send + Sync {
+    /// Whether the ray's origin is inside, with the sorted crossings `t > 0`
+    /// appended to `crossings`. Ties broken by perturbation are counted in
+    /// `stats.tie_breaks`.
+    fn intersect_ray(&self, ray: &Ray, crossings: &mut Vec<Crossing>, stats: &mut Stats) -> bool;
+
+    /// Where `p` lies.
+    fn classify_point(&self, p: DVec3) -> Containment;
+
+    /// The outward normal at a boundary point `p` when `p` lies on a single
+    /// smooth piece of the surface; `None` at edges and corners or when `p`
+    /// is not on the boundary. Normals of flat faces are the exact input
+    /// normals (so coincident faces compare equal); curved ones are rounded.
+    fn boundary_normal(&self, p: DVec3) -> Option<DVec3>;
+
+    /// The outward normal (not necessarily unit) of `surface` at `p`, for
+    /// shading. A rounded construction.
+    fn normal(&self, p: DVec3, surface: SurfaceId) -> DVec3;
+
+    /// A box holding the solid.
+    fn bounds(&self) -> Aabb;
+
+    /// The solid's volume when it has a closed form (box, sphere, cylinder,
+    /// polyhedron by the divergence theorem); `None` otherwise (half-spaces).
+    fn exact_volume(&self) -> Option<f64> {
+        None
+    }
+
+    /// A short name of the kind of primitive (`box`, `sphere`, …).
+    fn kind(&self) -> &'static str;
+}
+
+/// The side of a flat face's plane a ray lying exactly in that plane is
+/// taken to be on: the symbolic perturbation that moves the ray's origin by
+/// `ε (1, ε, ε²)` for an infinitesimal `ε > 0` (Simulation of Simplicity).
+///
+/// The perturbed origin lies on the side of the first non-zero component of
+/// the outward `normal`: `Positive` (outside) when that component is
+/// positive, `Negative` (inside) otherwise. The rule depends only on the
+/// plane's orientation, so coincident faces of touching solids (opposite
+/// normals) put the grazing ray in exactly one of them. `Zero` only for a
+/// zero normal.
+#[must_use]
+pub fn perturbed_side(normal: DVec3) -> Sign {
+    [normal.x, normal.y, normal.z]
+        .into_iter()
+        .map(Sign::of)
+        .find(|&s| s != Sign::Zero)
+        .unwrap_or(Sign::Zero)
+}
+
+/// Whether two outward normals point exactly the same way (`Positive`),
+/// exactly opposite ways (`Negative`) or neither (`Zero`), decided exactly on
+/// the given coordinates.
+#[must_use]
+pub fn normal_alignment(a: DVec3, b: DVec3) -> Sign {
+    if a == DVec3::ZERO || b == DVec3::ZERO || !crate::geom::collinear3d(DVec3::ZERO, a, b) {
+        return Sign::Zero;
+    }
+    crate::geom::dot_sign(a, b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn perturbation_puts_a_grazing_ray_in_one_of_two_touching_solids() {
+        // Faces x = 1 of [0,1]³ (normal +x) and of [1,2]×… (normal −x).
+        assert_eq!(perturbed_side(DVec3::X), Sign::Positive);
+        assert_eq!(perturbed_side(-DVec3::X), Sign::Negative);
+        assert_eq!(perturbed_side(DVec3::new(0., -0., 3.)), Sign::Positive);
+        assert_eq!(perturbed_side(DVec3::ZERO), Sign::Zero);
+    }
+
+    #[test]
+    fn alignment_is_exact() {
+        assert_eq!(normal_alignment(DVec3::X, DVec3::X * 3.0), Sign::Positive);
+        assert_eq!(normal_alignment(DVec3::X, -DVec3::X), Sign::Negative);
+        let n = DVec3::new(0.1, 0.2, 0.3);
+        assert_eq!(normal_alignment(n, n * 2.0), Sign::Positive);
+        assert_eq!(
+            normal_alignment(n, DVec3::new(0.1, 0.2, 0.3_f64.next_up())),
+            Sign::Zero
+        );
+    }
+}

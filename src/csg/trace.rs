@@ -1,0 +1,237 @@
+//! Rays through a tree: spans, first hits, normals.
+
+use glam::DVec3;
+
+use super::merge::{Hit, merge, oriented_normal};
+use super::stats::counting_fallbacks;
+use super::tree::{NodeIndex, NodeKind};
+use super::{Crossing, Csg, CsgOp, LeafId, Stats, SurfaceId};
+use crate::geom::{Aabb, Ray};
+
+/// The answer of a tree to a ray: the seed's `(INOUT_C, t_C1, t_C2, …)`.
+///
+/// # Invariants
+///
+/// `hits` is strictly ascending with every `t > 0`; the ray is inside the
+/// solid on `(0, t₁)` iff `origin_inside`, and every hit toggles that.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Spans {
+    /// Whether the ray is inside just after its origin.
+    pub origin_inside: bool,
+    /// Where the ray crosses the boundary of the combined solid.
+    pub hits: Vec<Hit>,
+}
+
+impl Spans {
+    /// The intervals of `t` inside the solid, as `(start, end)`; a span
+    /// starting at the origin starts at 0 and one that never ends ends at
+    /// `f64::INFINITY`.
+    #[must_use]
+    pub fn intervals(&self) -> Vec<(f64, f64)> {
+        let mut ts: Vec<f64> = Vec::with_capacity(self.hits.len() + 2);
+        if self.origin_inside {
+            ts.push(0.0);
+        }
+        ts.extend(self.hits.iter().map(|h| h.t));
+        if ts.len() % 2 == 1 {
+            ts.push(f64::INFINITY);
+        }
+        ts.chunks_exact(2).map(|p| (p[0], p[1])).collect()
+    }
+
+    /// The total length of the spans in units of `t` (infinite for an
+    /// unbounded span).
+    #[must_use]
+    pub fn total_length(&self) -> f64 {
+        self.intervals().iter().map(|(a, b)| b - a).sum()
+    }
+}
+
+/// The first place a ray meets the boundary of the combined solid.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FirstHit {
+    /// The ray parameter.
+    pub t: f64,
+    /// The point `origin + t · direction` (rounded).
+    pub point: DVec3,
+    /// The leaf whose surface it is.
+    pub leaf: LeafId,
+    /// Which surface of that leaf.
+    pub surface: SurfaceId,
+    /// Whether the ray enters the solid there (it leaves when it started
+    /// inside).
+    pub entering: bool,
+}
+
+/// Reusable buffers for one thread's traversals.
+#[derive(Default)]
+struct Scratch {
+    pool: Vec<Vec<Hit>>,
+    leaf: Vec<Crossing>,
+}
+
+impl Scratch {
+    fn take(&mut self) -> Vec<Hit> {
+        let mut v = self.pool.pop().unwrap_or_default();
+        v.clear();
+        v
+    }
+}
+
+/// Relative allowance for rounding in the bounds test: the slab parameters
+/// of a box are each rounded once (a difference and a quotient: `2 ε`), so
+/// comparing two of them can be off by `4 ε` of their size. Culling accepts
+/// rays within that margin so that it never drops a real crossing.
+const SLAB_ROUNDING: f64 = 4.0 * f64::EPSILON;
+
+/// Whether the ray `[0, ∞)` may touch the closed box (conservatively).
+pub(crate) fn ray_meets_bounds(bounds: &Aabb, ray: &Ray) -> bool {
+    if bounds.is_empty() {
+        return false;
+    }
+    let (mut near, mut far) = (0.0_f64, f64::INFINITY);
+    for axis in 0..3 {
+        let (e, d) = (ray.origin[axis], ray.direction[axis]);
+        let (lo, hi) = (bounds.min[axis], bounds.max[axis]);
+        if d == 0.0 {
+            if e < lo || e > hi {
+                return false;
+            }
+            continue;
+        }
+        let (t0, t1) = ((lo - e) / d, (hi - e) / d);
+        let (t0, t1) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+        near = near.max(t0);
+        far = far.min(t1);
+    }
+    near <= far + SLAB_ROUNDING * near.abs().max(far.abs())
+}
+
+impl Csg {
+    /// The in/out spans of a ray through the whole solid.
+    ///
+    /// A ray whose direction is zero or not finite gets an empty answer
+    /// (check [`Ray::is_valid`] to tell).
+    pub fn spans(&self, ray: &Ray, stats: &mut Stats) -> Spans {
+        let mut out = Vec::new();
+        let origin_inside = self.trace(ray, None, stats, &mut out);
+        Spans {
+            origin_inside,
+            hits: out,
+        }
+    }
+
+    /// The first boundary crossing along the ray, or `None` when the ray
+    /// never meets the boundary. The root merge stops at the first crossing;
+    /// no normal is computed (see [`Csg::hit_normal`]).
+    pub fn first_hit(&self, ray: &Ray, stats: &mut Stats) -> Option<FirstHit> {
+        let mut out = Vec::new();
+        let inside = self.trace(ray, Some(1), stats, &mut out);
+        out.first().map(|h| FirstHit {
+            t: h.t,
+            point: ray.at(h.t),
+            leaf: h.leaf,
+            surface: h.surface,
+            entering: !inside,
+        })
+    }
+
+    /// The unit outward normal of the combined solid at a first hit: the
+    /// leaf's normal, turned to face the ray where it enters (so a hit on
+    /// B's surface in `A − B` points into B). Counted in `stats.normals`.
+    pub fn hit_normal(&self, ray: &Ray, hit: &FirstHit, stats: &mut Stats) -> DVec3 {
+        stats.normals += 1;
+        let Some(leaf) = self.leaf(hit.leaf) else {
+            return -ray.direction.normalize_or_zero();
+        };
+        let n = leaf.primitive.normal(hit.point, hit.surface).normalize_or_zero();
+        oriented_normal(n, ray.direction, hit.entering)
+    }
+
+    /// Whether the segment of the ray `(0, t_max)` meets the solid's
+    /// boundary: the shadow test. Counted in `stats.shadow_rays`.
+    pub fn occluded(&self, ray: &Ray, t_max: f64, stats: &mut Stats) -> bool {
+        stats.shadow_rays += 1;
+        match self.first_hit(ray, stats) {
+            Some(hit) => hit.t < t_max,
+            None => false,
+        }
+    }
+
+    fn trace(&self, ray: &Ray, limit: Option<usize>, stats: &mut Stats, out: &mut Vec<Hit>) -> bool {
+        stats.rays += 1;
+        if !ray.is_valid() {
+            return false;
+        }
+        SCRATCH.with(|cell| {
+            let mut scratch = cell.take();
+            let inside = counting_fallbacks(stats, |stats| {
+                self.trace_node(self.root, ray, limit, &mut scratch, stats, out)
+            });
+            cell.set(scratch);
+            inside
+        })
+    }
+
+    fn trace_node(
+        &self,
+        node: NodeIndex,
+        ray: &Ray,
+        limit: Option<usize>,
+        scratch: &mut Scratch,
+        stats: &mut Stats,
+        out: &mut Vec<Hit>,
+    ) -> bool {
+        let n = &self.nodes[node];
+        stats.bounds_tests += 1;
+        if !ray_meets_bounds(&n.bounds, ray) {
+            stats.culled_subtrees += 1;
+            return false;
+        }
+        match n.kind {
+            NodeKind::Leaf(id) => {
+                stats.primitive_ray_tests += 1;
+                scratch.leaf.clear();
+                let primitive = &self.leaves[id.0 as usize].primitive;
+                let inside = primitive.intersect_ray(ray, &mut scratch.leaf, stats);
+                let crossings = scratch.leaf.iter().take(limit.unwrap_or(usize::MAX));
+                out.extend(crossings.map(|c| Hit {
+                    t: c.t,
+                    leaf: id,
+                    surface: c.surface,
+                }));
+                inside
+            }
+            NodeKind::Op { op, left, right } => {
+                let mut a = scratch.take();
+                let in_a = self.trace_node(left, ray, None, scratch, stats, &mut a);
+                let left_decides = a.is_empty()
+                    && match op {
+                        CsgOp::Union => in_a,
+                        CsgOp::Intersection | CsgOp::Difference => !in_a,
+                        CsgOp::ReverseDifference => in_a,
+                    };
+                if left_decides {
+                    stats.skipped_right_sides += 1;
+                    scratch.pool.push(a);
+                    // ∪ with A everywhere is everything; ∩, − and B − A
+                    // here are empty.
+                    return op == CsgOp::Union;
+                }
+                let mut b = scratch.take();
+                let in_b = self.trace_node(right, ray, None, scratch, stats, &mut b);
+                let (inside, stopped) = merge(op, (in_a, &a), (in_b, &b), out, limit);
+                if stopped {
+                    stats.early_stops += 1;
+                }
+                scratch.pool.push(a);
+                scratch.pool.push(b);
+                inside
+            }
+        }
+    }
+}
+
+thread_local! {
+    static SCRATCH: std::cell::Cell<Scratch> = std::cell::Cell::new(Scratch::default());
+}
