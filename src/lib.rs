@@ -18,9 +18,9 @@
 //! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out).
 #![warn(missing_docs)]
 
+pub mod csg;
 pub mod geom;
 pub mod io;
-pub mod csg;
 pub mod mesh;
 
 pub use glam;

@@ -219,13 +219,28 @@ mod tests {
     #[test]
     fn rays_through_and_from_inside() {
         let b = unit();
-        assert_eq!(cast(&b, DVec3::new(-1., 0.5, 0.5), DVec3::X), (false, vec![1., 2.], 0));
-        assert_eq!(cast(&b, DVec3::new(0.5, 0.5, 0.5), DVec3::X), (true, vec![0.5], 0));
-        assert_eq!(cast(&b, DVec3::new(2., 0.5, 0.5), DVec3::X), (false, vec![], 0));
+        assert_eq!(
+            cast(&b, DVec3::new(-1., 0.5, 0.5), DVec3::X),
+            (false, vec![1., 2.], 0)
+        );
+        assert_eq!(
+            cast(&b, DVec3::new(0.5, 0.5, 0.5), DVec3::X),
+            (true, vec![0.5], 0)
+        );
+        assert_eq!(
+            cast(&b, DVec3::new(2., 0.5, 0.5), DVec3::X),
+            (false, vec![], 0)
+        );
         // Origin on the min face heading in: inside, one crossing.
-        assert_eq!(cast(&b, DVec3::new(0., 0.5, 0.5), DVec3::X), (true, vec![1.], 0));
+        assert_eq!(
+            cast(&b, DVec3::new(0., 0.5, 0.5), DVec3::X),
+            (true, vec![1.], 0)
+        );
         // Origin on the max face heading out: outside, nothing.
-        assert_eq!(cast(&b, DVec3::new(1., 0.5, 0.5), DVec3::X), (false, vec![], 0));
+        assert_eq!(
+            cast(&b, DVec3::new(1., 0.5, 0.5), DVec3::X),
+            (false, vec![], 0)
+        );
         // Through an edge only (touching): no zero-length span.
         assert_eq!(
             cast(&b, DVec3::new(-1., 0.5, 0.), DVec3::new(1., 0., 1.)),
@@ -242,17 +257,29 @@ mod tests {
     fn grazing_rays_are_perturbed() {
         let b = unit();
         // In the plane x = 0 (min face): inside by perturbation.
-        assert_eq!(cast(&b, DVec3::new(0., -1., 0.5), DVec3::Y), (false, vec![1., 2.], 1));
+        assert_eq!(
+            cast(&b, DVec3::new(0., -1., 0.5), DVec3::Y),
+            (false, vec![1., 2.], 1)
+        );
         // In the plane x = 1 (max face): outside.
-        assert_eq!(cast(&b, DVec3::new(1., -1., 0.5), DVec3::Y), (false, vec![], 1));
+        assert_eq!(
+            cast(&b, DVec3::new(1., -1., 0.5), DVec3::Y),
+            (false, vec![], 1)
+        );
     }
 
     #[test]
     fn points_and_boundary_normals() {
         let b = unit();
         assert_eq!(b.classify_point(DVec3::splat(0.5)), Containment::Inside);
-        assert_eq!(b.classify_point(DVec3::new(1., 0.5, 0.5)), Containment::OnBoundary);
-        assert_eq!(b.classify_point(DVec3::new(1.0f64.next_up(), 0.5, 0.5)), Containment::Outside);
+        assert_eq!(
+            b.classify_point(DVec3::new(1., 0.5, 0.5)),
+            Containment::OnBoundary
+        );
+        assert_eq!(
+            b.classify_point(DVec3::new(1.0f64.next_up(), 0.5, 0.5)),
+            Containment::Outside
+        );
         assert_eq!(b.boundary_normal(DVec3::new(1., 0.5, 0.5)), Some(DVec3::X));
         assert_eq!(b.boundary_normal(DVec3::new(1., 1., 0.5)), None);
         assert_eq!(b.normal(DVec3::ZERO, 4), -DVec3::Z);

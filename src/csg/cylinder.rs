@@ -226,16 +226,28 @@ mod tests {
             cast(&c, DVec3::new(0., 0., -1.), DVec3::Z),
             (false, vec![(1.0, BASE), (5.0, TOP)])
         );
-        assert_eq!(cast(&c, DVec3::new(0., 0., 1.), DVec3::Z), (true, vec![(3.0, TOP)]));
+        assert_eq!(
+            cast(&c, DVec3::new(0., 0., 1.), DVec3::Z),
+            (true, vec![(3.0, TOP)])
+        );
         // Parallel to the axis outside the radius.
         assert_eq!(cast(&c, DVec3::new(2., 0., -1.), DVec3::Z), (false, vec![]));
         // Passing above the top cap.
         assert_eq!(cast(&c, DVec3::new(-3., 0., 5.), DVec3::X), (false, vec![]));
-        assert_eq!(c.classify_point(DVec3::new(0., 0., 4.)), Containment::OnBoundary);
+        assert_eq!(
+            c.classify_point(DVec3::new(0., 0., 4.)),
+            Containment::OnBoundary
+        );
         assert_eq!(c.boundary_normal(DVec3::new(0., 0., 4.)), Some(DVec3::Z));
-        assert_eq!(c.classify_point(DVec3::new(0.5, 0., 2.)), Containment::Inside);
+        assert_eq!(
+            c.classify_point(DVec3::new(0.5, 0., 2.)),
+            Containment::Inside
+        );
         let b = c.bounds();
-        assert_eq!((b.min, b.max), (DVec3::new(-1., -1., 0.), DVec3::new(1., 1., 4.)));
+        assert_eq!(
+            (b.min, b.max),
+            (DVec3::new(-1., -1., 0.), DVec3::new(1., 1., 4.))
+        );
         assert!(Cylinder::try_new(DVec3::ZERO, DVec3::ZERO, 1.0).is_err());
     }
 }

@@ -171,9 +171,15 @@ mod tests {
         // z ≤ 1 is inside.
         let h = HalfSpace::try_new(DVec3::new(5., 5., 1.), DVec3::Z).unwrap();
         // From outside towards the plane: one crossing at t = 2.
-        assert_eq!(cast(&h, DVec3::new(0., 0., 3.), -DVec3::Z), (false, vec![2.0]));
+        assert_eq!(
+            cast(&h, DVec3::new(0., 0., 3.), -DVec3::Z),
+            (false, vec![2.0])
+        );
         // From inside outward.
-        assert_eq!(cast(&h, DVec3::new(0., 0., -1.), DVec3::Z * 0.5), (true, vec![4.0]));
+        assert_eq!(
+            cast(&h, DVec3::new(0., 0., -1.), DVec3::Z * 0.5),
+            (true, vec![4.0])
+        );
         // Parallel: D · N = 0, no crossing.
         assert_eq!(cast(&h, DVec3::new(0., 0., 3.), DVec3::X), (false, vec![]));
         assert_eq!(cast(&h, DVec3::new(0., 0., 0.), DVec3::Y), (true, vec![]));
@@ -182,7 +188,10 @@ mod tests {
         // The eye in the plane: no crossing; the heading decides.
         assert_eq!(cast(&h, DVec3::new(1., 2., 1.), DVec3::Z), (false, vec![]));
         assert_eq!(cast(&h, DVec3::new(1., 2., 1.), -DVec3::Z), (true, vec![]));
-        assert_eq!(h.ray_plane(&Ray::new(DVec3::new(1., 2., 1.), DVec3::Z)), None);
+        assert_eq!(
+            h.ray_plane(&Ray::new(DVec3::new(1., 2., 1.), DVec3::Z)),
+            None
+        );
     }
 
     #[test]
@@ -200,7 +209,10 @@ mod tests {
     #[test]
     fn points_are_classified_exactly() {
         let h = HalfSpace::try_new(DVec3::new(0.1, 0.1, 0.1), DVec3::ONE).unwrap();
-        assert_eq!(h.classify_point(DVec3::new(0.1, 0.1, 0.1)), Containment::OnBoundary);
+        assert_eq!(
+            h.classify_point(DVec3::new(0.1, 0.1, 0.1)),
+            Containment::OnBoundary
+        );
         assert_eq!(h.classify_point(DVec3::ZERO), Containment::Inside);
         assert_eq!(h.classify_point(DVec3::ONE), Containment::Outside);
         assert!(HalfSpace::try_new(DVec3::ZERO, DVec3::ZERO).is_err());

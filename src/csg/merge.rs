@@ -272,11 +272,11 @@ mod tests {
             run(CsgOp::Intersection, a, b),
             (false, vec![3.0, 4.0, 6.0, 7.0])
         );
-        assert_eq!(run(CsgOp::Difference, a, b), (false, vec![1.0, 3.0, 7.0, 8.0]));
         assert_eq!(
-            run(CsgOp::ReverseDifference, a, b),
-            (false, vec![4.0, 6.0])
+            run(CsgOp::Difference, a, b),
+            (false, vec![1.0, 3.0, 7.0, 8.0])
         );
+        assert_eq!(run(CsgOp::ReverseDifference, a, b), (false, vec![4.0, 6.0]));
     }
 
     /// Every start state: A's origin inside or not, B's inside or not.

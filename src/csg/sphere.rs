@@ -141,7 +141,10 @@ mod tests {
         let tangent = Ray::new(DVec3::new(-5., 2., 0.), DVec3::X);
         assert!(!s.intersect_ray(&tangent, &mut out, &mut stats));
         assert!(out.is_empty());
-        assert_eq!(s.classify_point(DVec3::new(0., 2., 0.)), Containment::OnBoundary);
+        assert_eq!(
+            s.classify_point(DVec3::new(0., 2., 0.)),
+            Containment::OnBoundary
+        );
         assert!(Sphere::try_new(DVec3::ZERO, 0.0).is_err());
         assert!(Sphere::try_new(DVec3::ZERO, f64::NAN).is_err());
     }

@@ -144,7 +144,10 @@ impl Csg {
         let Some(leaf) = self.leaf(hit.leaf) else {
             return -ray.direction.normalize_or_zero();
         };
-        let n = leaf.primitive.normal(hit.point, hit.surface).normalize_or_zero();
+        let n = leaf
+            .primitive
+            .normal(hit.point, hit.surface)
+            .normalize_or_zero();
         oriented_normal(n, ray.direction, hit.entering)
     }
 
@@ -158,7 +161,13 @@ impl Csg {
         }
     }
 
-    fn trace(&self, ray: &Ray, limit: Option<usize>, stats: &mut Stats, out: &mut Vec<Hit>) -> bool {
+    fn trace(
+        &self,
+        ray: &Ray,
+        limit: Option<usize>,
+        stats: &mut Stats,
+        out: &mut Vec<Hit>,
+    ) -> bool {
         stats.rays += 1;
         if !ray.is_valid() {
             return false;

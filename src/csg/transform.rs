@@ -163,7 +163,10 @@ mod tests {
         assert!(!t.intersect_ray(&ray, &mut out, &mut Stats::default()));
         let ts: Vec<f64> = out.iter().map(|c| c.t).collect();
         assert_eq!(ts, [8.0, 12.0]);
-        assert_eq!(t.classify_point(DVec3::new(11.5, 0., 0.)), Containment::Inside);
+        assert_eq!(
+            t.classify_point(DVec3::new(11.5, 0., 0.)),
+            Containment::Inside
+        );
         let n = t.normal(DVec3::new(12., 0., 0.), 0);
         assert!(n.x > 0.0 && n.y == 0.0);
         assert!((t.exact_volume().unwrap() - 8.0 / 3.0 * std::f64::consts::PI).abs() < 1e-12);

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use glam::{DAffine3, DVec3};
 use thiserror::Error;
 
-use super::{CsgOp, Primitive, Transformed, TransformError};
+use super::{CsgOp, Primitive, TransformError, Transformed};
 use crate::geom::Aabb;
 
 /// The index of a leaf in a [`Csg`] tree (in the order the leaves were
@@ -248,7 +248,11 @@ impl Csg {
             CsgOp::Difference => a,
             CsgOp::ReverseDifference => b,
         };
-        let bounds = if bounds.is_empty() { Aabb::EMPTY } else { bounds };
+        let bounds = if bounds.is_empty() {
+            Aabb::EMPTY
+        } else {
+            bounds
+        };
         self.push(NodeKind::Op { op, left, right }, bounds)
     }
 
@@ -326,7 +330,9 @@ impl Csg {
             let c = csg.nodes[id].bounds.center();
             DVec3::select(c.is_finite_mask(), c, DVec3::ZERO)
         };
-        let spread = ids.iter().fold(Aabb::EMPTY, |b, &id| b.grow(centre(self, id)));
+        let spread = ids
+            .iter()
+            .fold(Aabb::EMPTY, |b, &id| b.grow(centre(self, id)));
         let size = spread.size();
         let axis = if size.x >= size.y && size.x >= size.z {
             0

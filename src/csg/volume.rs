@@ -23,7 +23,9 @@ pub enum VolumeError {
         spacing: f64,
     },
     /// The grid would need more rays than the limit.
-    #[error("spacing {spacing} needs {rays} rays, more than the limit {limit}; use a larger spacing")]
+    #[error(
+        "spacing {spacing} needs {rays} rays, more than the limit {limit}; use a larger spacing"
+    )]
     TooManyRays {
         /// The spacing given.
         spacing: f64,
