@@ -21,6 +21,7 @@ mod cylinder;
 mod halfspace;
 mod merge;
 mod primitive;
+mod scene;
 
 mod sphere;
 mod stats;
@@ -36,6 +37,7 @@ pub use cylinder::{Cylinder, CylinderError};
 pub use halfspace::{HalfSpace, HalfSpaceError};
 pub use merge::{CsgOp, Hit, MergeState, merge, oriented_normal};
 pub use primitive::{Crossing, Primitive, SurfaceId, normal_alignment, perturbed_side};
+pub use scene::{CameraSpec, DEFAULT_AMBIENT, LightSpec, Scene, SceneError};
 
 pub use sphere::{Sphere, SphereError};
 pub use stats::Stats;
