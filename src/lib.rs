@@ -22,6 +22,7 @@ pub mod csg;
 pub mod geom;
 pub mod io;
 pub mod mesh;
+pub mod render;
 
 pub use glam;
 

@@ -5,7 +5,14 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod classify;
 mod info;
+mod lines;
+mod progress;
+mod raycast;
+mod render;
+mod target;
+mod volume;
 
 /// wingedge: a B-rep polyhedron kernel on the winged-edge structure.
 #[derive(Debug, Parser)]
@@ -30,6 +37,62 @@ enum Command {
         #[arg(long, value_name = "OUT.obj")]
         write: Option<PathBuf>,
     },
+    /// Classify points against a scene (.json) or a mesh: one word per line,
+    /// inside, outside or boundary, in input order.
+    Classify {
+        /// The scene (.json) or mesh file.
+        target: PathBuf,
+        /// One `x y z` per line; `-` for standard input.
+        points: PathBuf,
+        /// Print the work counters to standard error.
+        #[arg(long)]
+        stats: bool,
+    },
+    /// Cast rays through a scene (.json) or a mesh: per ray, whether its
+    /// origin is inside, then its spans inside the solid as [t0, t1].
+    Raycast {
+        /// The scene (.json) or mesh file.
+        target: PathBuf,
+        /// One `ox oy oz dx dy dz` per line; `-` for standard input.
+        rays: PathBuf,
+        /// Print the work counters to standard error.
+        #[arg(long)]
+        stats: bool,
+    },
+    /// Print the volume of a mesh or a scene: closed form for a single
+    /// solid, otherwise by integrating ray spans over a grid.
+    Volume {
+        /// The scene (.json) or mesh file.
+        target: PathBuf,
+        /// Grid spacing of the parallel rays (default: the longest side of
+        /// the bounds / 400).
+        #[arg(long, value_name = "H")]
+        spacing: Option<f64>,
+        /// Integrate even a single solid and print the work counters.
+        #[arg(long)]
+        stats: bool,
+    },
+    /// Render a scene to a PNG: Lambert shading with the scene's light,
+    /// shadows only if the scene asks.
+    Render {
+        /// The scene file.
+        scene: PathBuf,
+        /// The PNG to write.
+        #[arg(short = 'o', long = "output", value_name = "OUT.png")]
+        output: PathBuf,
+        /// Image size.
+        #[arg(long, value_name = "WxH", default_value = "640x480", value_parser = render::parse_size)]
+        size: (u32, u32),
+        /// Print the work counters to standard error.
+        #[arg(long)]
+        stats: bool,
+    },
+}
+
+/// Prints `error: message` and returns exit code 2.
+fn fail(message: &str) -> ExitCode {
+    eprintln!("error: {message}");
+    ExitCode::from(2)
 }
 
 fn main() -> ExitCode {
@@ -40,5 +103,26 @@ fn main() -> ExitCode {
             builtin,
             write,
         } => info::run(file, builtin, write),
+        Command::Classify {
+            target,
+            points,
+            stats,
+        } => classify::run(&target, &points, stats),
+        Command::Raycast {
+            target,
+            rays,
+            stats,
+        } => raycast::run(&target, &rays, stats),
+        Command::Volume {
+            target,
+            spacing,
+            stats,
+        } => volume::run(&target, spacing, stats),
+        Command::Render {
+            scene,
+            output,
+            size,
+            stats,
+        } => render::run(&scene, &output, size, stats),
     }
 }

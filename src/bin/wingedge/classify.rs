@@ -1,0 +1,36 @@
+//! `wingedge classify TARGET POINTS`: inside, outside or boundary per point.
+
+use std::io::Write;
+use std::path::Path;
+use std::process::ExitCode;
+
+use glam::DVec3;
+use wingedge::csg::Stats;
+
+use crate::{lines, target};
+
+pub fn run(target: &Path, points: &Path, show_stats: bool) -> ExitCode {
+    let scene = match target::load(target) {
+        Ok(s) => s,
+        Err(e) => return crate::fail(&e),
+    };
+    let rows = match lines::read_numbers(points, 3) {
+        Ok(r) => r,
+        Err(e) => return crate::fail(&e),
+    };
+    let mut stats = Stats::default();
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    for p in rows {
+        let class = scene
+            .csg
+            .classify_point(DVec3::new(p[0], p[1], p[2]), &mut stats);
+        if writeln!(out, "{class}").is_err() {
+            return ExitCode::from(2);
+        }
+    }
+    let _ = out.flush();
+    if show_stats {
+        eprintln!("{stats}");
+    }
+    ExitCode::SUCCESS
+}

@@ -1,0 +1,18 @@
+//! What a CSG command works on: a scene file, or a single mesh.
+
+use std::path::Path;
+
+use wingedge::csg::Scene;
+
+/// Loads TARGET as a scene (`.json`) or as a one-leaf scene of a mesh.
+pub fn load(path: &Path) -> Result<Scene, String> {
+    let is_json = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+    if is_json {
+        return Scene::from_file(path).map_err(|e| e.to_string());
+    }
+    // A mesh is the scene {"root": {"mesh": PATH}}.
+    let text = serde_json::json!({ "root": { "mesh": path } }).to_string();
+    Scene::from_json(&text, &path.display().to_string(), Path::new("")).map_err(|e| e.to_string())
+}
