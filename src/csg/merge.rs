@@ -279,6 +279,9 @@ mod tests {
         assert_eq!(run(CsgOp::ReverseDifference, a, b), (false, vec![4.0, 6.0]));
     }
 
+    /// `((INOUT_A, INOUT_B), [(INOUT_C, t_C list) for ∪, ∩, A − B, B − A])`.
+    type StartCase = ((bool, bool), [(bool, &'static [f64]); 4]);
+
     /// Every start state: A's origin inside or not, B's inside or not.
     /// A = (0, 2] ∪ [5, 9] when inside (crossings 2, 5, 9) or [2, 5] ∪ [9, ∞)
     /// when outside; B = (0, 4] ∪ [8, ∞) when inside (crossings 4, 8) or
@@ -288,7 +291,7 @@ mod tests {
         let a_ts = &[2.0, 5.0, 9.0][..];
         let b_ts = &[4.0, 8.0][..];
         #[rustfmt::skip]
-        let expected: [((bool, bool), [(bool, &[f64]); 4]); 4] = [
+        let expected: [StartCase; 4] = [
             // A = [2,5] ∪ [9,∞), B = [4,8]
             ((false, false), [
                 (false, &[2.0, 8.0, 9.0]),        // ∪ = [2,8] ∪ [9,∞)

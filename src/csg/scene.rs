@@ -133,8 +133,7 @@ pub struct Scene {
 }
 
 const TOP_KEYS: &str = "root, camera, light, shadows";
-const NODE_KEYS: &str =
-    "one of mesh, halfspace, box, sphere, cylinder, union, intersection, difference, or transform with child";
+const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, union, intersection, difference, or transform with child";
 
 impl Scene {
     /// Reads a scene file; mesh paths are relative to its folder.
@@ -165,7 +164,12 @@ impl Scene {
             message: e.to_string(),
         })?;
         let top = object(&value, "scene")?;
-        check_keys(top, "scene", &["root", "camera", "light", "shadows"], TOP_KEYS)?;
+        check_keys(
+            top,
+            "scene",
+            &["root", "camera", "light", "shadows"],
+            TOP_KEYS,
+        )?;
         let root = top.get("root").ok_or_else(|| SceneError::Value {
             at: "scene".into(),
             message: "missing \"root\"".into(),
@@ -284,7 +288,12 @@ impl Reader<'_> {
                 Ok(leaf(Arc::new(s)))
             }
             "cylinder" => {
-                let o = fields(body, &here, &["base", "axis", "radius"], "base, axis, radius")?;
+                let o = fields(
+                    body,
+                    &here,
+                    &["base", "axis", "radius"],
+                    "base, axis, radius",
+                )?;
                 let base = vec3(req(o, &here, "base")?, &format!("{here}.base"))?;
                 let a_at = format!("{here}.axis");
                 let axis = vec3(req(o, &here, "axis")?, &a_at)?;
@@ -332,7 +341,12 @@ fn load_mesh(file: &Path) -> Result<Arc<dyn Primitive>, String> {
 }
 
 fn transform(value: &Value, at: &str) -> Result<DAffine3, SceneError> {
-    let o = fields(value, at, &["translate", "rotate_deg", "scale"], "translate, rotate_deg, scale")?;
+    let o = fields(
+        value,
+        at,
+        &["translate", "rotate_deg", "scale"],
+        "translate, rotate_deg, scale",
+    )?;
     let translate = o
         .get("translate")
         .map(|v| vec3(v, &format!("{at}.translate")))
@@ -358,11 +372,18 @@ fn transform(value: &Value, at: &str) -> Result<DAffine3, SceneError> {
     let r = rotate * (std::f64::consts::PI / 180.0);
     // Intrinsic ZYX equals rotating about x first, then y, then z.
     let rotation = DQuat::from_euler(EulerRot::ZYX, r.z, r.y, r.x);
-    Ok(DAffine3::from_scale_rotation_translation(scale, rotation, translate))
+    Ok(DAffine3::from_scale_rotation_translation(
+        scale, rotation, translate,
+    ))
 }
 
 fn camera(value: &Value, at: &str) -> Result<CameraSpec, SceneError> {
-    let o = fields(value, at, &["eye", "look_at", "up", "fov_deg"], "eye, look_at, up, fov_deg")?;
+    let o = fields(
+        value,
+        at,
+        &["eye", "look_at", "up", "fov_deg"],
+        "eye, look_at, up, fov_deg",
+    )?;
     let eye = vec3(req(o, at, "eye")?, &format!("{at}.eye"))?;
     let look_at = vec3(req(o, at, "look_at")?, &format!("{at}.look_at"))?;
     if eye == look_at {
@@ -377,7 +398,11 @@ fn camera(value: &Value, at: &str) -> Result<CameraSpec, SceneError> {
         .transpose()?
         .unwrap_or(DVec3::Z);
     let fov_at = format!("{at}.fov_deg");
-    let fov_deg = o.get("fov_deg").map(|v| positive(v, &fov_at)).transpose()?.unwrap_or(40.0);
+    let fov_deg = o
+        .get("fov_deg")
+        .map(|v| positive(v, &fov_at))
+        .transpose()?
+        .unwrap_or(40.0);
     if fov_deg >= 180.0 {
         return Err(SceneError::Value {
             at: fov_at,
@@ -400,7 +425,12 @@ fn camera(value: &Value, at: &str) -> Result<CameraSpec, SceneError> {
 }
 
 fn light(value: &Value, at: &str) -> Result<LightSpec, SceneError> {
-    let o = fields(value, at, &["direction", "position", "ambient"], "direction or position, ambient")?;
+    let o = fields(
+        value,
+        at,
+        &["direction", "position", "ambient"],
+        "direction or position, ambient",
+    )?;
     let a_at = format!("{at}.ambient");
     let ambient = match o.get("ambient") {
         None => DEFAULT_AMBIENT,
@@ -556,7 +586,9 @@ mod tests {
     #[test]
     fn errors_name_the_json_path() {
         assert_eq!(
-            error(r#"{"root": {"difference": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, {"sphere": {"center": [0,0,0], "radius": -1}}]}}"#),
+            error(
+                r#"{"root": {"difference": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, {"sphere": {"center": [0,0,0], "radius": -1}}]}}"#
+            ),
             "root.difference[1].sphere.radius: expected a positive number, found -1"
         );
         assert_eq!(
@@ -572,18 +604,26 @@ mod tests {
             error(r#"{"root": {"box": {"min": [0,0,0], "max": [1,1,1]}}, "lights": 1}"#),
             "scene: unknown key \"lights\" (expected root, camera, light, shadows)"
         );
-        assert!(error(r#"{"root": {"difference": [{"box": {"min": [0,0,0], "max": [1,1,1]}}]}}"#)
-            .starts_with("root.difference: needs at least 2"));
+        assert!(
+            error(r#"{"root": {"difference": [{"box": {"min": [0,0,0], "max": [1,1,1]}}]}}"#)
+                .starts_with("root.difference: needs at least 2")
+        );
         assert!(error(r#"{"root": {"transform": {"scale": [1,0,1]}, "child": {"sphere": {"center": [0,0,0], "radius": 1}}}}"#)
             .starts_with("root.transform.scale: "));
-        assert!(error(r#"{"root": {"box": {"min": [0,0,0], "max": [1,1,1]}}, "shadows": "yes"}"#)
-            .starts_with("shadows: expected a boolean"));
+        assert!(
+            error(r#"{"root": {"box": {"min": [0,0,0], "max": [1,1,1]}}, "shadows": "yes"}"#)
+                .starts_with("shadows: expected a boolean")
+        );
         assert!(error("{\"root\": \n [1,").starts_with("test.json: line 2"));
         assert!(error(r#"{"camera": {}}"#).contains("missing \"root\""));
-        assert!(error(r#"{"root": {"box": {"min": [1,0,0], "max": [0,1,1]}}}"#)
-            .starts_with("root.box.max: "));
-        assert!(error(r#"{"root": {"halfspace": {"point": [0,0,0], "normal": [0,0,0]}}}"#)
-            .starts_with("root.halfspace.normal: "));
+        assert!(
+            error(r#"{"root": {"box": {"min": [1,0,0], "max": [0,1,1]}}}"#)
+                .starts_with("root.box.max: ")
+        );
+        assert!(
+            error(r#"{"root": {"halfspace": {"point": [0,0,0], "normal": [0,0,0]}}}"#)
+                .starts_with("root.halfspace.normal: ")
+        );
         assert!(error(r#"{"root": {"mesh": "nowhere.obj"}}"#).starts_with("root.mesh: mesh "));
     }
 }

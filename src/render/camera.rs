@@ -78,9 +78,8 @@ impl Camera {
         let aspect = f64::from(width) / f64::from(height.max(1));
         let u = ((f64::from(x) + 0.5) / f64::from(width.max(1)) * 2.0 - 1.0) * aspect;
         let v = 1.0 - (f64::from(y) + 0.5) / f64::from(height.max(1)) * 2.0;
-        let direction = self.forward
-            + self.right * (u * self.tan_half_fov)
-            + self.up * (v * self.tan_half_fov);
+        let direction =
+            self.forward + self.right * (u * self.tan_half_fov) + self.up * (v * self.tan_half_fov);
         Ray::new(self.eye, direction.normalize())
     }
 }

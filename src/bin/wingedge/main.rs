@@ -68,7 +68,10 @@ enum Command {
         /// the bounds / 400).
         #[arg(long, value_name = "H")]
         spacing: Option<f64>,
-        /// Integrate even a single solid and print the work counters.
+        /// Integrate ray spans even for a single solid with a closed form.
+        #[arg(long)]
+        integrate: bool,
+        /// Print the work counters to standard error.
         #[arg(long)]
         stats: bool,
     },
@@ -116,8 +119,9 @@ fn main() -> ExitCode {
         Command::Volume {
             target,
             spacing,
+            integrate,
             stats,
-        } => volume::run(&target, spacing, stats),
+        } => volume::run(&target, spacing, integrate, stats),
         Command::Render {
             scene,
             output,

@@ -32,7 +32,11 @@ pub fn run(target: &Path, rays: &Path, show_stats: bool) -> ExitCode {
             ));
         }
         let spans = scene.csg.spans(&ray, &mut stats);
-        let mut line = String::from(if spans.origin_inside { "inside" } else { "outside" });
+        let mut line = String::from(if spans.origin_inside {
+            "inside"
+        } else {
+            "outside"
+        });
         for (a, b) in spans.intervals() {
             let _ = write!(line, " [{a}, {b}]");
         }

@@ -9,7 +9,7 @@ use crate::target;
 /// Grid cells across the longest side of the bounds when no spacing is given.
 const DEFAULT_CELLS: f64 = 400.0;
 
-pub fn run(target: &Path, spacing: Option<f64>, show_stats: bool) -> ExitCode {
+pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: bool) -> ExitCode {
     let scene = match target::load(target) {
         Ok(s) => s,
         Err(e) => return crate::fail(&e),
@@ -24,12 +24,13 @@ pub fn run(target: &Path, spacing: Option<f64>, show_stats: bool) -> ExitCode {
         .csg
         .single_leaf()
         .and_then(|l| l.primitive.exact_volume());
-    if let Some(v) = exact {
-        if !show_stats {
-            println!("{v}");
-            eprintln!("closed-form volume of the single {}", scene.csg.leaves()[0].label);
-            return ExitCode::SUCCESS;
-        }
+    if let (Some(v), false) = (exact, integrate) {
+        println!("{v}");
+        eprintln!(
+            "closed-form volume of the single {} (--integrate to cast rays)",
+            scene.csg.leaves()[0].label
+        );
+        return ExitCode::SUCCESS;
     }
     let progress = Progress::new("volume");
     let estimate = scene

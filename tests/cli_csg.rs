@@ -1,0 +1,120 @@
+//! The CSG commands on the bundled scenes.
+
+use std::io::Write;
+use std::process::{Command, Stdio};
+
+fn wingedge(args: &[&str], stdin: &str) -> (i32, String, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_wingedge"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin is piped")
+        .write_all(stdin.as_bytes())
+        .expect("stdin accepts input");
+    let out = child.wait_with_output().expect("the binary finishes");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+const DRILLED: &str = "fixtures/scenes/drilled_cube.json";
+
+#[test]
+fn classify_prints_one_word_per_point() {
+    let points = "0 0 0\n0.9 0.9 0.9\n# a comment\n1 0.8 0.8\n3 3 3\n0 0.75 0.75\n";
+    let (code, out, err) = wingedge(&["classify", DRILLED, "-"], points);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out, "outside\ninside\nboundary\noutside\ninside\n");
+}
+
+#[test]
+fn classify_names_a_bad_line() {
+    let (code, _, err) = wingedge(&["classify", DRILLED, "-"], "0 0 0\n1 2\n");
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("<stdin>") || err.contains("-: line 2"),
+        "{err}"
+    );
+    assert!(err.contains("line 2"), "{err}");
+}
+
+#[test]
+fn raycast_prints_spans() {
+    // Along the x axis: the x-drill removes everything; at y = z = 0.75 the
+    // ray runs through the solid wall from x = −1 to 1.
+    let rays = "-3 0 0 1 0 0\n-3 0.75 0.75 1 0 0\n0.9 0.9 0.9 1 0 0\n";
+    let (code, out, err) = wingedge(&["raycast", DRILLED, "-", "--stats"], rays);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines[0], "outside");
+    assert_eq!(lines[1], "outside [2, 4]");
+    assert!(lines[2].starts_with("inside [0, 0.09999"), "{out}");
+    assert!(err.contains("primitive ray tests"), "{err}");
+}
+
+#[test]
+fn volume_of_a_scene_and_of_a_mesh() {
+    let (code, out, err) = wingedge(&["volume", DRILLED, "--spacing", "0.01"], "");
+    assert_eq!(code, 0, "{err}");
+    let v: f64 = out.trim().parse().expect("a number");
+    let r: f64 = 0.5;
+    let exact = 8.0
+        - (3.0 * std::f64::consts::PI * r * r * 2.0 - 16.0 * r.powi(3)
+            + 8.0 * (2.0 - 2f64.sqrt()) * r.powi(3));
+    assert!(((v - exact) / exact).abs() < 1e-3, "{v} vs {exact}");
+    let (code, out, _) = wingedge(&["volume", "fixtures/scenes/many_leaves.json"], "");
+    assert_eq!(code, 0);
+    assert!(out.trim().parse::<f64>().is_ok(), "{out}");
+}
+
+#[test]
+fn render_writes_a_png_of_the_asked_size() {
+    let dir = std::env::temp_dir().join(format!("wingedge-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("drilled.png");
+    let png_arg = png.to_str().unwrap();
+    let (code, _, err) = wingedge(
+        &[
+            "render", DRILLED, "-o", png_arg, "--size", "64x48", "--stats",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+    // IHDR: width and height, big-endian, at bytes 16..24.
+    assert_eq!(u32::from_be_bytes(bytes[16..20].try_into().unwrap()), 64);
+    assert_eq!(u32::from_be_bytes(bytes[20..24].try_into().unwrap()), 48);
+    // No progress bar when standard error is not a terminal.
+    assert!(!err.contains('#'), "{err}");
+    // The drilled cube scene asks for shadows: shadow rays were cast.
+    assert!(!err.contains("shadow rays 0"), "{err}");
+    let (code, _, err) = wingedge(&["render", DRILLED, "-o", png_arg, "--size", "64by48"], "");
+    assert_eq!(code, 2, "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn scene_errors_name_the_json_path() {
+    let dir = std::env::temp_dir().join(format!("wingedge-scene-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("bad.json");
+    std::fs::write(
+        &scene,
+        r#"{"root": {"difference": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, {"sphere": {"center": [0,0,0], "radius": 0}}]}}"#,
+    )
+    .unwrap();
+    let (code, _, err) = wingedge(&["volume", scene.to_str().unwrap()], "");
+    assert_eq!(code, 2);
+    assert!(err.contains("root.difference[1].sphere.radius"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
