@@ -65,7 +65,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         DVec3::new(1.0, 0.5, -0.5),  // on the face shared by the two blocks
         DVec3::new(0.0, 0.0, 0.25),  // on the pocket's wall (exactly: 1 − 0.75)
         DVec3::new(0.0, 0.0, 0.8),   // inside the pocket, on the cutting plane
-        DVec3::new(-0.5, -0.5, 0.8), // on the cut
+        DVec3::new(-0.8, -0.8, 0.8), // on the cut
         DVec3::new(-0.5, -0.5, 0.0),
     ] {
         println!("point {p}: {}", csg.classify_point(p, &mut stats));
