@@ -15,7 +15,8 @@
 //!
 //! ## Layers
 //!
-//! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out).
+//! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out) →
+//! [`csg`] (ray-cast CSG: primitives, trees, scenes) → [`render`] (images).
 #![warn(missing_docs)]
 
 pub mod csg;
