@@ -45,7 +45,9 @@ pub const MAX_VOLUME_RAYS: u64 = 400_000_000;
 pub struct VolumeEstimate {
     /// `Σ (span length) · h²` over the grid.
     pub volume: f64,
-    /// The grid spacing `h`.
+    /// The grid spacing used: the requested `h` shrunk so that a whole
+    /// number of cells spans the bounds (the larger of the x and y cell
+    /// sides).
     pub spacing: f64,
     /// The number of rays cast.
     pub rays: u64,
@@ -57,13 +59,16 @@ pub struct VolumeEstimate {
 }
 
 impl Csg {
-    /// The volume, by casting rays along +z through the centres of an `h × h`
-    /// grid of cells covering the bounds in x and y (the midpoint rule) and
-    /// summing span lengths times `h²`. Rows run in parallel (rayon).
+    /// The volume, by casting rays along +z through the centres of a grid of
+    /// cells covering the bounds in x and y (the midpoint rule) and summing
+    /// span lengths times the cell area. The cells are at most `h × h`: the
+    /// grid is fitted to the bounds (`⌈size / h⌉` cells per side), so that
+    /// faces on the bounds never cut a cell. Rows run in parallel (rayon).
     ///
     /// The error shrinks as `h` does: it comes from cells cut by the
-    /// silhouette, so it is about `h × (length of the silhouette outline)`
-    /// in the worst case and much smaller on average.
+    /// silhouette (about `h × (silhouette length)` in the worst case, much
+    /// less when the errors of neighbouring cells cancel) and from where the
+    /// span length varies steeply (tangent cylinders and spheres).
     ///
     /// # Errors
     ///
@@ -105,6 +110,7 @@ impl Csg {
         let nx = ((size.x / spacing).ceil() as u64).max(1);
         let ny = ((size.y / spacing).ceil() as u64).max(1);
         let rays = nx.saturating_mul(ny);
+        let (hx, hy) = (size.x / nx as f64, size.y / ny as f64);
         if rays > MAX_VOLUME_RAYS {
             return Err(VolumeError::TooManyRays {
                 spacing,
@@ -117,10 +123,10 @@ impl Csg {
             .into_par_iter()
             .map(|j| {
                 let mut stats = Stats::default();
-                let y = bounds.min.y + (j as f64 + 0.5) * spacing;
+                let y = bounds.min.y + (j as f64 + 0.5) * hy;
                 let mut row = 0.0;
                 for i in 0..nx {
-                    let x = bounds.min.x + (i as f64 + 0.5) * spacing;
+                    let x = bounds.min.x + (i as f64 + 0.5) * hx;
                     let ray = Ray::new(DVec3::new(x, y, bounds.min.z), DVec3::Z);
                     let spans = self.spans(&ray, &mut stats);
                     row += spans
@@ -141,8 +147,8 @@ impl Csg {
                 },
             );
         Ok(VolumeEstimate {
-            volume: length * spacing * spacing,
-            spacing,
+            volume: length * hx * hy,
+            spacing: hx.max(hy),
             rays,
             exact,
             stats,
