@@ -377,3 +377,32 @@ proptest! {
         }
     }
 }
+
+/// The bundled 101-leaf scene: balls touching a slab at a point and boxes
+/// standing on it (coincident faces). Its volume is the sum of the leaves'.
+#[test]
+fn the_many_leaves_scene_has_the_sum_of_its_leaves_volumes() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/scenes/many_leaves.json"
+    );
+    let scene = wingedge::csg::Scene::from_file(std::path::Path::new(path)).unwrap();
+    let exact: f64 = scene
+        .csg
+        .leaves()
+        .iter()
+        .map(|l| l.primitive.exact_volume().unwrap())
+        .sum();
+    let v = scene.csg.try_volume(0.01).unwrap();
+    assert!(
+        ((v.volume - exact) / exact).abs() < 1e-3,
+        "{} vs {exact}",
+        v.volume
+    );
+    // A ray down through a box: the box's bottom face and the slab's top
+    // face coincide, so the spans are one piece from the box top to the
+    // slab's bottom.
+    let s = spans(&scene.csg, [-5.0 + 10.0 / 9.0, -5.0, 3.0], [0., 0., -1.]);
+    assert_eq!(s.hits.len(), 2, "{s:?}");
+    assert_eq!(s.hits[1].t, 3.5);
+}
