@@ -102,10 +102,16 @@ pub fn perturbed_side(normal: DVec3) -> Sign {
 /// the given coordinates.
 #[must_use]
 pub fn normal_alignment(a: DVec3, b: DVec3) -> Sign {
-    if a == DVec3::ZERO || b == DVec3::ZERO || !crate::geom::collinear3d(DVec3::ZERO, a, b) {
+    use crate::geom::dot_sign;
+    if a == DVec3::ZERO || b == DVec3::ZERO {
         return Sign::Zero;
     }
-    crate::geom::dot_sign(a, b)
+    // a × b = 0 exactly: each component `a_i b_j − a_j b_i` is the exact
+    // sign of a two-term dot product.
+    let parallel = [(1, 2), (2, 0), (0, 1)].into_iter().all(|(i, j)| {
+        dot_sign(DVec3::new(a[i], -a[j], 0.0), DVec3::new(b[j], b[i], 0.0)) == Sign::Zero
+    });
+    if parallel { dot_sign(a, b) } else { Sign::Zero }
 }
 
 #[cfg(test)]
