@@ -406,3 +406,56 @@ fn the_many_leaves_scene_has_the_sum_of_its_leaves_volumes() {
     assert_eq!(s.hits.len(), 2, "{s:?}");
     assert_eq!(s.hits[1].t, 3.5);
 }
+
+/// A random tree of boxes and balls, up to depth 5.
+fn random_tree() -> impl Strategy<Value = CsgExpr> {
+    let leaf = prop_oneof![
+        box_strategy().prop_map(|(min, max)| cube(min, max)),
+        (prop::array::uniform3(0i8..5), 1u8..4)
+            .prop_map(|(c, r)| ball(c.map(f64::from), f64::from(r) * 0.5)),
+    ];
+    leaf.prop_recursive(4, 16, 2, |inner| {
+        (inner.clone(), inner, 0u8..3).prop_map(|(a, b, op)| match op {
+            0 => a.union(b),
+            1 => a.intersection(b),
+            _ => a.difference(b),
+        })
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// Along any ray through a random tree, the midpoints of the spans are
+    /// inside and the midpoints of the gaps outside; and the first hit is the
+    /// first span boundary.
+    #[test]
+    fn spans_agree_with_point_classification_on_random_trees(
+        expr in random_tree(),
+        origin in prop::array::uniform3(-3.0f64..7.0),
+        target in prop::array::uniform3(0.0f64..4.0),
+    ) {
+        let csg = tree(expr);
+        let o = DVec3::from(origin);
+        let d = DVec3::from(target) - o;
+        prop_assume!(d.length() > 0.1);
+        let ray = Ray::new(o, d);
+        let s = csg.spans(&ray, &mut Stats::default());
+        let mut ends = vec![0.0];
+        ends.extend(s.hits.iter().map(|h| h.t));
+        prop_assert!(ends.windows(2).all(|w| w[0] < w[1]), "ascending {:?}", ends);
+        ends.push(ends.last().unwrap() + 100.0);
+        let mut inside = s.origin_inside;
+        for w in ends.windows(2) {
+            let mid = ray.at(0.5 * (w[0] + w[1]));
+            let c = csg.classify_point(mid, &mut Stats::default());
+            // A midpoint can land exactly on a boundary only by accident.
+            if c != Containment::OnBoundary {
+                prop_assert_eq!(c == Containment::Inside, inside, "at t = {}", 0.5 * (w[0] + w[1]));
+            }
+            inside = !inside;
+        }
+        let first = csg.first_hit(&ray, &mut Stats::default());
+        prop_assert_eq!(first.map(|h| h.t), s.hits.first().map(|h| h.t));
+    }
+}
