@@ -230,7 +230,7 @@ impl Plane {
         let normal = inverse.transpose() * self.normal;
         let d = self.d - normal.dot(transform.translation);
         let length = normal.length();
-        if !(length > 0.0) || !length.is_finite() || !d.is_finite() {
+        if length.is_nan() || length <= 0.0 || !length.is_finite() || !d.is_finite() {
             return Err(PlaneError::NonFinite);
         }
         Ok(Plane {

@@ -220,8 +220,7 @@ pub fn import_obj_bytes(
         positions,
         polygons: Vec::with_capacity(scan.faces.len()),
     };
-    let mut number = 0;
-    for face in scan.faces.iter().filter(|f| !f.polyline) {
+    for (number, face) in scan.faces.iter().filter(|f| !f.polyline).enumerate() {
         let corners = &scan.corners[face.start..face.start + face.len];
         soup.polygons.push(Polygon {
             vertices: corners.iter().copied().collect(),
@@ -232,7 +231,6 @@ pub fn import_obj_bytes(
                 material: face.material.map(|m| scan.names[m].clone()),
             },
         });
-        number += 1;
     }
     let vertex_lines = scan.vertex_lines.iter().map(|&l| l as usize).collect();
     let (soup, vertex_lines, vertex_numbers, report) = weld(soup, vertex_lines, options.weld);

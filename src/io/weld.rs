@@ -162,7 +162,7 @@ fn clusters(positions: &[DVec3], mode: WeldMode) -> Option<Vec<usize>> {
         WeldMode::Within(tolerance) => {
             let diagonal = Aabb::from_points(positions.iter().copied()).diagonal();
             let d = tolerance.weld_distance(diagonal);
-            if !(d > 0.0) || !d.is_finite() {
+            if d.is_nan() || d <= 0.0 || !d.is_finite() {
                 return clusters(positions, WeldMode::Exact);
             }
             let cell = |p: DVec3| (p / d).floor().as_i64vec3();
@@ -254,9 +254,9 @@ fn incident_polygons(soup: &PolygonSoup) -> (Vec<usize>, Vec<usize>) {
 }
 
 fn block_class(uf: &mut UnionFind, blocked: &mut [bool], root: usize) {
-    for v in 0..blocked.len() {
+    for (v, flag) in blocked.iter_mut().enumerate() {
         if uf.find(v) == root {
-            blocked[v] = true;
+            *flag = true;
         }
     }
 }
