@@ -15,11 +15,13 @@
 //!
 //! ## Layers
 //!
-//! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out).
+//! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out) →
+//! [`validate`] (named checks and a graded verdict).
 #![warn(missing_docs)]
 
 pub mod geom;
 pub mod io;
 pub mod mesh;
+pub mod validate;
 
 pub use glam;

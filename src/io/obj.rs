@@ -490,13 +490,12 @@ fn positions_from_tobj(path: &Path, bytes: &[u8], scan: &Scan) -> Result<Vec<DVe
     }
     for (i, done) in set.iter().enumerate() {
         if !done {
-            positions[i] = read_vertex_line(bytes, scan.vertex_offsets[i]).ok_or_else(|| {
-                ObjError::Parse {
+            positions[i] =
+                read_vertex_line(bytes, scan.vertex_offsets[i]).ok_or_else(|| ObjError::Parse {
                     path: path.to_path_buf(),
                     line: Some(scan.vertex_lines[i] as usize),
                     message: "cannot read vertex position".to_string(),
-                }
-            })?;
+                })?;
         }
         if !positions[i].is_finite() {
             return Err(ObjError::NonFinite {
@@ -536,9 +535,8 @@ fn locate_tobj_error(bytes: &[u8], error: &tobj::LoadError) -> Option<usize> {
         let mut words = line.split_whitespace();
         let keyword = words.next();
         let values: Vec<&str> = words.collect();
-        let floats = |n: usize| {
-            values.len() >= n && values[..n].iter().all(|v| v.parse::<f64>().is_ok())
-        };
+        let floats =
+            |n: usize| values.len() >= n && values[..n].iter().all(|v| v.parse::<f64>().is_ok());
         let bad = match (keyword, error) {
             (Some("v"), tobj::LoadError::PositionParseError) => {
                 !floats(3) || (values.len() == 4 && values[3].parse::<f64>().is_err())
@@ -635,22 +633,50 @@ mod tests {
         assert!(matches!(e, ObjError::ZeroIndex { line: 4, .. }), "{e}");
         let e = read("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n").unwrap_err();
         assert!(
-            matches!(e, ObjError::IndexOutOfRange { line: 5, index: 4, .. }),
+            matches!(
+                e,
+                ObjError::IndexOutOfRange {
+                    line: 5,
+                    index: 4,
+                    ..
+                }
+            ),
             "{e}"
         );
         let e = read("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n").unwrap_err();
         assert!(
-            matches!(e, ObjError::IndexOutOfRange { line: 4, index: -4, .. }),
+            matches!(
+                e,
+                ObjError::IndexOutOfRange {
+                    line: 4,
+                    index: -4,
+                    ..
+                }
+            ),
             "{e}"
         );
         let e = read("v 0 0 0\nv 1 0 0\nf 1 2\n").unwrap_err();
         assert!(
-            matches!(e, ObjError::TooFewCorners { line: 3, count: 2, .. }),
+            matches!(
+                e,
+                ObjError::TooFewCorners {
+                    line: 3,
+                    count: 2,
+                    ..
+                }
+            ),
             "{e}"
         );
         let e = read("v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n").unwrap_err();
         assert!(
-            matches!(e, ObjError::NonFinite { line: 2, vertex: 2, .. }),
+            matches!(
+                e,
+                ObjError::NonFinite {
+                    line: 2,
+                    vertex: 2,
+                    ..
+                }
+            ),
             "{e}"
         );
         let e = read("v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n").unwrap_err();

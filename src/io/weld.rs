@@ -406,13 +406,8 @@ mod tests {
 
     /// A cube with every face carrying its own four corners (24 vertices).
     fn split_cube() -> PolygonSoup {
-        let corner = |i: usize| {
-            DVec3::new(
-                (i & 1) as f64,
-                ((i >> 1) & 1) as f64,
-                ((i >> 2) & 1) as f64,
-            )
-        };
+        let corner =
+            |i: usize| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64);
         let faces = [
             [0, 2, 3, 1],
             [4, 5, 7, 6],
@@ -473,8 +468,9 @@ mod tests {
         let (b, ..) = weld(soup, (1..=24).collect(), WeldMode::Exact);
         a.positions.extend(b.positions);
         for p in b.polygons {
-            a.polygons
-                .push(crate::mesh::Polygon::new(p.vertices.iter().map(|v| v + offset)));
+            a.polygons.push(crate::mesh::Polygon::new(
+                p.vertices.iter().map(|v| v + offset),
+            ));
         }
         let (s, _, _, report) = weld(a, (1..=16).collect(), WeldMode::Exact);
         assert_eq!(s.positions.len(), 16);

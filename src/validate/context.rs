@@ -1,0 +1,360 @@
+//! What every check needs, computed once from the soup: faces with repeated
+//! corners collapsed, each face's shape class, duplicates, the edge table
+//! and vertex incidence.
+//!
+//! All of it is index arithmetic on the soup (sorting, no hashing of
+//! geometry), so it works on input that no winged-edge solid can hold.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::geom::{Tolerance, collinear3d};
+use crate::mesh::PolygonSoup;
+
+/// How a face is shaped, before any geometry is judged.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Shape {
+    /// At least three distinct vertices and edges.
+    Polygon,
+    /// Fewer than three distinct vertices.
+    TooFewVertices,
+    /// At least three distinct vertices but fewer than three distinct edges.
+    TooFewEdges,
+}
+
+/// One use of an edge by a face.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) struct EdgeUse {
+    /// The face.
+    pub face: usize,
+    /// Whether the face runs the edge from its lower to its higher vertex.
+    pub forward: bool,
+}
+
+/// An undirected edge between two distinct vertices.
+#[derive(Clone, Debug)]
+pub(crate) struct EdgeRecord {
+    /// The lower vertex.
+    pub low: usize,
+    /// The higher vertex.
+    pub high: usize,
+    /// Where its uses are in [`Context::edge_uses`].
+    pub uses: std::ops::Range<usize>,
+}
+
+/// The checks' shared view of a soup.
+pub(crate) struct Context<'a> {
+    pub soup: &'a PolygonSoup,
+    /// `v` line of each vertex, when known.
+    pub vertex_lines: Option<&'a [usize]>,
+    pub tolerance: Tolerance,
+    /// Bounding-box diagonal of the referenced vertices.
+    pub diagonal: f64,
+    /// Corners of each face with consecutive repeats (cyclically) removed.
+    corner_offsets: Vec<usize>,
+    corner_list: Vec<usize>,
+    /// Faces that listed a vertex twice in a row: (face, vertex).
+    pub loop_edges: Vec<(usize, usize)>,
+    pub shape: Vec<Shape>,
+    /// For a later copy of a duplicate face: the first copy.
+    pub duplicate_of: Vec<Option<usize>>,
+    /// Whether the face counts in the edge and vertex tables.
+    pub in_topology: Vec<bool>,
+    pub edges: Vec<EdgeRecord>,
+    pub edge_uses: Vec<EdgeUse>,
+    /// Vertex → faces (in topology), as offsets into a list.
+    vertex_face_offsets: Vec<usize>,
+    vertex_face_list: Vec<usize>,
+    /// Vertex → edges, as offsets into a list.
+    vertex_edge_offsets: Vec<usize>,
+    vertex_edge_list: Vec<usize>,
+    /// Whether any face (in topology or not) uses the vertex.
+    pub referenced: Vec<bool>,
+}
+
+impl<'a> Context<'a> {
+    pub fn new(
+        soup: &'a PolygonSoup,
+        vertex_lines: Option<&'a [usize]>,
+        tolerance: Tolerance,
+    ) -> Context<'a> {
+        let n = soup.positions.len();
+        let mut referenced = vec![false; n];
+        let mut corner_offsets = Vec::with_capacity(soup.polygons.len() + 1);
+        let mut corner_list = Vec::with_capacity(soup.polygons.len() * 3);
+        let mut loop_edges = Vec::new();
+        corner_offsets.push(0);
+        for (face, p) in soup.polygons.iter().enumerate() {
+            let start = corner_list.len();
+            for &v in &p.vertices {
+                if v < n {
+                    referenced[v] = true;
+                }
+                if corner_list.len() > start && corner_list.last() == Some(&v) {
+                    loop_edges.push((face, v));
+                    continue;
+                }
+                corner_list.push(v);
+            }
+            while corner_list.len() > start + 1 && corner_list.last() == corner_list.get(start) {
+                let v = corner_list.pop().unwrap_or_default();
+                loop_edges.push((face, v));
+            }
+            corner_offsets.push(corner_list.len());
+        }
+        let diagonal = crate::geom::Aabb::from_points(
+            soup.positions
+                .iter()
+                .zip(&referenced)
+                .filter(|(_, r)| **r)
+                .map(|(p, _)| *p),
+        )
+        .diagonal();
+        let mut context = Context {
+            soup,
+            vertex_lines,
+            tolerance,
+            diagonal,
+            corner_offsets,
+            corner_list,
+            loop_edges,
+            shape: Vec::new(),
+            duplicate_of: Vec::new(),
+            in_topology: Vec::new(),
+            edges: Vec::new(),
+            edge_uses: Vec::new(),
+            vertex_face_offsets: Vec::new(),
+            vertex_face_list: Vec::new(),
+            vertex_edge_offsets: Vec::new(),
+            vertex_edge_list: Vec::new(),
+            referenced,
+        };
+        context.classify_shapes();
+        context.find_duplicates();
+        context.in_topology = (0..soup.polygons.len())
+            .map(|f| context.shape[f] == Shape::Polygon && context.duplicate_of[f].is_none())
+            .collect();
+        context.build_edges();
+        context.build_incidence();
+        context
+    }
+
+    /// The number of faces.
+    pub fn face_count(&self) -> usize {
+        self.soup.polygons.len()
+    }
+
+    /// The corners of `face`, consecutive repeats removed.
+    pub fn corners(&self, face: usize) -> &[usize] {
+        &self.corner_list[self.corner_offsets[face]..self.corner_offsets[face + 1]]
+    }
+
+    /// The position of vertex `v`.
+    pub fn position(&self, v: usize) -> DVec3 {
+        self.soup.positions[v]
+    }
+
+    /// The OBJ line of `face`.
+    pub fn face_line(&self, face: usize) -> Option<usize> {
+        self.soup.polygons[face].attributes.line
+    }
+
+    /// The `v` line of `vertex`.
+    pub fn vertex_line(&self, vertex: usize) -> Option<usize> {
+        self.vertex_lines.and_then(|l| l.get(vertex).copied())
+    }
+
+    /// "face 3 (line 17)".
+    pub fn face_name(&self, face: usize) -> String {
+        match self.face_line(face) {
+            Some(l) => format!("face {face} (line {l})"),
+            None => format!("face {face}"),
+        }
+    }
+
+    /// "vertex 7 (line 9)".
+    pub fn vertex_name(&self, vertex: usize) -> String {
+        match self.vertex_line(vertex) {
+            Some(l) => format!("vertex {vertex} (line {l})"),
+            None => format!("vertex {vertex}"),
+        }
+    }
+
+    /// The faces (in topology) around `vertex`, in face order.
+    pub fn vertex_faces(&self, vertex: usize) -> &[usize] {
+        &self.vertex_face_list
+            [self.vertex_face_offsets[vertex]..self.vertex_face_offsets[vertex + 1]]
+    }
+
+    /// The edges at `vertex`.
+    pub fn vertex_edges(&self, vertex: usize) -> &[usize] {
+        &self.vertex_edge_list
+            [self.vertex_edge_offsets[vertex]..self.vertex_edge_offsets[vertex + 1]]
+    }
+
+    /// The uses of edge `edge`.
+    pub fn uses(&self, edge: usize) -> &[EdgeUse] {
+        &self.edge_uses[self.edges[edge].uses.clone()]
+    }
+
+    /// Whether a face's corners (after collapsing) repeat a vertex or include
+    /// two distinct vertices at one position, or are all collinear: the
+    /// degenerate-face conditions, with the reason.
+    pub fn degeneracy(&self, face: usize) -> Option<String> {
+        let c = self.corners(face);
+        let mut sorted: smallvec::SmallVec<[usize; 8]> = c.iter().copied().collect();
+        sorted.sort_unstable();
+        if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+            return Some(format!("visits vertex {} twice", w[0]));
+        }
+        let mut by_position: smallvec::SmallVec<[(usize, DVec3); 8]> =
+            c.iter().map(|&v| (v, self.position(v))).collect();
+        by_position.sort_unstable_by(|a, b| {
+            a.1.to_array()
+                .partial_cmp(&b.1.to_array())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+        if let Some(w) = by_position.windows(2).find(|w| w[0].1 == w[1].1) {
+            return Some(format!(
+                "has vertices {} and {} at the same position",
+                w[0].0.min(w[1].0),
+                w[0].0.max(w[1].0)
+            ));
+        }
+        let a = self.position(c[0]);
+        let b = self.position(c[1]);
+        if c[2..].iter().all(|&v| collinear3d(a, b, self.position(v))) {
+            return Some("has all its vertices on one line (zero area)".to_string());
+        }
+        None
+    }
+
+    fn classify_shapes(&mut self) {
+        self.shape = (0..self.face_count())
+            .map(|f| {
+                let c = self.corners(f);
+                let mut vertices: smallvec::SmallVec<[usize; 8]> = c.iter().copied().collect();
+                vertices.sort_unstable();
+                vertices.dedup();
+                if vertices.len() < 3 {
+                    return Shape::TooFewVertices;
+                }
+                let k = c.len();
+                let mut edges: smallvec::SmallVec<[(usize, usize); 8]> = (0..k)
+                    .map(|i| {
+                        let (a, b) = (c[i], c[(i + 1) % k]);
+                        (a.min(b), a.max(b))
+                    })
+                    .collect();
+                edges.sort_unstable();
+                edges.dedup();
+                if edges.len() < 3 {
+                    Shape::TooFewEdges
+                } else {
+                    Shape::Polygon
+                }
+            })
+            .collect();
+    }
+
+    /// A face's cycle in canonical form: rotated to start at its smallest
+    /// vertex, and of the two directions the lexicographically smaller.
+    fn canonical_cycle(corners: &[usize]) -> Vec<usize> {
+        let k = corners.len();
+        let start = (0..k).min_by_key(|&i| corners[i]).unwrap_or(0);
+        let forward: Vec<usize> = (0..k).map(|i| corners[(start + i) % k]).collect();
+        let backward: Vec<usize> = (0..k).map(|i| corners[(start + k - i) % k]).collect();
+        forward.min(backward)
+    }
+
+    fn find_duplicates(&mut self) {
+        let mut keyed: Vec<(Vec<usize>, usize)> = (0..self.face_count())
+            .into_par_iter()
+            .filter(|&f| self.shape[f] == Shape::Polygon)
+            .map(|f| (Context::canonical_cycle(self.corners(f)), f))
+            .collect();
+        keyed.par_sort_unstable();
+        self.duplicate_of = vec![None; self.face_count()];
+        for group in keyed.chunk_by(|a, b| a.0 == b.0) {
+            let first = group[0].1;
+            for &(_, f) in &group[1..] {
+                self.duplicate_of[f] = Some(first);
+            }
+        }
+    }
+
+    fn build_edges(&mut self) {
+        let mut half: Vec<(usize, usize, EdgeUse)> = Vec::with_capacity(self.corner_list.len());
+        for face in 0..self.face_count() {
+            if !self.in_topology[face] {
+                continue;
+            }
+            let c = self.corners(face);
+            let k = c.len();
+            for i in 0..k {
+                let (a, b) = (c[i], c[(i + 1) % k]);
+                half.push((
+                    a.min(b),
+                    a.max(b),
+                    EdgeUse {
+                        face,
+                        forward: a < b,
+                    },
+                ));
+            }
+        }
+        half.par_sort_unstable();
+        let mut edges = Vec::with_capacity(half.len() / 2 + 1);
+        let mut start = 0;
+        for group in half.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+            edges.push(EdgeRecord {
+                low: group[0].0,
+                high: group[0].1,
+                uses: start..start + group.len(),
+            });
+            start += group.len();
+        }
+        self.edge_uses = half.into_iter().map(|h| h.2).collect();
+        self.edges = edges;
+    }
+
+    fn build_incidence(&mut self) {
+        let n = self.soup.positions.len();
+        let (offsets, list) = csr(
+            n,
+            (0..self.face_count())
+                .filter(|&f| self.in_topology[f])
+                .flat_map(|f| self.corners(f).iter().map(move |&v| (v, f))),
+        );
+        self.vertex_face_offsets = offsets;
+        self.vertex_face_list = list;
+        let (offsets, list) = csr(
+            n,
+            self.edges
+                .iter()
+                .enumerate()
+                .flat_map(|(e, r)| [(r.low, e), (r.high, e)]),
+        );
+        self.vertex_edge_offsets = offsets;
+        self.vertex_edge_list = list;
+    }
+}
+
+/// Compressed rows: for each key in `0..n`, the values paired with it, in the
+/// order given.
+fn csr(n: usize, pairs: impl Iterator<Item = (usize, usize)> + Clone) -> (Vec<usize>, Vec<usize>) {
+    let mut offsets = vec![0usize; n + 1];
+    for (k, _) in pairs.clone() {
+        offsets[k + 1] += 1;
+    }
+    for i in 0..n {
+        offsets[i + 1] += offsets[i];
+    }
+    let mut fill = offsets.clone();
+    let mut list = vec![0usize; offsets[n]];
+    for (k, v) in pairs {
+        list[fill[k]] = v;
+        fill[k] += 1;
+    }
+    (offsets, list)
+}

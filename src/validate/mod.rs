@@ -1,0 +1,220 @@
+//! Validation of imported polyhedra: named checks over the soup and over the
+//! winged-edge solid, every instance located, and a graded verdict.
+//!
+//! Data flow: [`PolygonSoup`] (with OBJ lines) → soup checks (they work on
+//! anything: non-manifold edges, pinches, holes) → the faces that are
+//! polygons are built into a [`Solid`](crate::mesh::Solid) → solid checks
+//! (shell orientation against nesting) and measures (shells, Euler
+//! characteristic, genus, volume, area) → [`Report`].
+//!
+//! Each check lives in its own file under `checks/`, named after what is
+//! wrong; see [`Rule`] for the list and for how overlapping defects are
+//! attributed to exactly one rule.
+
+mod checks;
+mod context;
+mod exact;
+mod report;
+mod solid_view;
+
+use thiserror::Error;
+
+use crate::geom::Tolerance;
+use crate::io::ObjImport;
+use crate::mesh::PolygonSoup;
+
+pub use report::{Report, Rule, ShellSummary, Validity, Violation};
+
+/// What to judge and how strictly.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// The planarity tolerance (`tolerance.planarity`, a fraction of the
+    /// model's bounding-box diagonal) used by [`Rule::NonPlanarFace`].
+    pub tolerance: Tolerance,
+    /// Whether to run the self-intersection check (on by default).
+    pub self_intersection: bool,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            tolerance: Tolerance::default(),
+            self_intersection: true,
+        }
+    }
+}
+
+/// Why a soup cannot be validated at all (an [`ObjImport`] never has these).
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ValidateError {
+    /// A polygon refers to a vertex that does not exist.
+    #[error("polygon {polygon} refers to vertex {index}, but there are only {len} vertices")]
+    IndexOutOfRange {
+        /// The polygon.
+        polygon: usize,
+        /// The bad index.
+        index: usize,
+        /// The number of vertices.
+        len: usize,
+    },
+    /// A vertex position is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite position")]
+    NonFinite {
+        /// The vertex.
+        vertex: usize,
+    },
+}
+
+/// Validates an imported OBJ file; messages name OBJ lines.
+#[must_use]
+pub fn validate_import(import: &ObjImport, options: &Options) -> Report {
+    run(&import.soup, Some(&import.vertex_lines), options)
+}
+
+/// Validates a polygon soup; `vertex_lines` (one per position) lets
+/// messages name the `v` line of a vertex.
+///
+/// # Errors
+///
+/// [`ValidateError`] when an index is out of range or a position is not
+/// finite (nothing can be judged then).
+pub fn validate_soup(
+    soup: &PolygonSoup,
+    vertex_lines: Option<&[usize]>,
+    options: &Options,
+) -> Result<Report, ValidateError> {
+    let len = soup.positions.len();
+    for (polygon, p) in soup.polygons.iter().enumerate() {
+        if let Some(&index) = p.vertices.iter().find(|&&i| i >= len) {
+            return Err(ValidateError::IndexOutOfRange {
+                polygon,
+                index,
+                len,
+            });
+        }
+    }
+    if let Some(vertex) = soup.positions.iter().position(|p| !p.is_finite()) {
+        return Err(ValidateError::NonFinite { vertex });
+    }
+    let lines = vertex_lines.filter(|l| l.len() == len);
+    Ok(run(soup, lines, options))
+}
+
+fn run(soup: &PolygonSoup, vertex_lines: Option<&[usize]>, options: &Options) -> Report {
+    let ctx = context::Context::new(soup, vertex_lines, options.tolerance);
+    let soup_checks: [fn(&context::Context) -> Vec<Violation>; 13] = [
+        checks::vertex_in_fewer_than_three_edges::check,
+        checks::vertex_in_fewer_than_three_faces::check,
+        checks::edge_without_two_distinct_vertices::check,
+        checks::edge_in_one_face::check,
+        checks::edge_in_more_than_two_faces::check,
+        checks::face_with_fewer_than_three_vertices::check,
+        checks::face_with_fewer_than_three_edges::check,
+        checks::unreferenced_vertex::check,
+        checks::duplicate_face::check,
+        checks::inconsistent_orientation::check,
+        checks::non_manifold_vertex::check,
+        checks::non_planar_face::check,
+        checks::degenerate_face::check,
+    ];
+    let ((mut violations, intersections), built) = rayon::join(
+        || {
+            rayon::join(
+                || {
+                    soup_checks
+                        .iter()
+                        .flat_map(|check| check(&ctx))
+                        .collect::<Vec<_>>()
+                },
+                || {
+                    if options.self_intersection {
+                        checks::self_intersection::check(&ctx)
+                    } else {
+                        Vec::new()
+                    }
+                },
+            )
+        },
+        || solid_view::build(&ctx),
+    );
+    let (shells, genus, volume, not_built) = match built {
+        Ok(view) => {
+            violations.extend(checks::shell_oriented_inward::check(
+                &view.geometry,
+                &view.shells,
+            ));
+            (view.shells, view.genus, view.volume, None)
+        }
+        Err(why) => (Vec::new(), None, None, Some(why)),
+    };
+    violations.extend(intersections);
+    violations.sort_by_key(|v| v.rule);
+    let area = (0..ctx.face_count())
+        .map(|f| {
+            let points: Vec<_> = ctx.corners(f).iter().map(|&v| ctx.position(v)).collect();
+            match points.first() {
+                Some(&o) => crate::geom::newell_vector_area(&points, o).length(),
+                None => 0.0,
+            }
+        })
+        .sum();
+    let shell_count = if not_built.is_none() {
+        shells.len()
+    } else {
+        soup_components(&ctx)
+    };
+    let validity = grade(&violations, not_built.is_some());
+    Report {
+        validity,
+        vertices: soup.positions.len(),
+        edges: ctx.edges.len(),
+        faces: ctx.face_count(),
+        shells: shell_count,
+        genus,
+        volume,
+        area,
+        not_built,
+        shell_details: shells,
+        violations,
+    }
+}
+
+fn grade(violations: &[Violation], not_built: bool) -> Validity {
+    let any = |f: &dyn Fn(Rule) -> bool| violations.iter().any(|v| f(v.rule));
+    if not_built || any(&Rule::breaks_surface) {
+        Validity::NotASurface
+    } else if any(&|r| r == Rule::InconsistentOrientation) {
+        Validity::ManifoldSurface
+    } else if any(&|r| r == Rule::EdgeInOneFace) {
+        Validity::OrientedSurface
+    } else if !violations.is_empty() {
+        Validity::ClosedOrientedSurface
+    } else {
+        Validity::ValidSolid
+    }
+}
+
+/// Connected components of the faces in the topology, joined through shared
+/// edges (used when the solid cannot be built).
+fn soup_components(ctx: &context::Context) -> usize {
+    let n = ctx.face_count();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for e in 0..ctx.edges.len() {
+        let uses = ctx.uses(e);
+        for u in &uses[1..] {
+            let (a, b) = (root(&mut parent, uses[0].face), root(&mut parent, u.face));
+            parent[a] = b;
+        }
+    }
+    (0..n)
+        .filter(|&f| ctx.in_topology[f])
+        .filter(|&f| root(&mut parent, f) == f)
+        .count()
+}
