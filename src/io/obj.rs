@@ -167,6 +167,8 @@ pub struct ObjImport {
     pub vertex_numbers: Vec<usize>,
     /// What welding did.
     pub weld: WeldReport,
+    /// Wall-clock seconds of each import stage, for benchmarks.
+    pub stage_seconds: Vec<(&'static str, f64)>,
 }
 
 /// Reads every object and group of an OBJ file into one soup, with the
@@ -214,8 +216,12 @@ pub fn import_obj_bytes(
     bytes: &[u8],
     options: &ObjOptions,
 ) -> Result<ObjImport, ObjError> {
-    let scan = scan(path, bytes)?;
-    let positions = positions_from_tobj(path, bytes, &scan)?;
+    let start = std::time::Instant::now();
+    // The line pass and tobj read the same bytes independently.
+    let (scan, models) = rayon::join(|| scan(path, bytes), || run_tobj(path, bytes));
+    let scan = scan?;
+    let parsed = start.elapsed().as_secs_f64();
+    let positions = align_positions(path, bytes, &scan, &models?)?;
     let mut soup = PolygonSoup {
         positions,
         polygons: Vec::with_capacity(scan.faces.len()),
@@ -233,13 +239,21 @@ pub fn import_obj_bytes(
         });
     }
     let vertex_lines = scan.vertex_lines.iter().map(|&l| l as usize).collect();
+    drop(scan);
+    let assembled = start.elapsed().as_secs_f64();
     let (soup, vertex_lines, vertex_numbers, report) = weld(soup, vertex_lines, options.weld);
+    let welded = start.elapsed().as_secs_f64();
     Ok(ObjImport {
         path: path.to_path_buf(),
         soup,
         vertex_lines,
         vertex_numbers,
         weld: report,
+        stage_seconds: vec![
+            ("parse (tobj ∥ line pass)", parsed),
+            ("align and assemble soup", assembled - parsed),
+            ("weld", welded - assembled),
+        ],
     })
 }
 
@@ -278,7 +292,7 @@ fn line_of_offset(bytes: &[u8], offset: usize) -> usize {
 /// The line pass: one walk over the bytes, no allocation per line.
 fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
     let p = || path.to_path_buf();
-    if let Some(offset) = bytes.iter().position(|&b| b == 0) {
+    if let Some(offset) = memchr::memchr(0, bytes) {
         return Err(ObjError::Binary {
             path: p(),
             line: line_of_offset(bytes, offset),
@@ -297,10 +311,7 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
     let mut line = 0usize;
     while offset < bytes.len() {
         line += 1;
-        let end = bytes[offset..]
-            .iter()
-            .position(|&b| b == b'\n')
-            .map_or(bytes.len(), |i| offset + i);
+        let end = memchr::memchr(b'\n', &bytes[offset..]).map_or(bytes.len(), |i| offset + i);
         let text = &bytes[offset..end];
         let start = offset;
         offset = end + 1;
@@ -326,10 +337,7 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                         line,
                         token: String::from_utf8_lossy(word).into_owned(),
                     };
-                    let index: i64 = std::str::from_utf8(index_text)
-                        .ok()
-                        .and_then(|t| t.parse().ok())
-                        .ok_or_else(bad)?;
+                    let index = parse_index(index_text).ok_or_else(bad)?;
                     let resolved = match index {
                         0 => return Err(ObjError::ZeroIndex { path: p(), line }),
                         i if i < 0 => {
@@ -410,6 +418,26 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
     Ok(s)
 }
 
+/// An OBJ index: optional sign, decimal digits, nothing else.
+fn parse_index(text: &[u8]) -> Option<i64> {
+    let (negative, digits) = match text.first() {
+        Some(b'-') => (true, &text[1..]),
+        Some(b'+') => (false, &text[1..]),
+        _ => (false, text),
+    };
+    if digits.is_empty() || digits.len() > 18 {
+        return None;
+    }
+    let mut value: i64 = 0;
+    for &d in digits {
+        if !d.is_ascii_digit() {
+            return None;
+        }
+        value = value * 10 + i64::from(d - b'0');
+    }
+    Some(if negative { -value } else { value })
+}
+
 fn intern(names: &mut Vec<Arc<str>>, name: &str) -> usize {
     if let Some(i) = names.iter().rposition(|n| &**n == name) {
         return i;
@@ -418,10 +446,9 @@ fn intern(names: &mut Vec<Arc<str>>, name: &str) -> usize {
     names.len() - 1
 }
 
-/// Runs tobj over the bytes and places the positions it read at their
-/// original vertex numbers; unreferenced vertices (which tobj drops) are read
-/// from their own lines.
-fn positions_from_tobj(path: &Path, bytes: &[u8], scan: &Scan) -> Result<Vec<DVec3>, ObjError> {
+/// Runs tobj over the bytes: polygons kept, points and lines ignored,
+/// material libraries not loaded (only material names matter).
+fn run_tobj(path: &Path, bytes: &[u8]) -> Result<Vec<tobj::Model>, ObjError> {
     let options = tobj::LoadOptions {
         single_index: false,
         triangulate: false,
@@ -437,6 +464,17 @@ fn positions_from_tobj(path: &Path, bytes: &[u8], scan: &Scan) -> Result<Vec<DVe
         line: locate_tobj_error(bytes, &e),
         message: e.to_string(),
     })?;
+    Ok(models)
+}
+
+/// Places the positions tobj read at their original vertex numbers;
+/// unreferenced vertices (which tobj drops) are read from their own lines.
+fn align_positions(
+    path: &Path,
+    bytes: &[u8],
+    scan: &Scan,
+    models: &[tobj::Model],
+) -> Result<Vec<DVec3>, ObjError> {
     let mismatch = |what: &str| ObjError::Parse {
         path: path.to_path_buf(),
         line: None,
@@ -447,7 +485,7 @@ fn positions_from_tobj(path: &Path, bytes: &[u8], scan: &Scan) -> Result<Vec<DVe
     let mut set = vec![false; vertex_count];
     let mut faces = scan.faces.iter();
     let mut local_to_original: Vec<usize> = Vec::new();
-    for model in &models {
+    for model in models {
         let mesh = &model.mesh;
         local_to_original.clear();
         local_to_original.resize(mesh.positions.len() / 3, usize::MAX);

@@ -21,6 +21,7 @@
 use std::collections::HashMap;
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::geom::{Aabb, Tolerance};
 use crate::mesh::PolygonSoup;
@@ -125,7 +126,22 @@ pub(crate) fn weld(
         };
         return (soup, vertex_lines, numbers, report);
     };
-    let candidates = glue_candidates(&soup, &cluster);
+    let mut shared = vec![false; n];
+    for (v, &c) in cluster.iter().enumerate() {
+        if c != v {
+            shared[c] = true;
+            shared[v] = true;
+        }
+    }
+    if !shared.contains(&true) {
+        // No two vertices coincide: nothing to weld (the common case).
+        let report = WeldReport {
+            mode,
+            ..WeldReport::default()
+        };
+        return (soup, vertex_lines, numbers, report);
+    }
+    let candidates = glue_candidates(&soup, &cluster, &shared);
     let incident = incident_polygons(&soup);
     let mut blocked = vec![false; n];
     let mut refused = Vec::new();
@@ -189,21 +205,26 @@ fn clusters(positions: &[DVec3], mode: WeldMode) -> Option<Vec<usize>> {
             Some((0..positions.len()).map(|i| uf.find(i)).collect())
         }
         WeldMode::Exact => {
-            let mut first: HashMap<[u64; 3], usize> = HashMap::with_capacity(positions.len());
-            Some(
-                positions
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &p)| *first.entry(canonical(p)).or_insert(i))
-                    .collect(),
-            )
+            let mut order: Vec<usize> = (0..positions.len()).collect();
+            order.par_sort_unstable_by_key(|&i| (canonical(positions[i]), i));
+            let mut cluster = vec![0; positions.len()];
+            for group in order.chunk_by(|&a, &b| canonical(positions[a]) == canonical(positions[b]))
+            {
+                // Sorted by index within the group: the first is the smallest.
+                for &i in group {
+                    cluster[i] = group[0];
+                }
+            }
+            Some(cluster)
         }
     }
 }
 
 /// Pairs of open edge uses `a1→b1`, `a2→b2` that join the same two clusters
-/// in opposite directions, with no third use between those clusters.
-fn glue_candidates(soup: &PolygonSoup, cluster: &[usize]) -> Vec<[usize; 4]> {
+/// in opposite directions, with no third use between those clusters. Only
+/// edges touching a `shared` vertex (one whose cluster has other members)
+/// can be glued, so only those are looked at.
+fn glue_candidates(soup: &PolygonSoup, cluster: &[usize], shared: &[bool]) -> Vec<[usize; 4]> {
     // (low cluster, high cluster, from, to)
     let mut uses: Vec<(usize, usize, usize, usize)> = Vec::new();
     for p in &soup.polygons {
@@ -211,7 +232,7 @@ fn glue_candidates(soup: &PolygonSoup, cluster: &[usize]) -> Vec<[usize; 4]> {
         for i in 0..k {
             let (a, b) = (p.vertices[i], p.vertices[(i + 1) % k]);
             let (ca, cb) = (cluster[a], cluster[b]);
-            if ca != cb {
+            if ca != cb && (shared[a] || shared[b]) {
                 uses.push((ca.min(cb), ca.max(cb), a, b));
             }
         }

@@ -42,13 +42,19 @@ pub(crate) struct EdgeRecord {
     pub uses: std::ops::Range<usize>,
 }
 
+/// The largest vertex count validation accepts (edges are sorted by keys
+/// packing two vertex numbers into 64 bits).
+pub(crate) const MAX_VERTICES: usize = u32::MAX as usize;
+
 /// The checks' shared view of a soup.
 pub(crate) struct Context<'a> {
     pub soup: &'a PolygonSoup,
     /// `v` line of each vertex, when known.
     pub vertex_lines: Option<&'a [usize]>,
     pub tolerance: Tolerance,
-    /// Bounding-box diagonal of the referenced vertices.
+    /// Bounding box of the referenced vertices.
+    pub bounds: crate::geom::Aabb,
+    /// Its diagonal: the model size tolerances are scaled by.
     pub diagonal: f64,
     /// Corners of each face with consecutive repeats (cyclically) removed.
     corner_offsets: Vec<usize>,
@@ -60,6 +66,8 @@ pub(crate) struct Context<'a> {
     pub duplicate_of: Vec<Option<usize>>,
     /// Whether the face counts in the edge and vertex tables.
     pub in_topology: Vec<bool>,
+    /// Whether a polygon-shaped face is degenerate (see [`Context::degeneracy`]).
+    pub degenerate: Vec<bool>,
     pub edges: Vec<EdgeRecord>,
     pub edge_uses: Vec<EdgeUse>,
     /// Vertex → faces (in topology), as offsets into a list.
@@ -102,18 +110,19 @@ impl<'a> Context<'a> {
             }
             corner_offsets.push(corner_list.len());
         }
-        let diagonal = crate::geom::Aabb::from_points(
+        let bounds = crate::geom::Aabb::from_points(
             soup.positions
                 .iter()
                 .zip(&referenced)
                 .filter(|(_, r)| **r)
                 .map(|(p, _)| *p),
-        )
-        .diagonal();
+        );
+        let diagonal = bounds.diagonal();
         let mut context = Context {
             soup,
             vertex_lines,
             tolerance,
+            bounds,
             diagonal,
             corner_offsets,
             corner_list,
@@ -121,6 +130,7 @@ impl<'a> Context<'a> {
             shape: Vec::new(),
             duplicate_of: Vec::new(),
             in_topology: Vec::new(),
+            degenerate: Vec::new(),
             edges: Vec::new(),
             edge_uses: Vec::new(),
             vertex_face_offsets: Vec::new(),
@@ -134,9 +144,19 @@ impl<'a> Context<'a> {
         context.in_topology = (0..soup.polygons.len())
             .map(|f| context.shape[f] == Shape::Polygon && context.duplicate_of[f].is_none())
             .collect();
+        context.degenerate = (0..soup.polygons.len())
+            .into_par_iter()
+            .map(|f| context.shape[f] == Shape::Polygon && context.degeneracy(f).is_some())
+            .collect();
         context.build_edges();
         context.build_incidence();
         context
+    }
+
+    /// Whether the soup's faces are exactly the faces of the topology: no
+    /// repeats in a row, no duplicates, every face a polygon.
+    pub fn is_clean(&self) -> bool {
+        self.loop_edges.is_empty() && self.in_topology.iter().all(|&t| t)
     }
 
     /// The number of faces.
@@ -202,6 +222,13 @@ impl<'a> Context<'a> {
     /// degenerate-face conditions, with the reason.
     pub fn degeneracy(&self, face: usize) -> Option<String> {
         let c = self.corners(face);
+        if c.len() == 3 {
+            let [a, b, d] = [c[0], c[1], c[2]].map(|v| self.position(v));
+            if c[0] != c[1] && c[1] != c[2] && c[0] != c[2] && a != b && b != d && a != d {
+                return collinear3d(a, b, d)
+                    .then(|| "has all its vertices on one line (zero area)".to_string());
+            }
+        }
         let mut sorted: smallvec::SmallVec<[usize; 8]> = c.iter().copied().collect();
         sorted.sort_unstable();
         if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
@@ -231,8 +258,12 @@ impl<'a> Context<'a> {
 
     fn classify_shapes(&mut self) {
         self.shape = (0..self.face_count())
+            .into_par_iter()
             .map(|f| {
                 let c = self.corners(f);
+                if c.len() == 3 && c[0] != c[1] && c[1] != c[2] && c[2] != c[0] {
+                    return Shape::Polygon;
+                }
                 let mut vertices: smallvec::SmallVec<[usize; 8]> = c.iter().copied().collect();
                 vertices.sort_unstable();
                 vertices.dedup();
@@ -268,17 +299,38 @@ impl<'a> Context<'a> {
     }
 
     fn find_duplicates(&mut self) {
-        let mut keyed: Vec<(Vec<usize>, usize)> = (0..self.face_count())
+        // Sort by a hash of the canonical cycle; compare cycles only within
+        // runs of equal hashes.
+        // Independent of rotation and direction, so equal cycles hash alike.
+        let hash = |c: &[usize]| {
+            let mix = |v: usize| {
+                let mut x = (v as u64).wrapping_add(0x9e37_79b9_7f4a_7c15);
+                x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+                x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+                x ^ (x >> 31)
+            };
+            let (sum, xor) = c.iter().fold((c.len() as u64, 0u64), |(s, x), &v| {
+                (s.wrapping_add(mix(v)), x ^ mix(v).rotate_left(23))
+            });
+            sum ^ xor.rotate_left(7)
+        };
+        let mut keyed: Vec<(u64, usize)> = (0..self.face_count())
             .into_par_iter()
             .filter(|&f| self.shape[f] == Shape::Polygon)
-            .map(|f| (Context::canonical_cycle(self.corners(f)), f))
+            .map(|f| (hash(self.corners(f)), f))
             .collect();
         keyed.par_sort_unstable();
         self.duplicate_of = vec![None; self.face_count()];
-        for group in keyed.chunk_by(|a, b| a.0 == b.0) {
-            let first = group[0].1;
-            for &(_, f) in &group[1..] {
-                self.duplicate_of[f] = Some(first);
+        for run in keyed.chunk_by(|a, b| a.0 == b.0).filter(|r| r.len() > 1) {
+            let cycles: Vec<Vec<usize>> = run
+                .iter()
+                .map(|&(_, f)| Context::canonical_cycle(self.corners(f)))
+                .collect();
+            for i in 1..run.len() {
+                if let Some(j) = (0..i).find(|&j| cycles[j] == cycles[i]) {
+                    let first = self.duplicate_of[run[j].1].unwrap_or(run[j].1);
+                    self.duplicate_of[run[i].1] = Some(first);
+                }
             }
         }
     }

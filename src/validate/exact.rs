@@ -60,13 +60,18 @@ impl Expansion {
     }
 }
 
-/// The exact sign of `Σ a·(b × c)` over the given triangles: six times the
-/// signed volume of a closed triangulated surface (positive when outward).
-#[must_use]
-pub(crate) fn volume_sign(triangles: &[[DVec3; 3]]) -> Sign {
-    let mut sum = 0.0;
-    let mut magnitude = 0.0;
-    for [a, b, c] in triangles {
+/// The filter for [`volume_sign`]: `Σ a·(b × c)` in rounded arithmetic with
+/// a forward error bound, accumulated triangle by triangle.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct VolumeFilter {
+    sum: f64,
+    magnitude: f64,
+    count: f64,
+}
+
+impl VolumeFilter {
+    /// Adds one triangle's `a·(b × c)`.
+    pub fn add(&mut self, a: DVec3, b: DVec3, c: DVec3) {
         let terms = [
             a.x * b.y * c.z,
             -a.x * b.z * c.y,
@@ -76,16 +81,39 @@ pub(crate) fn volume_sign(triangles: &[[DVec3; 3]]) -> Sign {
             -a.z * b.y * c.x,
         ];
         for t in terms {
-            sum += t;
-            magnitude += t.abs();
+            self.sum += t;
+            self.magnitude += t.abs();
         }
+        self.count += 1.0;
     }
-    // Each product carries at most 2 rounding errors and the running sum
-    // one per addition: |error| ≤ (2 + 6n + 1) ε Σ|terms| (generous).
-    let n = triangles.len() as f64;
-    let bound = (6.0 * n + 8.0) * f64::EPSILON * magnitude;
-    if sum.is_finite() && bound.is_finite() && sum.abs() > bound {
-        return Sign::of(sum);
+
+    /// Adds another filter's sums (triangles of the same shell).
+    pub fn merge(&mut self, other: &VolumeFilter) {
+        self.sum += other.sum;
+        self.magnitude += other.magnitude;
+        self.count += other.count;
+    }
+
+    /// The sign when the rounded sum is certain to have it. Each product
+    /// carries at most 2 rounding errors and the running sums one per
+    /// addition: `|error| ≤ (6n + 8) ε Σ|terms|` (generous).
+    pub fn sign(&self) -> Option<Sign> {
+        let bound = (6.0 * self.count + 8.0) * f64::EPSILON * self.magnitude;
+        (self.sum.is_finite() && bound.is_finite() && self.sum.abs() > bound)
+            .then(|| Sign::of(self.sum))
+    }
+}
+
+/// The exact sign of `Σ a·(b × c)` over the given triangles: six times the
+/// signed volume of a closed triangulated surface (positive when outward).
+#[must_use]
+pub(crate) fn volume_sign(triangles: &[[DVec3; 3]]) -> Sign {
+    let mut filter = VolumeFilter::default();
+    for &[a, b, c] in triangles {
+        filter.add(a, b, c);
+    }
+    if let Some(sign) = filter.sign() {
+        return sign;
     }
     let mut exact = Expansion::default();
     for [a, b, c] in triangles {

@@ -21,7 +21,7 @@ use thiserror::Error;
 
 use crate::geom::Tolerance;
 use crate::io::ObjImport;
-use crate::mesh::PolygonSoup;
+use crate::mesh::{PolygonSoup, Solid};
 
 pub use report::{Report, Rule, ShellSummary, Validity, Violation};
 
@@ -57,6 +57,14 @@ pub enum ValidateError {
         /// The number of vertices.
         len: usize,
     },
+    /// More vertices than validation can index.
+    #[error("{vertices} vertices: more than validation supports ({max})")]
+    TooLarge {
+        /// The number of vertices.
+        vertices: usize,
+        /// The limit.
+        max: usize,
+    },
     /// A vertex position is NaN or infinite.
     #[error("vertex {vertex} has a non-finite position")]
     NonFinite {
@@ -66,9 +74,12 @@ pub enum ValidateError {
 }
 
 /// Validates an imported OBJ file; messages name OBJ lines.
-#[must_use]
-pub fn validate_import(import: &ObjImport, options: &Options) -> Report {
-    run(&import.soup, Some(&import.vertex_lines), options)
+///
+/// # Errors
+///
+/// [`ValidateError::TooLarge`] for more than 2³² − 1 vertices.
+pub fn validate_import(import: &ObjImport, options: &Options) -> Result<Report, ValidateError> {
+    validate_soup(&import.soup, Some(&import.vertex_lines), options)
 }
 
 /// Validates a polygon soup; `vertex_lines` (one per position) lets
@@ -76,14 +87,41 @@ pub fn validate_import(import: &ObjImport, options: &Options) -> Report {
 ///
 /// # Errors
 ///
-/// [`ValidateError`] when an index is out of range or a position is not
-/// finite (nothing can be judged then).
+/// [`ValidateError`] when an index is out of range, a position is not
+/// finite or the soup is too large (nothing can be judged then).
 pub fn validate_soup(
     soup: &PolygonSoup,
     vertex_lines: Option<&[usize]>,
     options: &Options,
 ) -> Result<Report, ValidateError> {
+    check_soup(soup)?;
+    let lines = vertex_lines.filter(|l| l.len() == soup.positions.len());
+    Ok(run(soup, lines, options).0)
+}
+
+/// Validates an imported OBJ file and also returns the winged-edge solid
+/// when its faces could be built into one (so that callers need not build
+/// it again).
+///
+/// # Errors
+///
+/// As for [`validate_import`].
+pub fn validate_and_build(
+    import: &ObjImport,
+    options: &Options,
+) -> Result<(Report, Option<Solid>), ValidateError> {
+    check_soup(&import.soup)?;
+    Ok(run(&import.soup, Some(&import.vertex_lines), options))
+}
+
+fn check_soup(soup: &PolygonSoup) -> Result<(), ValidateError> {
     let len = soup.positions.len();
+    if len > context::MAX_VERTICES {
+        return Err(ValidateError::TooLarge {
+            vertices: len,
+            max: context::MAX_VERTICES,
+        });
+    }
     for (polygon, p) in soup.polygons.iter().enumerate() {
         if let Some(&index) = p.vertices.iter().find(|&&i| i >= len) {
             return Err(ValidateError::IndexOutOfRange {
@@ -96,12 +134,22 @@ pub fn validate_soup(
     if let Some(vertex) = soup.positions.iter().position(|p| !p.is_finite()) {
         return Err(ValidateError::NonFinite { vertex });
     }
-    let lines = vertex_lines.filter(|l| l.len() == len);
-    Ok(run(soup, lines, options))
+    Ok(())
 }
 
-fn run(soup: &PolygonSoup, vertex_lines: Option<&[usize]>, options: &Options) -> Report {
-    let ctx = context::Context::new(soup, vertex_lines, options.tolerance);
+fn run(
+    soup: &PolygonSoup,
+    vertex_lines: Option<&[usize]>,
+    options: &Options,
+) -> (Report, Option<Solid>) {
+    let start = std::time::Instant::now();
+    // The soup usually needs no cleaning (no repeats in a row, no duplicate
+    // or broken faces): build the solid from it while the context is made.
+    let (ctx, raw) = rayon::join(
+        || context::Context::new(soup, vertex_lines, options.tolerance),
+        || Solid::try_from_soup(soup),
+    );
+    let prepared = start.elapsed().as_secs_f64();
     let soup_checks: [fn(&context::Context) -> Vec<Violation>; 13] = [
         checks::vertex_in_fewer_than_three_edges::check,
         checks::vertex_in_fewer_than_three_faces::check,
@@ -117,26 +165,33 @@ fn run(soup: &PolygonSoup, vertex_lines: Option<&[usize]>, options: &Options) ->
         checks::non_planar_face::check,
         checks::degenerate_face::check,
     ];
-    let ((mut violations, intersections), built) = rayon::join(
+    let ((intersections, si_seconds), (mut violations, built)) = rayon::join(
         || {
-            rayon::join(
-                || {
-                    soup_checks
-                        .iter()
-                        .flat_map(|check| check(&ctx))
-                        .collect::<Vec<_>>()
-                },
-                || {
-                    if options.self_intersection {
-                        checks::self_intersection::check(&ctx)
-                    } else {
-                        Vec::new()
-                    }
-                },
-            )
+            let t = std::time::Instant::now();
+            let found = if options.self_intersection {
+                checks::self_intersection::check(&ctx)
+            } else {
+                Vec::new()
+            };
+            (found, t.elapsed().as_secs_f64())
         },
-        || solid_view::build(&ctx),
+        || {
+            let violations: Vec<Violation> =
+                soup_checks.iter().flat_map(|check| check(&ctx)).collect();
+            let (built, view) = rayon::join(
+                || match raw {
+                    Ok(solid) if ctx.is_clean() => Ok(solid),
+                    _ => solid_view::build(&ctx),
+                },
+                || solid_view::measure(&ctx),
+            );
+            (violations, built.map(|solid| (solid, view)))
+        },
     );
+    let (solid, built) = match built {
+        Ok((solid, view)) => (Some(solid), Ok(view)),
+        Err(why) => (None, Err(why)),
+    };
     let (shells, genus, volume, not_built) = match built {
         Ok(view) => {
             violations.extend(checks::shell_oriented_inward::check(
@@ -164,7 +219,8 @@ fn run(soup: &PolygonSoup, vertex_lines: Option<&[usize]>, options: &Options) ->
         soup_components(&ctx)
     };
     let validity = grade(&violations, not_built.is_some());
-    Report {
+    let total = start.elapsed().as_secs_f64();
+    let report = Report {
         validity,
         vertices: soup.positions.len(),
         edges: ctx.edges.len(),
@@ -176,7 +232,13 @@ fn run(soup: &PolygonSoup, vertex_lines: Option<&[usize]>, options: &Options) ->
         not_built,
         shell_details: shells,
         violations,
-    }
+        stage_seconds: vec![
+            ("context ∥ solid build", prepared),
+            ("self-intersection (∥ checks + measures)", si_seconds),
+            ("all checks", total - prepared),
+        ],
+    };
+    (report, solid)
 }
 
 fn grade(violations: &[Violation], not_built: bool) -> Validity {

@@ -244,6 +244,9 @@ pub struct Report {
     pub shell_details: Vec<ShellSummary>,
     /// Every violation found, grouped by rule in [`Rule::ALL`] order.
     pub violations: Vec<Violation>,
+    /// Wall-clock seconds of validation stages, for benchmarks.
+    #[serde(skip)]
+    pub stage_seconds: Vec<(&'static str, f64)>,
 }
 
 impl Report {

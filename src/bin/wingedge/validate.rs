@@ -39,25 +39,31 @@ pub fn run(args: Args) -> ExitCode {
     let mut invalid = false;
     let mut json_out = Vec::new();
     for path in &args.files {
-        match import_obj(path, &ObjOptions { weld }) {
-            Err(e) => {
+        let outcome = import_obj(path, &ObjOptions { weld })
+            .map_err(|e| (e.to_string(), e.line()))
+            .and_then(|import| {
+                validate_import(&import, &options)
+                    .map(|report| (import, report))
+                    .map_err(|e| (format!("{}: {e}", path.display()), None))
+            });
+        match outcome {
+            Err((message, line)) => {
                 unreadable = true;
                 if args.json {
                     json_out.push(json!({
                         "file": path.display().to_string(),
                         "valid": false,
-                        "error": e.to_string(),
-                        "line": e.line(),
+                        "error": message,
+                        "line": line,
                         "vertices": null, "edges": null, "faces": null,
                         "shells": null, "genus": null, "volume": null,
                         "violations": [],
                     }));
                 } else {
-                    println!("{}: unreadable\n  error: {e}", path.display());
+                    println!("{}: unreadable\n  error: {message}", path.display());
                 }
             }
-            Ok(import) => {
-                let report = validate_import(&import, &options);
+            Ok((import, report)) => {
                 invalid |= !report.is_valid();
                 if args.json {
                     json_out.push(to_json(path, &import.weld, &report));

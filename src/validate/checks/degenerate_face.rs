@@ -2,14 +2,17 @@
 //! position, or one vertex visited twice (not in a row: that is an edge from
 //! a vertex to itself).
 
-use super::super::context::{Context, Shape};
+use rayon::prelude::*;
+
+use super::super::context::Context;
 use super::super::report::{Rule, Violation};
 
 /// Every face with at least three distinct vertices and edges that is
 /// degenerate. Collinearity and coincidence are decided exactly.
 pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
     (0..ctx.face_count())
-        .filter(|&f| ctx.shape[f] == Shape::Polygon)
+        .into_par_iter()
+        .filter(|&f| ctx.degenerate[f])
         .filter_map(|f| {
             let why = ctx.degeneracy(f)?;
             Some(Violation {

@@ -1,6 +1,8 @@
 //! The faces around a vertex must form a single fan; two cones sharing a tip
 //! do not.
 
+use rayon::prelude::*;
+
 use super::super::context::Context;
 use super::super::report::{Rule, Violation};
 
@@ -8,6 +10,7 @@ use super::super::report::{Rule, Violation};
 /// joined through the edges they share at the vertex.
 pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
     (0..ctx.soup.positions.len())
+        .into_par_iter()
         .filter_map(|v| {
             let mut faces = ctx.vertex_faces(v).to_vec();
             faces.dedup();

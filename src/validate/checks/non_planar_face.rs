@@ -3,6 +3,8 @@
 
 use glam::DVec3;
 
+use rayon::prelude::*;
+
 use super::super::context::{Context, Shape};
 use super::super::report::{Rule, Violation};
 use crate::geom::Plane;
@@ -13,8 +15,9 @@ use crate::geom::Plane;
 pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
     let limit = ctx.tolerance.planarity_limit(ctx.diagonal);
     (0..ctx.face_count())
+        .into_par_iter()
         .filter(|&f| ctx.shape[f] == Shape::Polygon && ctx.corners(f).len() > 3)
-        .filter(|&f| ctx.degeneracy(f).is_none())
+        .filter(|&f| !ctx.degenerate[f])
         .filter_map(|f| {
             let points: Vec<DVec3> = ctx.corners(f).iter().map(|&v| ctx.position(v)).collect();
             let fit = Plane::try_fit_newell(&points).ok()?;

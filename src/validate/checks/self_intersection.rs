@@ -58,9 +58,7 @@ fn triangulate(ctx: &Context) -> Vec<Triangle> {
     (0..ctx.face_count())
         .into_par_iter()
         .filter(|&f| {
-            ctx.shape[f] == Shape::Polygon
-                && ctx.duplicate_of[f].is_none()
-                && ctx.degeneracy(f).is_none()
+            ctx.shape[f] == Shape::Polygon && ctx.duplicate_of[f].is_none() && !ctx.degenerate[f]
         })
         .flat_map_iter(|face| {
             let c = ctx.corners(face);

@@ -1,5 +1,7 @@
 //! Seed rule 1: every vertex appears in at least three edge lists.
 
+use rayon::prelude::*;
+
 use super::super::context::Context;
 use super::super::report::{Rule, Violation};
 
@@ -7,6 +9,7 @@ use super::super::report::{Rule, Violation};
 /// vertices are reported by [`Rule::UnreferencedVertex`] instead.)
 pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
     (0..ctx.soup.positions.len())
+        .into_par_iter()
         .filter(|&v| ctx.referenced[v])
         .filter_map(|v| {
             let count = ctx.vertex_edges(v).len();

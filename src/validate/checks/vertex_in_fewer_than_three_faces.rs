@@ -1,11 +1,14 @@
 //! Seed rule 2: every vertex appears in at least three face lists.
 
+use rayon::prelude::*;
+
 use super::super::context::Context;
 use super::super::report::{Rule, Violation};
 
 /// Every referenced vertex on fewer than three distinct faces.
 pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
     (0..ctx.soup.positions.len())
+        .into_par_iter()
         .filter(|&v| ctx.referenced[v])
         .filter_map(|v| {
             let mut faces = ctx.vertex_faces(v).to_vec();
