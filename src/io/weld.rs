@@ -69,7 +69,7 @@ impl std::fmt::Display for WeldRefusal {
             ),
             WeldRefusal::WouldPinch { vertex, line } => write!(
                 f,
-                "not welded: vertex {vertex} (line {line}) would join separate fans of faces (a pinch)"
+                "not welded: the copies of OBJ vertex #{vertex} (line {line}) would join separate fans of faces (a pinch)"
             ),
         }
     }

@@ -241,18 +241,26 @@ fn run(
     (report, solid)
 }
 
+/// The grade the violations allow. A soup that could not be built into a
+/// winged-edge solid for a reason no violation explains (a face visiting a
+/// vertex twice) is not a surface either.
 fn grade(violations: &[Violation], not_built: bool) -> Validity {
-    let any = |f: &dyn Fn(Rule) -> bool| violations.iter().any(|v| f(v.rule));
-    if not_built || any(&Rule::breaks_surface) {
+    let any = |f: fn(Rule) -> bool| violations.iter().any(|v| f(v.rule));
+    let grade = if any(Rule::breaks_surface) {
         Validity::NotASurface
-    } else if any(&|r| r == Rule::InconsistentOrientation) {
+    } else if any(|r| r == Rule::InconsistentOrientation) {
         Validity::ManifoldSurface
-    } else if any(&|r| r == Rule::EdgeInOneFace) {
+    } else if any(|r| r == Rule::EdgeInOneFace) {
         Validity::OrientedSurface
     } else if !violations.is_empty() {
         Validity::ClosedOrientedSurface
     } else {
         Validity::ValidSolid
+    };
+    if not_built && grade > Validity::ManifoldSurface {
+        Validity::NotASurface
+    } else {
+        grade
     }
 }
 

@@ -246,27 +246,27 @@ fn nest(shells: &mut [ShellSummary], triangles: &[Vec<[DVec3; 3]>]) {
             if a == b {
                 continue;
             }
-            let in_box: Vec<DVec3> = probes
+            // Inside when every decisive probe is inside, outside when every
+            // one is outside; mixed answers mean the shells cross (reported
+            // as self-intersection) and leave the depth undecided.
+            let answers: Vec<bool> = probes
                 .iter()
-                .copied()
-                .filter(|&p| boxes[b].contains(p))
-                .collect();
-            if in_box.is_empty() {
-                continue;
-            }
-            match in_box
-                .iter()
-                .find_map(|&p| winding_number(&triangles[b], p))
-            {
-                Some(0) => {}
-                Some(_) => {
-                    depth = depth.map(|d| d + 1);
-                    let size = boxes[b].volume();
-                    if parent.is_none_or(|(_, s)| size < s) {
-                        parent = Some((b, size));
+                .filter_map(|&p| {
+                    if boxes[b].contains(p) {
+                        winding_number(&triangles[b], p).map(|w| w != 0)
+                    } else {
+                        Some(false)
                     }
+                })
+                .collect();
+            if answers.is_empty() || answers.iter().any(|&x| x != answers[0]) {
+                depth = None;
+            } else if answers[0] {
+                depth = depth.map(|d| d + 1);
+                let size = boxes[b].volume();
+                if parent.is_none_or(|(_, s)| size < s) {
+                    parent = Some((b, size));
                 }
-                None => depth = None,
             }
         }
         shells[a].depth = depth;

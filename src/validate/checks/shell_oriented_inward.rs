@@ -31,12 +31,12 @@ pub(crate) fn check(shells: &[ShellGeometry], summaries: &[ShellSummary]) -> Vec
             }
             let message = if depth % 2 == 0 {
                 format!(
-                    "shell {index} ({} faces, first face {}) is oriented inward: its faces point into the solid (signed volume {:.6e})",
+                    "shell {index} ({} faces, starting at {}) is oriented inward: its faces point into the solid (signed volume {:.6e})",
                     s.faces, g.first_face_name, s.volume
                 )
             } else {
                 format!(
-                    "shell {index} ({} faces, first face {}) is a cavity inside shell {} but is oriented like an outer shell: its faces point into the material (signed volume {:.6e})",
+                    "shell {index} ({} faces, starting at {}) is a cavity inside shell {} but is oriented like an outer shell: its faces point into the material (signed volume {:.6e})",
                     s.faces,
                     g.first_face_name,
                     s.parent.map_or_else(|| "?".to_string(), |p| p.to_string()),

@@ -16,8 +16,9 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
             (count < 3).then(|| Violation {
                 rule: Rule::VertexInFewerThanThreeEdges,
                 message: format!(
-                    "{} lies on {count} edges; a vertex needs at least 3",
-                    ctx.vertex_name(v)
+                    "{} lies on {count} edge{}; a vertex needs at least 3",
+                    ctx.vertex_name(v),
+                    if count == 1 { "" } else { "s" }
                 ),
                 line: ctx.vertex_line(v),
                 lines: ctx.vertex_line(v).into_iter().collect(),

@@ -17,8 +17,9 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
             (count < 3).then(|| Violation {
                 rule: Rule::VertexInFewerThanThreeFaces,
                 message: format!(
-                    "{} lies on {count} faces; a vertex needs at least 3",
-                    ctx.vertex_name(v)
+                    "{} lies on {count} face{}; a vertex needs at least 3",
+                    ctx.vertex_name(v),
+                    if count == 1 { "" } else { "s" }
                 ),
                 line: ctx.vertex_line(v),
                 lines: ctx.vertex_line(v).into_iter().collect(),
