@@ -156,8 +156,9 @@ fn perturbed_side(a: DVec2, b: DVec2, p: DVec2) -> Sign {
 /// The winding number of a closed triangulated surface around `p`, counted
 /// along the ray `p + t·x̂`, `t > 0`: `1` inside an outward shell, `-1`
 /// inside an inward one, `0` outside. Exact, with ties of the ray against
-/// edges and vertices broken by symbolic perturbation. `None` when `p` lies
-/// on the surface.
+/// edges and vertices broken by symbolic perturbation of `p` by `(0, ε, ε²)`.
+/// `None` when `p` lies on a face the ray crosses; a point on a face parallel
+/// to the ray is counted as the perturbed point.
 #[must_use]
 pub(crate) fn winding_number(triangles: &[[DVec3; 3]], p: DVec3) -> Option<i64> {
     let yz = |v: DVec3| DVec2::new(v.y, v.z);
@@ -216,8 +217,11 @@ mod tests {
         assert_eq!(volume_sign(&cube(DVec3::ZERO, 1.0, false)), Sign::Negative);
         let c = cube(DVec3::ZERO, 1.0, true);
         assert_eq!(winding_number(&c, DVec3::ZERO), Some(1));
-        // Ray through edges and vertices: perturbation keeps the count exact.
-        assert_eq!(winding_number(&c, DVec3::new(0., 1. - 2., 0.)), None);
+        // On a face the ray crosses: on the surface.
+        assert_eq!(winding_number(&c, DVec3::new(-1., 0.5, 0.25)), None);
+        // On a face parallel to the ray: the perturbed point (y + ε) is in.
+        assert_eq!(winding_number(&c, DVec3::new(0., -1., 0.)), Some(1));
+        // Rays through edges and vertices: perturbation keeps the count exact.
         assert_eq!(winding_number(&c, DVec3::new(-5., 1., 1.)), Some(0));
         assert_eq!(winding_number(&c, DVec3::new(-5., 0., 0.)), Some(0));
         assert_eq!(winding_number(&c, DVec3::new(0.5, 0., 0.)), Some(1));
