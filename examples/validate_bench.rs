@@ -1,20 +1,19 @@
-//! The validation benchmark: import, build and fully validate one large OBJ
-//! file, stage by stage, and print a table (peak memory included).
+//! The validation benchmark: import, build and fully validate one OBJ file
+//! (what `wingedge validate` does), print each stage and the peak memory.
 //!
 //! ```text
 //! cargo run --release --example validate_bench -- MESH.obj [REPEATS]
 //! ```
 //!
-//! Compare with `benches/peers_validate.py` (trimesh load + manifold3d
-//! construction of the same file), which runs this example too so that both
-//! are measured in one run.
+//! `benches/peers_validate.py` runs this example and trimesh load +
+//! manifold3d construction of the same file alternately, in one run, and
+//! prints the ratio.
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use wingedge::io::{ObjOptions, import_obj};
-use wingedge::mesh::Solid;
-use wingedge::validate::{Options, validate_import};
+use wingedge::validate::{Options, validate_and_build};
 
 fn peak_rss_mib() -> Option<f64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -30,9 +29,8 @@ fn main() {
         std::process::exit(2);
     };
     let repeats: usize = args.next().and_then(|r| r.parse().ok()).unwrap_or(3);
-    let mut best = [f64::INFINITY; 5];
+    let mut best: Option<(f64, f64, Vec<(&'static str, f64)>)> = None;
     let mut summary = String::new();
-    let mut stages = String::new();
     for _ in 0..repeats {
         let t0 = Instant::now();
         let import = match import_obj(&path, &ObjOptions::default()) {
@@ -43,56 +41,42 @@ fn main() {
             }
         };
         let t1 = Instant::now();
-        let no_si = Options {
-            self_intersection: false,
-            ..Options::default()
+        let (report, solid) = match validate_and_build(&import, &Options::default()) {
+            Ok(r) => r,
+            Err(e) => {
+                eprintln!("error: {e}");
+                std::process::exit(2);
+            }
         };
-        let _ = validate_import(&import, &no_si).expect("validates");
         let t2 = Instant::now();
-        let report = validate_import(&import, &Options::default()).expect("validates");
-        stages = import
-            .stage_seconds
-            .iter()
-            .chain(&report.stage_seconds)
-            .map(|(n, t)| format!("{n}: {t:.3}"))
-            .collect::<Vec<_>>()
-            .join("; ");
-        let t3 = Instant::now();
-        let solid = Solid::try_from_soup(&import.soup);
-        let t4 = Instant::now();
-        let times = [
-            (t1 - t0).as_secs_f64(),
-            (t2 - t1).as_secs_f64(),
-            (t3 - t2).as_secs_f64(),
-            (t4 - t3).as_secs_f64(),
-            ((t1 - t0) + (t3 - t2)).as_secs_f64(),
-        ];
-        for (b, t) in best.iter_mut().zip(times) {
-            *b = b.min(t);
+        let (import_s, total_s) = ((t1 - t0).as_secs_f64(), (t2 - t0).as_secs_f64());
+        if best.as_ref().is_none_or(|b| total_s < b.1) {
+            let stages = import
+                .stage_seconds
+                .iter()
+                .chain(&report.stage_seconds)
+                .copied()
+                .collect();
+            best = Some((import_s, total_s, stages));
         }
         summary = format!(
             "faces {}  verdict {:?}  violations {}  solid built {}",
             report.faces,
             report.validity,
             report.violations.len(),
-            solid.is_ok()
+            solid.is_some()
         );
     }
+    let Some((import_s, total_s, stages)) = best else {
+        return;
+    };
     println!("{}: {summary}", path.display());
-    println!("last run's stages: {stages}");
-    println!("| stage | best of {repeats} (s) |");
+    println!("| stage (best of {repeats}) | s |");
     println!("|---|---:|");
-    for (name, t) in [
-        "import (tobj + line pass + weld)",
-        "validate without self-intersection (incl. solid build)",
-        "validate, full",
-        "Solid::try_from_soup alone",
-        "import + full validate",
-    ]
-    .iter()
-    .zip(best)
-    {
+    for (name, t) in stages {
         println!("| {name} | {t:.3} |");
     }
+    println!("| import (tobj ∥ line pass, weld) | {import_s:.3} |");
+    println!("| import + full validate | {total_s:.3} |");
     println!("peak RSS {:.0} MiB", peak_rss_mib().unwrap_or(f64::NAN));
 }

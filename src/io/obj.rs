@@ -321,6 +321,11 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
         let Some(keyword) = words.next() else {
             continue;
         };
+        // What follows the keyword (names may contain spaces).
+        let rest = |keyword: &[u8]| {
+            let at = keyword.as_ptr() as usize - text.as_ptr() as usize + keyword.len();
+            String::from_utf8_lossy(&text[at..]).trim().to_string()
+        };
         match keyword {
             b"v" => {
                 s.vertex_lines.push(u32::try_from(line).unwrap_or(u32::MAX));
@@ -383,19 +388,17 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
             }
             b"g" | b"o" => {
                 // As tobj: the rest of the line, trimmed, names the group.
-                let rest = String::from_utf8_lossy(&text[1..]);
-                let name = rest.trim();
+                let name = rest(keyword);
                 let name = if name.is_empty() {
                     "unnamed_object"
                 } else {
-                    name
+                    &name
                 };
                 group = Some(intern(&mut s.names, name));
             }
             b"usemtl" => {
-                let rest = String::from_utf8_lossy(&text[6..]);
-                let name = rest.trim();
-                material = (!name.is_empty()).then(|| intern(&mut s.names, name));
+                let name = rest(keyword);
+                material = (!name.is_empty()).then(|| intern(&mut s.names, &name));
             }
             _ => {}
         }
