@@ -15,6 +15,9 @@ use std::time::Instant;
 use wingedge::io::{ObjOptions, import_obj};
 use wingedge::validate::{Options, validate_and_build};
 
+/// Import seconds, total seconds and the stages of the best run.
+type Best = (f64, f64, Vec<(&'static str, f64)>);
+
 fn peak_rss_mib() -> Option<f64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
@@ -29,7 +32,7 @@ fn main() {
         std::process::exit(2);
     };
     let repeats: usize = args.next().and_then(|r| r.parse().ok()).unwrap_or(3);
-    let mut best: Option<(f64, f64, Vec<(&'static str, f64)>)> = None;
+    let mut best: Option<Best> = None;
     let mut summary = String::new();
     for _ in 0..repeats {
         let t0 = Instant::now();
