@@ -395,6 +395,17 @@ fn the_teapot_is_open_and_not_a_surface() {
     assert!(r.count(Rule::NonManifoldVertex) > 0);
     assert!(r.not_built.is_some());
     assert!(r.violations.iter().all(|v| v.line.is_some()));
+    // The teapot's patches meet at (-2, 0.9, 0) in two fans: welding their
+    // corner copies would pinch them, so the weld refuses and says so.
+    let import = import_obj(&fixture("real/teapot.obj"), &ObjOptions::default()).unwrap();
+    assert!(import.weld.merged > 0);
+    assert!(
+        import
+            .weld
+            .refused
+            .iter()
+            .any(|r| matches!(r, wingedge::io::WeldRefusal::WouldPinch { .. }))
+    );
 }
 
 #[test]

@@ -479,30 +479,31 @@ mod tests {
     }
 
     #[test]
-    fn two_closed_cubes_touching_at_a_corner_are_not_pinched() {
-        let mut soup = split_cube();
-        let (mut a, ..) = weld(soup.clone(), (1..=24).collect(), WeldMode::Exact);
-        let offset = a.positions.len();
-        for p in soup.positions.iter_mut() {
-            *p += DVec3::ONE;
+    fn two_split_cubes_touching_at_a_corner_weld_into_two_solids() {
+        // Each cube's 24 corner copies weld into 8; the shared corner (1,1,1)
+        // of the first and (1,1,1) of the second are not merged into one
+        // pinch vertex: no edge glues copies of different cubes.
+        let a = split_cube();
+        let mut soup = a.clone();
+        for p in &a.polygons {
+            soup.polygons
+                .push(crate::mesh::Polygon::new(p.vertices.iter().map(|v| v + 24)));
         }
-        let (b, ..) = weld(soup, (1..=24).collect(), WeldMode::Exact);
-        a.positions.extend(b.positions);
-        for p in b.polygons {
-            a.polygons.push(crate::mesh::Polygon::new(
-                p.vertices.iter().map(|v| v + offset),
-            ));
-        }
-        let (s, _, _, report) = weld(a, (1..=16).collect(), WeldMode::Exact);
-        assert_eq!(s.positions.len(), 16);
-        assert_eq!(report.merged, 0);
+        soup.positions
+            .extend(a.positions.iter().map(|&p| p + DVec3::ONE));
+        let (welded, _, _, report) = weld(soup, (1..=48).collect(), WeldMode::Exact);
+        assert_eq!(report.merged, 32);
+        assert!(report.refused.is_empty());
+        assert_eq!(welded.positions.len(), 16);
+        let solid = Solid::try_from_soup(&welded).unwrap();
+        assert_eq!(solid.shells().len(), 2);
     }
 
     #[test]
-    fn open_fans_meeting_at_a_point_are_refused() {
-        // Two triangles touching at a corner, each corner a separate vertex,
-        // plus two more triangles whose open edges would glue both
-        // triangles' corners into one vertex with two fans.
+    fn coincident_corners_without_glued_edges_stay_apart() {
+        // Two triangles touching at a corner through two separate vertices:
+        // no pair of their open edges joins the same positions, so nothing
+        // is merged (a weld by position alone would make a pinch).
         let positions = vec![
             DVec3::ZERO,
             DVec3::X,

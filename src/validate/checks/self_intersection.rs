@@ -27,6 +27,8 @@ use crate::geom::{Sign, orient2d, orient3d};
 struct Triangle {
     vertices: [usize; 3],
     face: usize,
+    /// Whether the face is this triangle (so its vertices are the face's).
+    whole: bool,
 }
 
 /// Every pair of faces that cross or touch without sharing a vertex.
@@ -66,11 +68,16 @@ fn triangulate(ctx: &Context) -> Vec<Triangle> {
                 vec![Triangle {
                     vertices: [c[0], c[1], c[2]],
                     face,
+                    whole: true,
                 }]
             } else {
                 ear_clip(ctx, c)
                     .into_iter()
-                    .map(|vertices| Triangle { vertices, face })
+                    .map(|vertices| Triangle {
+                        vertices,
+                        face,
+                        whole: false,
+                    })
                     .collect()
             };
             out
@@ -230,10 +237,10 @@ fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize,
 }
 
 fn faces_share_vertex(ctx: &Context, a: &Triangle, b: &Triangle) -> bool {
-    let (ca, cb) = (ctx.corners(a.face), ctx.corners(b.face));
-    if ca.len() == 3 && cb.len() == 3 {
+    if a.whole && b.whole {
         return a.vertices.iter().any(|v| b.vertices.contains(v));
     }
+    let (ca, cb) = (ctx.corners(a.face), ctx.corners(b.face));
     ca.iter().any(|v| cb.contains(v))
 }
 
