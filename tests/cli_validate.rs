@@ -120,6 +120,7 @@ fn json_contract() {
     assert_eq!(holed["genus"], Value::Null);
     assert_eq!(holed["volume"], Value::Null);
     assert_eq!(holed["counts"]["edge_in_one_face"], 3);
+    assert_eq!(holed["holes"], 1);
     let first = &holed["violations"][0];
     assert_eq!(first["rule"], "edge_in_one_face");
 

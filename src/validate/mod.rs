@@ -3,7 +3,7 @@
 //!
 //! Data flow: [`PolygonSoup`] (with OBJ lines) → soup checks (they work on
 //! anything: non-manifold edges, pinches, holes) → the faces that are
-//! polygons are built into a [`Solid`](crate::mesh::Solid) → solid checks
+//! polygons are built into a [`Solid`] → solid checks
 //! (shell orientation against nesting) and measures (shells, Euler
 //! characteristic, genus, volume, area) → [`Report`].
 //!
@@ -226,6 +226,7 @@ fn run(
         edges: ctx.edges.len(),
         faces: ctx.face_count(),
         shells: shell_count,
+        holes: holes(&ctx),
         genus,
         volume,
         area,
@@ -262,6 +263,37 @@ fn grade(violations: &[Violation], not_built: bool) -> Validity {
     } else {
         grade
     }
+}
+
+/// Groups of edges with one face joined through shared vertices: the holes.
+fn holes(ctx: &context::Context) -> usize {
+    let boundary: Vec<usize> = (0..ctx.edges.len())
+        .filter(|&e| ctx.uses(e).len() == 1)
+        .collect();
+    let mut parent: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    fn root(parent: &mut std::collections::HashMap<usize, usize>, mut v: usize) -> usize {
+        loop {
+            let p = *parent.entry(v).or_insert(v);
+            if p == v {
+                return v;
+            }
+            let grand = *parent.entry(p).or_insert(p);
+            parent.insert(v, grand);
+            v = grand;
+        }
+    }
+    for &e in &boundary {
+        let (a, b) = (ctx.edges[e].low, ctx.edges[e].high);
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        if ra != rb {
+            parent.insert(ra, rb);
+        }
+    }
+    let vertices: Vec<usize> = parent.keys().copied().collect();
+    vertices
+        .into_iter()
+        .filter(|&v| root(&mut parent, v) == v)
+        .count()
 }
 
 /// Connected components of the faces in the topology, joined through shared

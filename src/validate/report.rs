@@ -231,6 +231,8 @@ pub struct Report {
     pub faces: usize,
     /// Connected components of the surface.
     pub shells: usize,
+    /// Holes: loops of edges with one face (connected groups of such edges).
+    pub holes: usize,
     /// Summed genus of the shells when every shell is closed.
     pub genus: Option<i64>,
     /// Enclosed volume when the winged-edge solid was built and every shell

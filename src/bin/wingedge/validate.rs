@@ -127,13 +127,14 @@ fn describe(
 ) -> String {
     let number = |x: Option<f64>| x.map_or_else(|| "-".to_string(), |v| format!("{v:.6}"));
     let mut out = format!(
-        "{}: {}\n  vertices {}  edges {}  faces {}  shells {}  genus {}  volume {}  area {:.6}\n",
+        "{}: {}\n  vertices {}  edges {}  faces {}  shells {}  holes {}  genus {}  volume {}  area {:.6}\n",
         path.display(),
         report.validity.describe(),
         report.vertices,
         report.edges,
         report.faces,
         report.shells,
+        report.holes,
         report
             .genus
             .map_or_else(|| "-".to_string(), |g| g.to_string()),
@@ -155,7 +156,11 @@ fn describe(
                 s.genus.map_or_else(|| "-".to_string(), |g| g.to_string()),
                 s.volume,
                 if s.closed { "closed" } else { "open" },
-                s.depth.map_or_else(|| "?".to_string(), |d| d.to_string()),
+                match (s.closed, s.depth) {
+                    (false, _) => "-".to_string(),
+                    (true, None) => "undecided".to_string(),
+                    (true, Some(d)) => d.to_string(),
+                },
             );
         }
     }
