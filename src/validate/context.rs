@@ -8,6 +8,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::geom::polygon::{Projection, find_self_intersection};
 use crate::geom::{Tolerance, collinear3d};
 use crate::mesh::PolygonSoup;
 
@@ -107,6 +108,10 @@ impl<'a> Context<'a> {
             while corner_list.len() > start + 1 && corner_list.last() == corner_list.get(start) {
                 let v = corner_list.pop().unwrap_or_default();
                 loop_edges.push((face, v));
+            }
+            if corner_list.len() == start + 1 && p.vertices.len() > 1 {
+                // Every corner was the same vertex: the closing edge loops too.
+                loop_edges.push((face, corner_list[start]));
             }
             corner_offsets.push(corner_list.len());
         }
@@ -253,7 +258,47 @@ impl<'a> Context<'a> {
         if c[2..].iter().all(|&v| collinear3d(a, b, self.position(v))) {
             return Some("has all its vertices on one line (zero area)".to_string());
         }
+        if c.len() > 3 {
+            let projection = self.projection(face);
+            let points: smallvec::SmallVec<[glam::DVec2; 8]> = c
+                .iter()
+                .map(|&v| projection.apply(self.position(v)))
+                .collect();
+            if let Some((i, j)) = find_self_intersection(&points) {
+                return Some(format!(
+                    "is not simple: its edges {}–{} and {}–{} meet",
+                    c[i],
+                    c[(i + 1) % c.len()],
+                    c[j],
+                    c[(j + 1) % c.len()]
+                ));
+            }
+        }
         None
+    }
+
+    /// The axis projection for a face: the axis plane nearest to its Newell
+    /// plane, or, when the Newell vector is zero (a bow tie whose loops
+    /// cancel), nearest to the largest triangle fanned from its first corner.
+    /// Only proposes the axis; decisions in the projection are exact.
+    pub fn projection(&self, face: usize) -> Projection {
+        let c = self.corners(face);
+        let o = self.position(c[0]);
+        let points: smallvec::SmallVec<[DVec3; 8]> = c.iter().map(|&v| self.position(v)).collect();
+        let newell = crate::geom::newell_vector_area(&points, o);
+        if newell != DVec3::ZERO {
+            return Projection::along(newell);
+        }
+        let largest = (1..c.len().saturating_sub(1))
+            .map(|i| (points[i] - o).cross(points[i + 1] - o))
+            .fold(DVec3::ZERO, |best, n| {
+                if n.length_squared() > best.length_squared() {
+                    n
+                } else {
+                    best
+                }
+            });
+        Projection::along(largest)
     }
 
     fn classify_shapes(&mut self) {

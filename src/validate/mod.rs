@@ -320,3 +320,63 @@ fn soup_components(ctx: &context::Context) -> usize {
         .filter(|&f| root(&mut parent, f) == f)
         .count()
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+
+    fn pyramid(base: [usize; 4]) -> PolygonSoup {
+        let positions = vec![
+            DVec3::new(0., 0., 0.),
+            DVec3::new(1., 0., 0.),
+            DVec3::new(1., 1., 0.),
+            DVec3::new(0., 1., 0.),
+            DVec3::new(0.5, 0.5, 1.),
+        ];
+        let mut polygons: Vec<Vec<usize>> = vec![base.to_vec()];
+        polygons.extend([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]].map(|t| t.to_vec()));
+        PolygonSoup::new(positions, polygons)
+    }
+
+    #[test]
+    fn a_valid_pyramid_and_a_bow_tie_base() {
+        let r = validate_soup(&pyramid([0, 3, 2, 1]), None, &Options::default()).unwrap();
+        assert!(r.is_valid(), "{:#?}", r.violations);
+        let r = validate_soup(&pyramid([0, 2, 3, 1]), None, &Options::default()).unwrap();
+        let degenerate: Vec<_> = r.of(Rule::DegenerateFace).collect();
+        assert_eq!(degenerate.len(), 1);
+        assert!(
+            degenerate[0].message.contains("not simple"),
+            "{degenerate:?}"
+        );
+        assert_eq!(degenerate[0].faces, [0]);
+    }
+
+    #[test]
+    fn a_face_of_one_repeated_vertex_has_a_loop_edge_per_corner() {
+        let mut soup = pyramid([0, 3, 2, 1]);
+        soup.polygons.push(crate::mesh::Polygon::new([4, 4, 4]));
+        let r = validate_soup(&soup, None, &Options::default()).unwrap();
+        assert_eq!(r.count(Rule::EdgeWithoutTwoDistinctVertices), 3);
+        assert_eq!(r.count(Rule::FaceWithFewerThanThreeVertices), 1);
+        assert_eq!(r.validity, Validity::NotASurface);
+    }
+
+    #[test]
+    fn bad_soups_are_errors_not_panics() {
+        let mut soup = pyramid([0, 3, 2, 1]);
+        soup.polygons[0].vertices[0] = 99;
+        assert!(matches!(
+            validate_soup(&soup, None, &Options::default()),
+            Err(ValidateError::IndexOutOfRange { index: 99, .. })
+        ));
+        let mut soup = pyramid([0, 3, 2, 1]);
+        soup.positions[4].z = f64::NAN;
+        assert!(matches!(
+            validate_soup(&soup, None, &Options::default()),
+            Err(ValidateError::NonFinite { vertex: 4 })
+        ));
+    }
+}

@@ -47,8 +47,10 @@ pub enum Rule {
     /// A face's vertices lie farther from its plane than the planarity
     /// tolerance allows.
     NonPlanarFace,
-    /// A face with zero area: all its vertices collinear, two of them at the
-    /// same position, or a vertex visited twice.
+    /// A face with zero area or that is not simple: all its vertices
+    /// collinear, two of them at the same position, a vertex visited twice,
+    /// or two of its edges meeting (a bow tie; decided exactly in the axis
+    /// projection nearest to its Newell plane).
     DegenerateFace,
     /// A closed shell whose faces point into the material: an outer shell
     /// with negative signed volume, or a cavity with positive.

@@ -1,6 +1,6 @@
-//! A face with zero area: all vertices collinear, two vertices at one
-//! position, or one vertex visited twice (not in a row: that is an edge from
-//! a vertex to itself).
+//! A face with zero area or that is not simple: all vertices collinear, two
+//! vertices at one position, one vertex visited twice (not in a row: that is
+//! an edge from a vertex to itself), or two edges that meet (a bow tie).
 
 use rayon::prelude::*;
 

@@ -71,7 +71,7 @@ fn triangulate(ctx: &Context) -> Vec<Triangle> {
                     whole: true,
                 }]
             } else {
-                ear_clip(ctx, c)
+                ear_clip(ctx, face)
                     .into_iter()
                     .map(|vertices| Triangle {
                         vertices,
@@ -87,10 +87,10 @@ fn triangulate(ctx: &Context) -> Vec<Triangle> {
 
 /// Triangles covering a polygon: ear clipping in its axis projection with
 /// exact orientation tests; a fan for whatever part is not simple.
-fn ear_clip(ctx: &Context, corners: &[usize]) -> Vec<[usize; 3]> {
+fn ear_clip(ctx: &Context, face: usize) -> Vec<[usize; 3]> {
+    let corners = ctx.corners(face);
     let points: Vec<DVec3> = corners.iter().map(|&v| ctx.position(v)).collect();
-    let normal = crate::geom::newell_vector_area(&points, points[0]);
-    let projection = Projection::along(normal);
+    let projection = ctx.projection(face);
     let convex = if projection.flipped {
         Sign::Negative
     } else {
