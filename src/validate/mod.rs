@@ -17,6 +17,7 @@ mod exact;
 mod report;
 mod solid_view;
 
+use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::geom::Tolerance;
@@ -205,8 +206,10 @@ fn run(
     violations.extend(intersections);
     violations.sort_by_key(|v| v.rule);
     let area = (0..ctx.face_count())
+        .into_par_iter()
         .map(|f| {
-            let points: Vec<_> = ctx.corners(f).iter().map(|&v| ctx.position(v)).collect();
+            let points: smallvec::SmallVec<[glam::DVec3; 8]> =
+                ctx.corners(f).iter().map(|&v| ctx.position(v)).collect();
             match points.first() {
                 Some(&o) => crate::geom::newell_vector_area(&points, o).length(),
                 None => 0.0,
