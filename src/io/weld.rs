@@ -274,9 +274,15 @@ fn incident_polygons(soup: &PolygonSoup) -> (Vec<usize>, Vec<usize>) {
     (offsets, list)
 }
 
-fn block_class(uf: &mut UnionFind, blocked: &mut [bool], root: usize) {
+/// Blocks every member of the classes whose roots are given: one pass over
+/// the vertices however many classes are blocked.
+fn block_classes(uf: &mut UnionFind, blocked: &mut [bool], roots: &[usize]) {
+    if roots.is_empty() {
+        return;
+    }
+    let roots: std::collections::HashSet<usize> = roots.iter().copied().collect();
     for (v, flag) in blocked.iter_mut().enumerate() {
-        if uf.find(v) == root {
+        if roots.contains(&uf.find(v)) {
             *flag = true;
         }
     }
@@ -308,9 +314,7 @@ fn refuse_repeats(
             });
         }
     }
-    for r in bad_roots {
-        block_class(uf, blocked, r);
-    }
+    block_classes(uf, blocked, &bad_roots);
 }
 
 fn refuse_pinches(
@@ -331,6 +335,7 @@ fn refuse_pinches(
     }
     let mut roots: Vec<usize> = members.keys().copied().collect();
     roots.sort_unstable();
+    let mut bad_roots = Vec::new();
     for root in roots {
         let mut polygons: Vec<usize> = members[&root]
             .iter()
@@ -367,9 +372,10 @@ fn refuse_pinches(
                 vertex: root + 1,
                 line: vertex_lines[root],
             });
-            block_class(uf, blocked, root);
+            bad_roots.push(root);
         }
     }
+    block_classes(uf, blocked, &bad_roots);
 }
 
 fn compact(
