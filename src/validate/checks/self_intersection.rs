@@ -332,6 +332,34 @@ fn coplanar_triangles_intersect(p: [DVec3; 3], q: [DVec3; 3]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    fn small_triangle() -> impl Strategy<Value = [DVec3; 3]> {
+        prop::array::uniform3((0i32..4, 0i32..4, 0i32..3))
+            .prop_map(|t| t.map(|(x, y, z)| DVec3::new(f64::from(x), f64::from(y), f64::from(z))))
+    }
+
+    fn non_degenerate(t: &[DVec3; 3]) -> bool {
+        !crate::geom::collinear3d(t[0], t[1], t[2])
+    }
+
+    proptest! {
+        /// On a small integer grid (full of coplanar, collinear and touching
+        /// cases) the answer does not depend on argument order, on which
+        /// vertex comes first, or on orientation.
+        #[test]
+        fn the_test_is_symmetric(p in small_triangle(), q in small_triangle()) {
+            prop_assume!(non_degenerate(&p) && non_degenerate(&q));
+            let base = triangles_intersect(p, q);
+            prop_assert_eq!(triangles_intersect(q, p), base);
+            prop_assert_eq!(triangles_intersect([p[1], p[2], p[0]], q), base);
+            prop_assert_eq!(triangles_intersect([p[0], p[2], p[1]], [q[2], q[1], q[0]]), base);
+            // Sharing a vertex position means touching.
+            if p.iter().any(|v| q.contains(v)) {
+                prop_assert!(base);
+            }
+        }
+    }
 
     fn v(x: f64, y: f64, z: f64) -> DVec3 {
         DVec3::new(x, y, z)
