@@ -243,7 +243,10 @@ fn nest(shells: &mut [ShellSummary], triangles: &[Vec<[DVec3; 3]>]) {
         let mut depth = Some(0);
         let mut parent: Option<(usize, f64)> = None;
         for &b in &closed {
-            if a == b {
+            // A shell inside another lies inside its bounding box.
+            let inside_box = boxes[b].min.cmple(boxes[a].min).all()
+                && boxes[a].max.cmple(boxes[b].max).all();
+            if a == b || !inside_box {
                 continue;
             }
             // Inside when every decisive probe is inside, outside when every

@@ -60,7 +60,7 @@ pub fn run(args: Args) -> ExitCode {
                         "violations": [],
                     }));
                 } else {
-                    println!("{}: unreadable\n  error: {message}", path.display());
+                    emit(&format!("{}: unreadable\n  error: {message}\n", path.display()));
                 }
             }
             Ok((import, report)) => {
@@ -68,14 +68,14 @@ pub fn run(args: Args) -> ExitCode {
                 if args.json {
                     json_out.push(to_json(path, &import.weld, &report));
                 } else {
-                    print!("{}", describe(path, &import.weld, &report, args.show));
+                    emit(&describe(path, &import.weld, &report, args.show));
                 }
             }
         }
     }
     if args.json {
         match serde_json::to_string_pretty(&Value::Array(json_out)) {
-            Ok(text) => println!("{text}"),
+            Ok(text) => emit(&format!("{text}\n")),
             Err(e) => {
                 eprintln!("error: cannot write JSON: {e}");
                 return ExitCode::from(2);
@@ -89,6 +89,13 @@ pub fn run(args: Args) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// Writes to standard output; a reader that went away (`| head`) is not an
+/// error worth a panic.
+fn emit(text: &str) {
+    use std::io::Write as _;
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
 }
 
 fn to_json(path: &std::path::Path, weld: &wingedge::io::WeldReport, report: &Report) -> Value {
@@ -148,7 +155,7 @@ fn describe(
         }
     }
     if report.shell_details.len() > 1 {
-        for (i, s) in report.shell_details.iter().enumerate() {
+        for (i, s) in report.shell_details.iter().enumerate().take(show) {
             out += &format!(
                 "  shell {i}: faces {}  χ {}  genus {}  volume {:.6}  {}  depth {}\n",
                 s.faces,
@@ -162,6 +169,9 @@ fn describe(
                     (true, Some(d)) => d.to_string(),
                 },
             );
+        }
+        if report.shell_details.len() > show {
+            out += &format!("  … and {} more shells\n", report.shell_details.len() - show);
         }
     }
     if let Some(why) = &report.not_built {
