@@ -244,8 +244,8 @@ fn nest(shells: &mut [ShellSummary], triangles: &[Vec<[DVec3; 3]>]) {
         let mut parent: Option<(usize, f64)> = None;
         for &b in &closed {
             // A shell inside another lies inside its bounding box.
-            let inside_box = boxes[b].min.cmple(boxes[a].min).all()
-                && boxes[a].max.cmple(boxes[b].max).all();
+            let inside_box =
+                boxes[b].min.cmple(boxes[a].min).all() && boxes[a].max.cmple(boxes[b].max).all();
             if a == b || !inside_box {
                 continue;
             }

@@ -60,7 +60,10 @@ pub fn run(args: Args) -> ExitCode {
                         "violations": [],
                     }));
                 } else {
-                    emit(&format!("{}: unreadable\n  error: {message}\n", path.display()));
+                    emit(&format!(
+                        "{}: unreadable\n  error: {message}\n",
+                        path.display()
+                    ));
                 }
             }
             Ok((import, report)) => {
@@ -171,7 +174,10 @@ fn describe(
             );
         }
         if report.shell_details.len() > show {
-            out += &format!("  … and {} more shells\n", report.shell_details.len() - show);
+            out += &format!(
+                "  … and {} more shells\n",
+                report.shell_details.len() - show
+            );
         }
     }
     if let Some(why) = &report.not_built {

@@ -186,9 +186,45 @@ fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize,
         inverse_cell: 1.0 / cell,
         dims: [dims_of(size.x), dims_of(size.y), dims_of(size.z)],
     };
+    // Triangles much larger than the cells (a ground plane under a detailed
+    // model) would fill the grid: they are tested against every box instead.
+    let cells_of = |b: &(DVec3, DVec3)| {
+        let (c0, c1) = (grid.cell(b.0), grid.cell(b.1));
+        (0..3).map(|k| c1[k] - c0[k] + 1).product::<u64>()
+    };
+    let large: Vec<usize> = (0..boxes.len())
+        .filter(|&i| cells_of(&boxes[i]) > MAX_CELLS_PER_TRIANGLE)
+        .collect();
+    let mut is_large = vec![false; boxes.len()];
+    for &i in &large {
+        is_large[i] = true;
+    }
+    let test = |a: usize, b: usize| -> Option<(usize, usize)> {
+        let (ta, tb) = (&triangles[a], &triangles[b]);
+        if ta.face == tb.face || faces_share_vertex(ctx, ta, tb) {
+            return None;
+        }
+        let pa = ta.vertices.map(|v| ctx.position(v));
+        let pb = tb.vertices.map(|v| ctx.position(v));
+        triangles_intersect(pa, pb).then(|| (ta.face.min(tb.face), ta.face.max(tb.face)))
+    };
+    let overlap = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| !a.0.max(b.0).cmpgt(a.1.min(b.1)).any();
+    let (boxes_ref, is_large_ref, test_ref) = (&boxes, &is_large, &test);
+    let large_pairs: Vec<(usize, usize)> = large
+        .par_iter()
+        .flat_map_iter(|&a| {
+            let (boxes, is_large, test) = (boxes_ref, is_large_ref, test_ref);
+            (0..boxes.len())
+                // Each large pair once (from its lower index).
+                .filter(move |&b| b != a && !(is_large[b] && b < a))
+                .filter(move |&b| overlap(&boxes[a], &boxes[b]))
+                .filter_map(move |b| test(a, b))
+        })
+        .collect();
     let mut entries: Vec<(u64, u32)> = boxes
         .par_iter()
         .enumerate()
+        .filter(|(i, _)| !is_large[*i])
         .flat_map_iter(|(i, b)| {
             let (c0, c1) = (grid.cell(b.0), grid.cell(b.1));
             let grid = &grid;
@@ -217,24 +253,21 @@ fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize,
                     if grid.key(grid.cell(low)) != key {
                         continue;
                     }
-                    let (ta, tb) = (&triangles[a], &triangles[b]);
-                    if ta.face == tb.face || faces_share_vertex(ctx, ta, tb) {
-                        continue;
-                    }
-                    let pa = ta.vertices.map(|v| ctx.position(v));
-                    let pb = tb.vertices.map(|v| ctx.position(v));
-                    if triangles_intersect(pa, pb) {
-                        found.push((ta.face.min(tb.face), ta.face.max(tb.face)));
-                    }
+                    found.extend(test(a, b));
                 }
             }
             found
         })
         .collect();
+    pairs.extend(large_pairs);
     pairs.par_sort_unstable();
     pairs.dedup();
     pairs
 }
+
+/// A triangle whose box spans more grid cells than this is tested against
+/// every box rather than binned (a grid cell is about one average triangle).
+const MAX_CELLS_PER_TRIANGLE: u64 = 4096;
 
 fn faces_share_vertex(ctx: &Context, a: &Triangle, b: &Triangle) -> bool {
     if a.whole && b.whole {
@@ -341,6 +374,49 @@ mod tests {
 
     fn non_degenerate(t: &[DVec3; 3]) -> bool {
         !crate::geom::collinear3d(t[0], t[1], t[2])
+    }
+
+    #[test]
+    fn a_huge_triangle_is_tested_against_everything() {
+        // A 40 × 40 plate of small triangles and a huge slanted triangle
+        // through it, spanning about 30 cells along each axis: far more
+        // than MAX_CELLS_PER_TRIANGLE.
+        let n = 40;
+        let mut positions = Vec::new();
+        for i in 0..=n {
+            for j in 0..=n {
+                positions.push(DVec3::new(i as f64, j as f64, 0.0));
+            }
+        }
+        let at = |i: usize, j: usize| i * (n + 1) + j;
+        let mut polygons = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                polygons.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                polygons.push(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        let base = positions.len();
+        let big = [
+            DVec3::new(-1e4, -1e4, -1e4),
+            DVec3::new(1e4, 1e4, -1e4),
+            DVec3::new(0.0, 35.0, 1e4),
+        ];
+        positions.extend(big);
+        polygons.push(vec![base, base + 1, base + 2]);
+        let soup = crate::mesh::PolygonSoup::new(positions.clone(), polygons.clone());
+        let expected = polygons[..polygons.len() - 1]
+            .iter()
+            .filter(|p| triangles_intersect([0, 1, 2].map(|k| positions[p[k]]), big))
+            .count();
+        assert!(expected > n, "{expected}");
+        let report =
+            crate::validate::validate_soup(&soup, None, &crate::validate::Options::default())
+                .unwrap();
+        assert_eq!(
+            report.count(crate::validate::Rule::SelfIntersection),
+            expected
+        );
     }
 
     proptest! {
