@@ -105,7 +105,6 @@ fn to_json(path: &std::path::Path, weld: &wingedge::io::WeldReport, report: &Rep
     let mut value = serde_json::to_value(report).unwrap_or(Value::Null);
     let counts: serde_json::Map<String, Value> = Rule::ALL
         .iter()
-        .filter(|&&r| report.count(r) > 0)
         .map(|&r| (r.name().to_string(), json!(report.count(r))))
         .collect();
     if let Value::Object(map) = &mut value {
