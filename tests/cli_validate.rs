@@ -198,3 +198,12 @@ fn weld_flags() {
     assert_eq!(code, 0, "{files:?}");
     assert_eq!(files[0]["weld"]["merged"], 16);
 }
+
+#[test]
+fn bad_tolerances_are_refused() {
+    for flag in ["--weld=-1", "--planarity=NaN"] {
+        let (code, _, err) = wingedge(&["validate", flag, "fixtures/valid/cube.obj"]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("tolerance"), "{err}");
+    }
+}

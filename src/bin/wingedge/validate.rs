@@ -19,6 +19,14 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> ExitCode {
+    for (flag, value) in [("--weld", args.weld), ("--planarity", args.planarity)] {
+        if let Some(v) = value.filter(|v| !(v.is_finite() && *v >= 0.0)) {
+            eprintln!(
+                "error: {flag} {v}: a tolerance is a finite fraction of the bounding-box diagonal, at least 0"
+            );
+            return ExitCode::from(2);
+        }
+    }
     let mut tolerance = Tolerance::default();
     if let Some(p) = args.planarity {
         tolerance.planarity = p;
