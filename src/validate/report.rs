@@ -55,7 +55,9 @@ pub enum Rule {
     /// A closed shell whose faces point into the material: an outer shell
     /// with negative signed volume, or a cavity with positive.
     ShellOrientedInward,
-    /// A face crosses or touches a face it shares no vertex with.
+    /// A face crosses or touches a face it shares no vertex with, or a
+    /// neighbour folds onto it (coplanar, same side of a shared edge) or
+    /// passes through it (sharing one vertex).
     SelfIntersection,
 }
 

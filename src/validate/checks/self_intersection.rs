@@ -1,18 +1,31 @@
-//! A face crossing or touching a face it shares no vertex with.
+//! A face crossing or touching another face anywhere but at the vertices
+//! and edges they share.
 //!
 //! Faces are cut into triangles (ear clipping in the face's axis projection,
 //! decided with exact `orient2d`), the triangles are binned in a uniform grid
 //! sized from their average extent (the broad phase, written here; the query
-//! layer's BVH is not used by design), and every pair of triangles whose boxes
-//! overlap, from faces with no common vertex, is tested exactly: only
-//! `orient3d` and `orient2d` signs decide, no epsilon. Cells are processed in
-//! parallel. Each pair is tested in exactly one cell (the one holding the
-//! lowest corner of the two boxes' overlap).
+//! layer's BVH is not used by design), and every pair of triangles of
+//! different faces whose boxes overlap is tested exactly: only `orient3d` and
+//! `orient2d` signs decide, no epsilon. Cells are processed in parallel. Each
+//! pair is tested in exactly one cell (the one holding the lowest corner of
+//! the two boxes' overlap).
 //!
-//! Faces that share a vertex are not tested against each other (they touch
-//! by construction; a fold between neighbours is not reported here). Faces
-//! that are not polygons, degenerate faces and later copies of duplicate
-//! faces are left out: other rules report them.
+//! How a pair is tested depends on the vertices its triangles share:
+//!
+//! - none: any common point is a defect (crossing or touching);
+//! - one vertex `v`, triangles `(v, a, b)` and `(v, c, d)`: reported when
+//!   they cross, that is when segment `ab` passes strictly through the
+//!   interior of the second triangle or `cd` through the first (a fin
+//!   through a neighbour). Contacts only along boundaries beyond `v` (a
+//!   vertex on a neighbour's edge, as a zero-area sliver produces) and
+//!   coplanar overlaps around a shared vertex are not reported: the
+//!   degenerate face that causes the first is reported instead;
+//! - an edge `uw`, triangles `(u, w, a)` and `(u, w, b)`: when not coplanar
+//!   they meet only along `uw`; when coplanar they overlap (a fold) iff `a`
+//!   and `b` lie on the same side of `uw`.
+//!
+//! Faces that are not polygons, degenerate faces and later copies of
+//! duplicate faces are left out: other rules report them.
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -27,8 +40,6 @@ use crate::geom::{Sign, orient2d, orient3d};
 struct Triangle {
     vertices: [usize; 3],
     face: usize,
-    /// Whether the face is this triangle (so its vertices are the face's).
-    whole: bool,
 }
 
 /// Every pair of faces that cross or touch without sharing a vertex.
@@ -42,9 +53,14 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
             Violation {
                 rule: Rule::SelfIntersection,
                 message: format!(
-                    "{} and {} intersect, but share no vertex",
+                    "{} and {} intersect{}",
                     ctx.face_name(a),
-                    ctx.face_name(b)
+                    ctx.face_name(b),
+                    if faces_share_a_vertex(ctx, a, b) {
+                        " beyond the vertices they share"
+                    } else {
+                        ""
+                    }
                 ),
                 line: lines.first().copied(),
                 lines,
@@ -68,16 +84,11 @@ fn triangulate(ctx: &Context) -> Vec<Triangle> {
                 vec![Triangle {
                     vertices: [c[0], c[1], c[2]],
                     face,
-                    whole: true,
                 }]
             } else {
                 ear_clip(ctx, face)
                     .into_iter()
-                    .map(|vertices| Triangle {
-                        vertices,
-                        face,
-                        whole: false,
-                    })
+                    .map(|vertices| Triangle { vertices, face })
                     .collect()
             };
             out
@@ -201,12 +212,11 @@ fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize,
     }
     let test = |a: usize, b: usize| -> Option<(usize, usize)> {
         let (ta, tb) = (&triangles[a], &triangles[b]);
-        if ta.face == tb.face || faces_share_vertex(ctx, ta, tb) {
+        if ta.face == tb.face {
             return None;
         }
-        let pa = ta.vertices.map(|v| ctx.position(v));
-        let pb = tb.vertices.map(|v| ctx.position(v));
-        triangles_intersect(pa, pb).then(|| (ta.face.min(tb.face), ta.face.max(tb.face)))
+        triangles_meet_beyond_shared(ctx, ta, tb)
+            .then(|| (ta.face.min(tb.face), ta.face.max(tb.face)))
     };
     let overlap = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| !a.0.max(b.0).cmpgt(a.1.min(b.1)).any();
     let (boxes_ref, is_large_ref, test_ref) = (&boxes, &is_large, &test);
@@ -269,12 +279,47 @@ fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize,
 /// every box rather than binned (a grid cell is about one average triangle).
 const MAX_CELLS_PER_TRIANGLE: u64 = 4096;
 
-fn faces_share_vertex(ctx: &Context, a: &Triangle, b: &Triangle) -> bool {
-    if a.whole && b.whole {
-        return a.vertices.iter().any(|v| b.vertices.contains(v));
-    }
-    let (ca, cb) = (ctx.corners(a.face), ctx.corners(b.face));
+fn faces_share_a_vertex(ctx: &Context, a: usize, b: usize) -> bool {
+    let (ca, cb) = (ctx.corners(a), ctx.corners(b));
     ca.iter().any(|v| cb.contains(v))
+}
+
+/// Whether two triangles of different faces meet anywhere but at the
+/// vertices (or the edge) they share; see the module documentation.
+fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Triangle) -> bool {
+    let pa = a.vertices.map(|v| ctx.position(v));
+    let pb = b.vertices.map(|v| ctx.position(v));
+    let shared: smallvec::SmallVec<[(usize, usize); 3]> = (0..3)
+        .filter_map(|i| {
+            (0..3)
+                .find(|&j| b.vertices[j] == a.vertices[i])
+                .map(|j| (i, j))
+        })
+        .collect();
+    match shared[..] {
+        [] => triangles_intersect(pa, pb),
+        [(i, j)] => {
+            let (a1, a2) = (pa[(i + 1) % 3], pa[(i + 2) % 3]);
+            let (b1, b2) = (pb[(j + 1) % 3], pb[(j + 2) % 3]);
+            segment_crosses_interior(a1, a2, pb) || segment_crosses_interior(b1, b2, pa)
+        }
+        [(i0, _), (i1, _)] => {
+            let (u, w) = (pa[i0], pa[i1]);
+            let a_far = pa[3 - i0 - i1];
+            let b_far = pb[(0..3)
+                .find(|&k| !a.vertices.contains(&b.vertices[k]))
+                .unwrap_or(0)];
+            if orient3d(u, w, a_far, b_far) != Sign::Zero {
+                return false;
+            }
+            let projection = projection_of(pa);
+            let (u2, w2) = (projection.apply(u), projection.apply(w));
+            let sa = orient2d(u2, w2, projection.apply(a_far));
+            sa != Sign::Zero && sa == orient2d(u2, w2, projection.apply(b_far))
+        }
+        // The same three vertices: a duplicate, reported as such.
+        _ => false,
+    }
 }
 
 /// Whether two closed, non-degenerate triangles share a point, decided
@@ -323,6 +368,19 @@ fn segment_meets_triangle(a: DVec3, b: DVec3, sa: Sign, sb: Sign, t: [DVec3; 3])
         orient3d(a, b, t[2], t[0]),
     ];
     !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
+}
+
+/// Whether segment `ab` passes through the open interior of triangle `t`:
+/// its ends strictly on opposite sides of `t`'s plane and the crossing
+/// point strictly inside `t`. Exact.
+fn segment_crosses_interior(a: DVec3, b: DVec3, t: [DVec3; 3]) -> bool {
+    let sa = orient3d(t[0], t[1], t[2], a);
+    let sb = orient3d(t[0], t[1], t[2], b);
+    if sa == Sign::Zero || sb != -sa {
+        return false;
+    }
+    let s = orient3d(a, b, t[0], t[1]);
+    s != Sign::Zero && orient3d(a, b, t[1], t[2]) == s && orient3d(a, b, t[2], t[0]) == s
 }
 
 /// An axis projection under which `t` keeps a non-zero area (checked
@@ -374,6 +432,53 @@ mod tests {
 
     fn non_degenerate(t: &[DVec3; 3]) -> bool {
         !crate::geom::collinear3d(t[0], t[1], t[2])
+    }
+
+    fn report_for(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> Vec<Vec<usize>> {
+        let soup = crate::mesh::PolygonSoup::new(positions, polygons);
+        let report =
+            crate::validate::validate_soup(&soup, None, &crate::validate::Options::default())
+                .unwrap();
+        report
+            .of(crate::validate::Rule::SelfIntersection)
+            .map(|v| v.faces.clone())
+            .collect()
+    }
+
+    #[test]
+    fn neighbours_that_fold_or_cross() {
+        let p = vec![
+            v(0., 0., 0.),
+            v(1., 0., 0.),
+            v(0., 1., 0.),
+            v(1., 1., 0.),
+            v(0.3, 0.4, 0.),
+            v(0.5, 0.5, 1.),
+        ];
+        // Sharing edge 0–1: opposite sides (a flat square), no defect; same
+        // side (a fold), a defect; with a dihedral angle, none.
+        assert!(report_for(p.clone(), vec![vec![0, 1, 3], vec![0, 3, 2]]).is_empty());
+        assert_eq!(
+            report_for(p.clone(), vec![vec![0, 1, 2], vec![1, 0, 4]]),
+            [vec![0, 1]]
+        );
+        assert!(report_for(p.clone(), vec![vec![0, 1, 2], vec![1, 0, 5]]).is_empty());
+        // Sharing vertex 0: a fin through the other triangle, and one that
+        // only touches at the shared vertex.
+        let q = vec![
+            v(0., 0., 0.),
+            v(2., 0., 0.),
+            v(0., 2., 0.),
+            v(0.5, 0.5, -1.),
+            v(0.5, 0.5, 1.),
+            v(-1., -1., -1.),
+            v(-1., -2., 1.),
+        ];
+        assert_eq!(
+            report_for(q.clone(), vec![vec![0, 1, 2], vec![0, 3, 4]]),
+            [vec![0, 1]]
+        );
+        assert!(report_for(q, vec![vec![0, 1, 2], vec![0, 5, 6]]).is_empty());
     }
 
     #[test]
