@@ -48,6 +48,14 @@ pub(crate) struct EdgeRecord {
 pub(crate) const MAX_VERTICES: usize = u32::MAX as usize;
 
 /// The checks' shared view of a soup.
+///
+/// # Invariants
+///
+/// Every face has at least one corner and no two equal corners in a row
+/// (cyclically). Faces counted in the topology (`in_topology`) are
+/// polygon-shaped and not later copies of duplicates; only they contribute
+/// edges and vertex incidences. Edges are sorted by `(low, high)` with
+/// `low < high`, each with at least one use.
 pub(crate) struct Context<'a> {
     pub soup: &'a PolygonSoup,
     /// `v` line of each vertex, when known.
