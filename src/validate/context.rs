@@ -23,29 +23,47 @@ pub(crate) enum Shape {
     TooFewEdges,
 }
 
-/// One use of an edge by a face.
+/// One use of an edge by a face (8 bytes: a million-face mesh has three
+/// million).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) struct EdgeUse {
-    /// The face.
-    pub face: usize,
+    face: u32,
     /// Whether the face runs the edge from its lower to its higher vertex.
     pub forward: bool,
 }
 
-/// An undirected edge between two distinct vertices.
-#[derive(Clone, Debug)]
-pub(crate) struct EdgeRecord {
-    /// The lower vertex.
-    pub low: usize,
-    /// The higher vertex.
-    pub high: usize,
-    /// Where its uses are in [`Context::edge_uses`].
-    pub uses: std::ops::Range<usize>,
+impl EdgeUse {
+    /// The face.
+    pub fn face(&self) -> usize {
+        self.face as usize
+    }
 }
 
-/// The largest vertex count validation accepts (edges are sorted by keys
-/// packing two vertex numbers into 64 bits).
-pub(crate) const MAX_VERTICES: usize = u32::MAX as usize;
+/// An undirected edge between two distinct vertices (16 bytes).
+#[derive(Clone, Debug)]
+pub(crate) struct EdgeRecord {
+    low: u32,
+    high: u32,
+    /// Where its uses are in [`Context::edge_uses`].
+    start: u32,
+    end: u32,
+}
+
+impl EdgeRecord {
+    /// The lower vertex.
+    pub fn low(&self) -> usize {
+        self.low as usize
+    }
+
+    /// The higher vertex.
+    pub fn high(&self) -> usize {
+        self.high as usize
+    }
+}
+
+/// The largest vertex, face or corner count validation accepts: tables
+/// store them as 32-bit numbers to halve their memory.
+pub(crate) const MAX_ELEMENTS: usize = u32::MAX as usize;
 
 /// The checks' shared view of a soup.
 ///
@@ -81,10 +99,10 @@ pub(crate) struct Context<'a> {
     pub edge_uses: Vec<EdgeUse>,
     /// Vertex → faces (in topology), as offsets into a list.
     vertex_face_offsets: Vec<usize>,
-    vertex_face_list: Vec<usize>,
+    vertex_face_list: Vec<u32>,
     /// Vertex → edges, as offsets into a list.
     vertex_edge_offsets: Vec<usize>,
-    vertex_edge_list: Vec<usize>,
+    vertex_edge_list: Vec<u32>,
     /// Whether any face (in topology or not) uses the vertex.
     pub referenced: Vec<bool>,
 }
@@ -214,20 +232,21 @@ impl<'a> Context<'a> {
     }
 
     /// The faces (in topology) around `vertex`, in face order.
-    pub fn vertex_faces(&self, vertex: usize) -> &[usize] {
+    pub fn vertex_faces(&self, vertex: usize) -> &[u32] {
         &self.vertex_face_list
             [self.vertex_face_offsets[vertex]..self.vertex_face_offsets[vertex + 1]]
     }
 
     /// The edges at `vertex`.
-    pub fn vertex_edges(&self, vertex: usize) -> &[usize] {
+    pub fn vertex_edges(&self, vertex: usize) -> &[u32] {
         &self.vertex_edge_list
             [self.vertex_edge_offsets[vertex]..self.vertex_edge_offsets[vertex + 1]]
     }
 
     /// The uses of edge `edge`.
     pub fn uses(&self, edge: usize) -> &[EdgeUse] {
-        &self.edge_uses[self.edges[edge].uses.clone()]
+        let r = &self.edges[edge];
+        &self.edge_uses[r.start as usize..r.end as usize]
     }
 
     /// Whether a face's corners (after collapsing) repeat a vertex or include
@@ -388,8 +407,11 @@ impl<'a> Context<'a> {
         }
     }
 
+    /// Edge uses sorted by their undirected edge: keys pack the two vertex
+    /// numbers into 64 bits and the face and direction into another 64, so
+    /// the sort moves 16-byte items.
     fn build_edges(&mut self) {
-        let mut half: Vec<(usize, usize, EdgeUse)> = Vec::with_capacity(self.corner_list.len());
+        let mut half: Vec<(u64, u64)> = Vec::with_capacity(self.corner_list.len());
         for face in 0..self.face_count() {
             if !self.in_topology[face] {
                 continue;
@@ -397,29 +419,30 @@ impl<'a> Context<'a> {
             let c = self.corners(face);
             let k = c.len();
             for i in 0..k {
-                let (a, b) = (c[i], c[(i + 1) % k]);
-                half.push((
-                    a.min(b),
-                    a.max(b),
-                    EdgeUse {
-                        face,
-                        forward: a < b,
-                    },
-                ));
+                let (a, b) = (c[i] as u64, c[(i + 1) % k] as u64);
+                let key = (a.min(b) << 32) | a.max(b);
+                half.push((key, ((face as u64) << 1) | u64::from(a < b)));
             }
         }
         half.par_sort_unstable();
         let mut edges = Vec::with_capacity(half.len() / 2 + 1);
         let mut start = 0;
-        for group in half.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+        for group in half.chunk_by(|x, y| x.0 == y.0) {
             edges.push(EdgeRecord {
-                low: group[0].0,
-                high: group[0].1,
-                uses: start..start + group.len(),
+                low: (group[0].0 >> 32) as u32,
+                high: (group[0].0 & 0xffff_ffff) as u32,
+                start: start as u32,
+                end: (start + group.len()) as u32,
             });
             start += group.len();
         }
-        self.edge_uses = half.into_iter().map(|h| h.2).collect();
+        self.edge_uses = half
+            .into_iter()
+            .map(|(_, use_)| EdgeUse {
+                face: (use_ >> 1) as u32,
+                forward: use_ & 1 == 1,
+            })
+            .collect();
         self.edges = edges;
     }
 
@@ -429,7 +452,7 @@ impl<'a> Context<'a> {
             n,
             (0..self.face_count())
                 .filter(|&f| self.in_topology[f])
-                .flat_map(|f| self.corners(f).iter().map(move |&v| (v, f))),
+                .flat_map(|f| self.corners(f).iter().map(move |&v| (v, f as u32))),
         );
         self.vertex_face_offsets = offsets;
         self.vertex_face_list = list;
@@ -438,7 +461,7 @@ impl<'a> Context<'a> {
             self.edges
                 .iter()
                 .enumerate()
-                .flat_map(|(e, r)| [(r.low, e), (r.high, e)]),
+                .flat_map(|(e, r)| [(r.low(), e as u32), (r.high(), e as u32)]),
         );
         self.vertex_edge_offsets = offsets;
         self.vertex_edge_list = list;
@@ -447,7 +470,7 @@ impl<'a> Context<'a> {
 
 /// Compressed rows: for each key in `0..n`, the values paired with it, in the
 /// order given.
-fn csr(n: usize, pairs: impl Iterator<Item = (usize, usize)> + Clone) -> (Vec<usize>, Vec<usize>) {
+fn csr(n: usize, pairs: impl Iterator<Item = (usize, u32)> + Clone) -> (Vec<usize>, Vec<u32>) {
     let mut offsets = vec![0usize; n + 1];
     for (k, _) in pairs.clone() {
         offsets[k + 1] += 1;
@@ -456,7 +479,7 @@ fn csr(n: usize, pairs: impl Iterator<Item = (usize, usize)> + Clone) -> (Vec<us
         offsets[i + 1] += offsets[i];
     }
     let mut fill = offsets.clone();
-    let mut list = vec![0usize; offsets[n]];
+    let mut list = vec![0u32; offsets[n]];
     for (k, v) in pairs {
         list[fill[k]] = v;
         fill[k] += 1;

@@ -58,11 +58,13 @@ pub enum ValidateError {
         /// The number of vertices.
         len: usize,
     },
-    /// More vertices than validation can index.
-    #[error("{vertices} vertices: more than validation supports ({max})")]
+    /// More vertices, faces or corners than validation can index.
+    #[error("{count} {what}: more than validation supports ({max})")]
     TooLarge {
-        /// The number of vertices.
-        vertices: usize,
+        /// What there are too many of.
+        what: &'static str,
+        /// How many there are.
+        count: usize,
         /// The limit.
         max: usize,
     },
@@ -78,7 +80,8 @@ pub enum ValidateError {
 ///
 /// # Errors
 ///
-/// [`ValidateError::TooLarge`] for more than 2³² − 1 vertices.
+/// [`ValidateError::TooLarge`] for more than 2³² − 1 vertices, faces or
+/// corners.
 pub fn validate_import(import: &ObjImport, options: &Options) -> Result<Report, ValidateError> {
     validate_soup(&import.soup, Some(&import.vertex_lines), options)
 }
@@ -117,11 +120,19 @@ pub fn validate_and_build(
 
 fn check_soup(soup: &PolygonSoup) -> Result<(), ValidateError> {
     let len = soup.positions.len();
-    if len > context::MAX_VERTICES {
-        return Err(ValidateError::TooLarge {
-            vertices: len,
-            max: context::MAX_VERTICES,
-        });
+    let corners: usize = soup.polygons.iter().map(|p| p.vertices.len()).sum();
+    for (what, count) in [
+        ("vertices", len),
+        ("faces", soup.polygons.len()),
+        ("face corners", corners),
+    ] {
+        if count > context::MAX_ELEMENTS {
+            return Err(ValidateError::TooLarge {
+                what,
+                count,
+                max: context::MAX_ELEMENTS,
+            });
+        }
     }
     for (polygon, p) in soup.polygons.iter().enumerate() {
         if let Some(&index) = p.vertices.iter().find(|&&i| i >= len) {
@@ -286,7 +297,7 @@ fn holes(ctx: &context::Context) -> usize {
         }
     }
     for &e in &boundary {
-        let (a, b) = (ctx.edges[e].low, ctx.edges[e].high);
+        let (a, b) = (ctx.edges[e].low(), ctx.edges[e].high());
         let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
         if ra != rb {
             parent.insert(ra, rb);
@@ -314,7 +325,10 @@ fn soup_components(ctx: &context::Context) -> usize {
     for e in 0..ctx.edges.len() {
         let uses = ctx.uses(e);
         for u in &uses[1..] {
-            let (a, b) = (root(&mut parent, uses[0].face), root(&mut parent, u.face));
+            let (a, b) = (
+                root(&mut parent, uses[0].face()),
+                root(&mut parent, u.face()),
+            );
             parent[a] = b;
         }
     }

@@ -73,7 +73,10 @@ pub(crate) fn measure(ctx: &Context) -> SolidView {
     for e in 0..ctx.edges.len() {
         let uses = ctx.uses(e);
         for u in &uses[1..] {
-            let (a, b) = (root(&mut parent, uses[0].face), root(&mut parent, u.face));
+            let (a, b) = (
+                root(&mut parent, uses[0].face()),
+                root(&mut parent, u.face()),
+            );
             if a != b {
                 parent[a.max(b)] = a.min(b);
             }
@@ -139,14 +142,14 @@ pub(crate) fn measure(ctx: &Context) -> SolidView {
     let mut vertices = vec![0usize; count];
     for v in 0..ctx.soup.positions.len() {
         if let Some(&f) = ctx.vertex_faces(v).first() {
-            vertices[shell_of[f]] += 1;
+            vertices[shell_of[f as usize]] += 1;
         }
     }
     let mut edges = vec![0usize; count];
     let mut boundary = vec![0usize; count];
     for e in 0..ctx.edges.len() {
         let uses = ctx.uses(e);
-        let s = shell_of[uses[0].face];
+        let s = shell_of[uses[0].face()];
         edges[s] += 1;
         boundary[s] += usize::from(uses.len() == 1);
     }

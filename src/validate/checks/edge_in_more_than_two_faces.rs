@@ -11,21 +11,21 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
         .enumerate()
         .filter(|(e, _)| ctx.uses(*e).len() >= 3)
         .map(|(e, edge)| {
-            let faces: Vec<usize> = ctx.uses(e).iter().map(|u| u.face).collect();
+            let faces: Vec<usize> = ctx.uses(e).iter().map(|u| u.face()).collect();
             let lines: Vec<usize> = faces.iter().filter_map(|&f| ctx.face_line(f)).collect();
             Violation {
                 rule: Rule::EdgeInMoreThanTwoFaces,
                 message: format!(
                     "edge {}–{} has {} faces {:?} (lines {:?}); a manifold edge has 2",
-                    edge.low,
-                    edge.high,
+                    edge.low(),
+                    edge.high(),
                     faces.len(),
                     faces,
                     lines
                 ),
                 line: lines.first().copied(),
                 lines,
-                vertices: vec![edge.low, edge.high],
+                vertices: vec![edge.low(), edge.high()],
                 faces,
                 value: None,
             }

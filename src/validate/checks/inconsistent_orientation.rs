@@ -13,11 +13,11 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
         .filter_map(|(e, edge)| match ctx.uses(e) {
             [a, b] if a.forward == b.forward => {
                 let (from, to) = if a.forward {
-                    (edge.low, edge.high)
+                    (edge.low(), edge.high())
                 } else {
-                    (edge.high, edge.low)
+                    (edge.high(), edge.low())
                 };
-                let lines: Vec<usize> = [a.face, b.face]
+                let lines: Vec<usize> = [a.face(), b.face()]
                     .iter()
                     .filter_map(|&f| ctx.face_line(f))
                     .collect();
@@ -25,13 +25,13 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
                     rule: Rule::InconsistentOrientation,
                     message: format!(
                         "{} and {} both run edge {from}→{to}: their orientations disagree",
-                        ctx.face_name(a.face),
-                        ctx.face_name(b.face)
+                        ctx.face_name(a.face()),
+                        ctx.face_name(b.face())
                     ),
                     line: lines.first().copied(),
                     lines,
                     vertices: vec![from, to],
-                    faces: vec![a.face, b.face],
+                    faces: vec![a.face(), b.face()],
                     value: None,
                 })
             }

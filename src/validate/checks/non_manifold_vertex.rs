@@ -12,7 +12,7 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
     (0..ctx.soup.positions.len())
         .into_par_iter()
         .filter_map(|v| {
-            let mut faces = ctx.vertex_faces(v).to_vec();
+            let mut faces: Vec<usize> = ctx.vertex_faces(v).iter().map(|&f| f as usize).collect();
             faces.dedup();
             if faces.len() < 2 {
                 return None;
@@ -26,11 +26,11 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
                 i
             }
             for &e in ctx.vertex_edges(v) {
-                let uses = ctx.uses(e);
+                let uses = ctx.uses(e as usize);
                 let slot = |f: usize| faces.binary_search(&f).ok();
-                if let Some(first) = uses.first().and_then(|u| slot(u.face)) {
+                if let Some(first) = uses.first().and_then(|u| slot(u.face())) {
                     for u in &uses[1..] {
-                        if let Some(other) = slot(u.face) {
+                        if let Some(other) = slot(u.face()) {
                             let (a, b) = (root(&mut parent, first), root(&mut parent, other));
                             parent[a] = b;
                         }

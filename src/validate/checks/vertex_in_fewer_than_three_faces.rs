@@ -11,7 +11,7 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
         .into_par_iter()
         .filter(|&v| ctx.referenced[v])
         .filter_map(|v| {
-            let mut faces = ctx.vertex_faces(v).to_vec();
+            let mut faces: Vec<usize> = ctx.vertex_faces(v).iter().map(|&f| f as usize).collect();
             faces.dedup();
             let count = faces.len();
             (count < 3).then(|| Violation {
