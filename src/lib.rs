@@ -16,6 +16,7 @@
 //! ## Layers
 //!
 //! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out) →
+//! [`validate`] (named checks and a graded verdict) →
 //! [`csg`] (ray-cast CSG: primitives, trees, scenes) → [`render`] (images).
 #![warn(missing_docs)]
 
@@ -24,6 +25,7 @@ pub mod geom;
 pub mod io;
 pub mod mesh;
 pub mod render;
+pub mod validate;
 
 pub use glam;
 

@@ -331,13 +331,39 @@ impl Reader<'_> {
     }
 }
 
-/// Loads a mesh leaf. The polyhedral leaf needs the exact ray–solid
-/// crossings of the query layer, which this branch does not have yet.
+/// How many violations a refused mesh's message lists.
+const VIOLATIONS_SHOWN: usize = 5;
+
+/// Loads a mesh leaf: imports the OBJ file, validates it (the default
+/// options of the validation layer) and refuses it with the validator's
+/// verdict and first violations unless it is a valid closed solid.
+///
+/// A valid mesh still cannot become a leaf in this build: the polyhedral
+/// leaf needs the query layer's exact ray–solid crossings, which has not
+/// been merged yet.
 fn load_mesh(file: &Path) -> Result<Arc<dyn Primitive>, String> {
-    Err(format!(
-        "mesh leaves need the query layer's ray–solid crossings, not yet available in this build ({})",
-        file.display()
-    ))
+    let import = crate::io::import_obj(file, &crate::io::ObjOptions::default())
+        .map_err(|e| e.to_string())?;
+    let (report, solid) =
+        crate::validate::validate_and_build(&import, &crate::validate::Options::default())
+            .map_err(|e| e.to_string())?;
+    match solid {
+        Some(_) if report.is_valid() => Err(
+            "a valid closed solid, but polyhedral leaves need the query layer's ray–solid crossings, not yet in this build"
+                .to_string(),
+        ),
+        _ => {
+            let mut message = format!(
+                "not a valid closed solid ({}); {} violation(s)",
+                report.validity.describe(),
+                report.violations.len()
+            );
+            for v in report.violations.iter().take(VIOLATIONS_SHOWN) {
+                message.push_str(&format!("\n  {}: {}", v.rule, v.message));
+            }
+            Err(message)
+        }
+    }
 }
 
 fn transform(value: &Value, at: &str) -> Result<DAffine3, SceneError> {
