@@ -15,11 +15,13 @@
 //!
 //! ## Layers
 //!
-//! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out).
+//! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out) →
+//! [`query`] (line–face, ray–solid, point-in-polyhedron).
 #![warn(missing_docs)]
 
 pub mod geom;
 pub mod io;
 pub mod mesh;
+pub mod query;
 
 pub use glam;

@@ -5,6 +5,7 @@
 //! extents) is a floating-point construction that never decides a sign.
 
 mod aabb;
+pub mod exact;
 mod plane;
 pub mod polygon;
 mod predicates;
@@ -12,6 +13,7 @@ mod ray;
 mod tolerance;
 
 pub use aabb::Aabb;
+pub use exact::{line_side, line_side_sos};
 pub use plane::{Plane, PlaneError, PlaneFit, newell_vector_area};
 pub use predicates::{Sign, exact_fallbacks, orient2d, orient3d, reset_exact_fallbacks};
 pub use ray::{Ray, Segment};

@@ -99,7 +99,7 @@ pub fn reset_exact_fallbacks() {
     FALLBACKS.with(|c| c.set(0));
 }
 
-fn count_fallback() {
+pub(crate) fn count_fallback() {
     FALLBACKS.with(|c| c.set(c.get() + 1));
 }
 

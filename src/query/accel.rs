@@ -1,0 +1,583 @@
+//! The acceleration structure shared by every query on one solid.
+
+use std::time::{Duration, Instant};
+
+use glam::{DVec2, DVec3};
+use thiserror::Error;
+
+use crate::geom::polygon::Projection;
+use crate::geom::{Aabb, Sign, orient2d, orient3d};
+use crate::mesh::{FaceId, Solid, VertexId};
+
+/// Why a solid is not convex (the normals method refuses it).
+#[derive(Clone, Copy, Debug, Error, PartialEq, Eq)]
+pub enum NotConvex {
+    /// The surface has holes.
+    #[error("the surface is not closed")]
+    NotClosed,
+    /// The surface has more than one connected shell.
+    #[error("the surface has {count} shells")]
+    Shells {
+        /// How many shells.
+        count: usize,
+    },
+    /// A face polygon turns the wrong way at one of its corners.
+    #[error("face {face:?} has a reflex corner at vertex {vertex:?}")]
+    ReflexCorner {
+        /// The face.
+        face: FaceId,
+        /// The corner.
+        vertex: VertexId,
+    },
+    /// A vertex of a face or of a neighbouring face lies strictly outside
+    /// the plane of one of the face's fan triangles (a reflex edge, or a
+    /// face that is not exactly planar).
+    #[error("vertex {vertex:?} lies strictly outside the plane of face {face:?}")]
+    VertexAbovePlane {
+        /// The face.
+        face: FaceId,
+        /// The vertex.
+        vertex: VertexId,
+    },
+}
+
+/// How the accel was built: its size and the time it took.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AccelStats {
+    /// Fan triangles (one per face corner beyond the second).
+    pub triangles: usize,
+    /// BVH nodes.
+    pub bvh_nodes: usize,
+    /// Grid cells (`ny × nz`).
+    pub grid_cells: usize,
+    /// Triangle references held by the grid's cells.
+    pub grid_entries: usize,
+    /// Heap bytes held by the accel.
+    pub memory_bytes: usize,
+    /// Wall time of [`Accel::new`].
+    pub build_time: Duration,
+}
+
+/// A triangle's projection onto the `yz` plane, with what the `+x` parity
+/// ray needs to reject it: one cache line.
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(64))]
+pub(super) struct YzTri {
+    /// `y` of the three corners.
+    pub y: [f64; 3],
+    /// `z` of the three corners.
+    pub z: [f64; 3],
+    /// The largest `x` of the corners: a point with larger `x` is behind it.
+    pub max_x: f64,
+    /// `orient2d` of the projected corners: the sign of the normal's `x`.
+    pub sigma: i8,
+}
+
+/// A uniform grid over the `yz` projection of the solid's bounding box; each
+/// cell lists the triangles whose projected bounding box overlaps it.
+#[derive(Clone, Debug)]
+pub(super) struct YzGrid {
+    pub y0: f64,
+    pub z0: f64,
+    pub y1: f64,
+    pub z1: f64,
+    pub inv_hy: f64,
+    pub inv_hz: f64,
+    pub ny: usize,
+    pub nz: usize,
+    pub cell_start: Vec<u32>,
+    pub entries: Vec<u32>,
+}
+
+impl YzGrid {
+    /// The cell column of `y` (monotone in `y`, clamped).
+    #[inline]
+    pub fn col(&self, y: f64) -> usize {
+        (((y - self.y0) * self.inv_hy) as usize).min(self.ny - 1)
+    }
+
+    /// The cell row of `z` (monotone in `z`, clamped).
+    #[inline]
+    pub fn row(&self, z: f64) -> usize {
+        (((z - self.z0) * self.inv_hz) as usize).min(self.nz - 1)
+    }
+
+    /// The triangles listed in the cell holding `(y, z)`.
+    #[inline]
+    pub fn cell(&self, y: f64, z: f64) -> &[u32] {
+        let c = self.row(z) * self.ny + self.col(y);
+        &self.entries[self.cell_start[c] as usize..self.cell_start[c + 1] as usize]
+    }
+}
+
+/// A BVH node with conservatively rounded `f32` bounds (32 bytes).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Node {
+    pub min: [f32; 3],
+    pub max: [f32; 3],
+    /// Leaf: first triangle; inner node: index of the second child (the
+    /// first child follows the node).
+    pub first: u32,
+    /// Leaf: number of triangles (> 0); inner node: 0.
+    pub count: u32,
+}
+
+/// The acceleration structure of one solid, built once and shared by every
+/// query (it is `Send + Sync`; batch queries split work over rayon's pool).
+///
+/// # Invariants
+///
+/// - `tris` is the fan triangulation of every face with at least three
+///   vertices, `(v₀, vₖ, vₖ₊₁)` for `k = 1 .. n − 2` in the face's winding,
+///   holding the exact input coordinates; `tri_face[i]` indexes `faces`.
+/// - The BVH's `f32` node boxes contain their triangles' `f64` boxes (bounds
+///   rounded outward), so culling never loses a triangle a ray touches.
+/// - Every triangle whose projected `yz` box contains a point `(y, z)` is
+///   listed in the grid cell of `(y, z)` (cell indices are monotone in the
+///   coordinates).
+#[derive(Clone, Debug)]
+pub struct Accel {
+    pub(super) tris: Vec<[DVec3; 3]>,
+    pub(super) tri_face: Vec<u32>,
+    pub(super) faces: Vec<FaceId>,
+    pub(super) nodes: Vec<Node>,
+    pub(super) yz: Vec<YzTri>,
+    pub(super) grid: YzGrid,
+    pub(super) bounds: Aabb,
+    pub(super) boundary_edges: usize,
+    pub(super) convexity: Result<(), NotConvex>,
+    pub(super) stats: AccelStats,
+}
+
+/// Grid cells per triangle.
+const CELLS_PER_TRIANGLE: f64 = 1.0;
+/// Largest number of triangles in a BVH leaf.
+const LEAF_SIZE: usize = 4;
+/// SAH bins per split.
+const BINS: usize = 16;
+
+impl Accel {
+    /// Builds the accel of `solid`: fan triangles, BVH, `yz` grid and the
+    /// convexity verdict used by the normals method.
+    ///
+    /// Never fails: an open solid gets an accel too (the winding number is
+    /// defined for it; parity and crossings then return
+    /// [`QueryError::NotClosed`](super::QueryError::NotClosed)). A solid with
+    /// no faces gives an empty accel for which every point is outside.
+    #[must_use]
+    pub fn new(solid: &Solid) -> Accel {
+        let start = Instant::now();
+        let mut faces = Vec::with_capacity(solid.face_count());
+        let mut tris = Vec::with_capacity(solid.face_count() * 2);
+        let mut tri_face = Vec::with_capacity(solid.face_count() * 2);
+        let mut corners: smallvec::SmallVec<[DVec3; 8]> = smallvec::SmallVec::new();
+        for (id, _) in solid.faces() {
+            corners.clear();
+            corners.extend(solid.face_vertices(id).map(|v| solid.position(v)));
+            let index = faces.len() as u32;
+            faces.push(id);
+            for k in 1..corners.len().saturating_sub(1) {
+                tris.push([corners[0], corners[k], corners[k + 1]]);
+                tri_face.push(index);
+            }
+        }
+        let (nodes, order) = build_bvh(&tris);
+        let tris: Vec<[DVec3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
+        let tri_face: Vec<u32> = order.iter().map(|&i| tri_face[i as usize]).collect();
+        let bounds = Aabb::from_points(tris.iter().flatten().copied());
+        let yz: Vec<YzTri> = tris.iter().map(yz_tri).collect();
+        let grid = build_grid(&yz, bounds);
+        let boundary_edges = solid.boundary_edges().count();
+        let convexity = check_convexity(solid, boundary_edges);
+        let memory_bytes = tris.capacity() * std::mem::size_of::<[DVec3; 3]>()
+            + tri_face.capacity() * 4
+            + faces.capacity() * std::mem::size_of::<FaceId>()
+            + nodes.capacity() * std::mem::size_of::<Node>()
+            + yz.capacity() * std::mem::size_of::<YzTri>()
+            + grid.cell_start.capacity() * 4
+            + grid.entries.capacity() * 4;
+        let stats = AccelStats {
+            triangles: tris.len(),
+            bvh_nodes: nodes.len(),
+            grid_cells: grid.ny * grid.nz,
+            grid_entries: grid.entries.len(),
+            memory_bytes,
+            build_time: Duration::ZERO,
+        };
+        let mut accel = Accel {
+            tris,
+            tri_face,
+            faces,
+            nodes,
+            yz,
+            grid,
+            bounds,
+            boundary_edges,
+            convexity,
+            stats,
+        };
+        accel.stats.build_time = start.elapsed();
+        accel
+    }
+
+    /// Size and build time.
+    #[must_use]
+    pub fn stats(&self) -> AccelStats {
+        self.stats
+    }
+
+    /// The bounding box of the solid's vertices.
+    #[must_use]
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// Whether the surface is closed (every edge has two faces).
+    #[must_use]
+    pub fn is_closed(&self) -> bool {
+        self.boundary_edges == 0
+    }
+
+    /// `Ok` when the solid is convex (decided exactly), else why not.
+    ///
+    /// # Errors
+    ///
+    /// The first reason found; see [`NotConvex`].
+    pub fn convexity(&self) -> Result<(), NotConvex> {
+        self.convexity
+    }
+
+    pub(super) fn require_closed(&self) -> Result<(), super::QueryError> {
+        if self.boundary_edges == 0 {
+            Ok(())
+        } else {
+            Err(super::QueryError::NotClosed {
+                boundary_edges: self.boundary_edges,
+            })
+        }
+    }
+}
+
+fn yz_tri(t: &[DVec3; 3]) -> YzTri {
+    let p = |v: DVec3| DVec2::new(v.y, v.z);
+    YzTri {
+        y: [t[0].y, t[1].y, t[2].y],
+        z: [t[0].z, t[1].z, t[2].z],
+        max_x: t[0].x.max(t[1].x).max(t[2].x),
+        sigma: orient2d(p(t[0]), p(t[1]), p(t[2])).as_i32() as i8,
+    }
+}
+
+fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
+    let (y0, z0, y1, z1) = if bounds.is_empty() {
+        (0.0, 0.0, 1.0, 1.0)
+    } else {
+        (bounds.min.y, bounds.min.z, bounds.max.y, bounds.max.z)
+    };
+    let (wy, wz) = (
+        (y1 - y0).max(f64::MIN_POSITIVE),
+        (z1 - z0).max(f64::MIN_POSITIVE),
+    );
+    let cells = (yz.len() as f64 * CELLS_PER_TRIANGLE).clamp(1.0, 64.0e6);
+    let aspect = (wy / wz).clamp(1e-6, 1e6);
+    let ny = ((cells * aspect).sqrt().round() as usize).clamp(1, 1 << 14);
+    let nz = ((cells / ny as f64).round() as usize).clamp(1, 1 << 14);
+    let mut grid = YzGrid {
+        y0,
+        z0,
+        y1,
+        z1,
+        inv_hy: ny as f64 / wy,
+        inv_hz: nz as f64 / wz,
+        ny,
+        nz,
+        cell_start: vec![0; ny * nz + 1],
+        entries: Vec::new(),
+    };
+    let range = |g: &YzGrid, t: &YzTri| {
+        let ymin = t.y[0].min(t.y[1]).min(t.y[2]);
+        let ymax = t.y[0].max(t.y[1]).max(t.y[2]);
+        let zmin = t.z[0].min(t.z[1]).min(t.z[2]);
+        let zmax = t.z[0].max(t.z[1]).max(t.z[2]);
+        (g.col(ymin), g.col(ymax), g.row(zmin), g.row(zmax))
+    };
+    for t in yz {
+        let (c0, c1, r0, r1) = range(&grid, t);
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                grid.cell_start[r * ny + c + 1] += 1;
+            }
+        }
+    }
+    for i in 0..ny * nz {
+        grid.cell_start[i + 1] += grid.cell_start[i];
+    }
+    let mut fill: Vec<u32> = grid.cell_start[..ny * nz].to_vec();
+    grid.entries = vec![0; grid.cell_start[ny * nz] as usize];
+    for (i, t) in yz.iter().enumerate() {
+        let (c0, c1, r0, r1) = range(&grid, t);
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                let cell = r * ny + c;
+                grid.entries[fill[cell] as usize] = i as u32;
+                fill[cell] += 1;
+            }
+        }
+    }
+    grid
+}
+
+// ---------------------------------------------------------------------------
+// BVH: binned SAH over triangle boxes.
+
+fn f32_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x {
+        next_down_f32(f)
+    } else {
+        f
+    }
+}
+
+fn f32_up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x {
+        -next_down_f32(-f)
+    } else {
+        f
+    }
+}
+
+fn next_down_f32(f: f32) -> f32 {
+    if f.is_nan() || f == f32::NEG_INFINITY {
+        return f;
+    }
+    if f == 0.0 {
+        return -f32::from_bits(1);
+    }
+    let bits = f.to_bits();
+    if f > 0.0 {
+        f32::from_bits(bits - 1)
+    } else {
+        f32::from_bits(bits + 1)
+    }
+}
+
+#[derive(Clone, Copy)]
+struct Bin {
+    bounds: Aabb,
+    count: usize,
+}
+
+fn half_area(b: &Aabb) -> f64 {
+    if b.is_empty() {
+        return 0.0;
+    }
+    let s = b.size();
+    s.x * s.y + s.y * s.z + s.z * s.x
+}
+
+/// Builds the BVH; returns the nodes and the triangle order of the leaves.
+fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>) {
+    let boxes: Vec<Aabb> = tris.iter().map(|t| Aabb::from_points(*t)).collect();
+    let centres: Vec<DVec3> = boxes.iter().map(Aabb::center).collect();
+    let mut order: Vec<u32> = (0..tris.len() as u32).collect();
+    let mut nodes = Vec::with_capacity(2 * tris.len() / LEAF_SIZE + 1);
+    if tris.is_empty() {
+        nodes.push(Node {
+            min: [f32::INFINITY; 3],
+            max: [f32::NEG_INFINITY; 3],
+            first: 0,
+            count: 0,
+        });
+        return (nodes, order);
+    }
+    build_node(&boxes, &centres, &mut order, 0, &mut nodes);
+    (nodes, order)
+}
+
+fn build_node(
+    boxes: &[Aabb],
+    centres: &[DVec3],
+    order: &mut [u32],
+    offset: usize,
+    nodes: &mut Vec<Node>,
+) {
+    let bounds = order
+        .iter()
+        .fold(Aabb::EMPTY, |b, &i| b.union(boxes[i as usize]));
+    let me = nodes.len();
+    nodes.push(Node {
+        min: [
+            f32_down(bounds.min.x),
+            f32_down(bounds.min.y),
+            f32_down(bounds.min.z),
+        ],
+        max: [
+            f32_up(bounds.max.x),
+            f32_up(bounds.max.y),
+            f32_up(bounds.max.z),
+        ],
+        first: offset as u32,
+        count: order.len() as u32,
+    });
+    let n = order.len();
+    if n <= LEAF_SIZE {
+        return;
+    }
+    let cb = Aabb::from_points(order.iter().map(|&i| centres[i as usize]));
+    let ext = cb.size();
+    let axis = if ext.x >= ext.y && ext.x >= ext.z {
+        0
+    } else if ext.y >= ext.z {
+        1
+    } else {
+        2
+    };
+    let lo = cb.min[axis];
+    let width = ext[axis];
+    let mid = if width > 0.0 {
+        let scale = BINS as f64 / width;
+        let bin_of = |i: u32| (((centres[i as usize][axis] - lo) * scale) as usize).min(BINS - 1);
+        let mut bins = [Bin {
+            bounds: Aabb::EMPTY,
+            count: 0,
+        }; BINS];
+        for &i in order.iter() {
+            let b = &mut bins[bin_of(i)];
+            b.bounds = b.bounds.union(boxes[i as usize]);
+            b.count += 1;
+        }
+        // Sweep from the right for suffix areas.
+        let mut right_area = [0.0; BINS];
+        let mut acc = Aabb::EMPTY;
+        let mut right_count = [0usize; BINS];
+        let mut cnt = 0;
+        for k in (1..BINS).rev() {
+            acc = acc.union(bins[k].bounds);
+            cnt += bins[k].count;
+            right_area[k] = half_area(&acc);
+            right_count[k] = cnt;
+        }
+        let mut best = (f64::INFINITY, 0usize);
+        let mut acc = Aabb::EMPTY;
+        let mut cnt = 0;
+        for k in 0..BINS - 1 {
+            acc = acc.union(bins[k].bounds);
+            cnt += bins[k].count;
+            if cnt == 0 || right_count[k + 1] == 0 {
+                continue;
+            }
+            let cost = half_area(&acc) * cnt as f64 + right_area[k + 1] * right_count[k + 1] as f64;
+            if cost < best.0 {
+                best = (cost, k);
+            }
+        }
+        if best.0.is_finite() {
+            let split = best.1;
+            let mut left = 0;
+            for j in 0..n {
+                if bin_of(order[j]) <= split {
+                    order.swap(left, j);
+                    left += 1;
+                }
+            }
+            left
+        } else {
+            n / 2
+        }
+    } else {
+        n / 2
+    };
+    let mid = if mid == 0 || mid == n { n / 2 } else { mid };
+    let (left, right) = order.split_at_mut(mid);
+    build_node(boxes, centres, left, offset, nodes);
+    let second = nodes.len() as u32;
+    build_node(boxes, centres, right, offset + mid, nodes);
+    nodes[me].first = second;
+    nodes[me].count = 0;
+}
+
+// ---------------------------------------------------------------------------
+// Convexity, decided exactly on the fan triangles.
+
+fn check_convexity(solid: &Solid, boundary_edges: usize) -> Result<(), NotConvex> {
+    if boundary_edges > 0 {
+        return Err(NotConvex::NotClosed);
+    }
+    let shells = solid.shells().len();
+    if shells != 1 {
+        return Err(NotConvex::Shells { count: shells });
+    }
+    let mut ring: Vec<VertexId> = Vec::new();
+    for (face, data) in solid.faces() {
+        let corners: Vec<VertexId> = solid.face_vertices(face).collect();
+        let n = corners.len();
+        let pos = |v: VertexId| solid.position(v);
+        if let Some(plane) = data.plane {
+            let proj = Projection::along(plane.normal);
+            let want = if proj.flipped {
+                Sign::Negative
+            } else {
+                Sign::Positive
+            };
+            for i in 0..n {
+                let [a, b, c] = [corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]]
+                    .map(|v| proj.apply(pos(v)));
+                if orient2d(a, b, c) == -want {
+                    return Err(NotConvex::ReflexCorner {
+                        face,
+                        vertex: corners[i],
+                    });
+                }
+            }
+        }
+        ring.clear();
+        ring.extend(corners.iter().copied());
+        for other in solid.face_neighbours(face) {
+            ring.extend(solid.face_vertices(other));
+        }
+        for k in 1..n.saturating_sub(1) {
+            let [a, b, c] = [corners[0], corners[k], corners[k + 1]].map(pos);
+            for &v in &ring {
+                if orient3d(a, b, c, pos(v)) == Sign::Positive {
+                    return Err(NotConvex::VertexAbovePlane { face, vertex: v });
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::builders;
+
+    #[test]
+    fn f32_bounds_round_outward() {
+        for x in [0.1, -0.1, 1e12 + 0.3, -1e-12, 1e-50, -1e-50, 0.0, 3.0] {
+            assert!(f64::from(f32_down(x)) <= x, "{x}");
+            assert!(f64::from(f32_up(x)) >= x, "{x}");
+        }
+    }
+
+    #[test]
+    fn accel_of_platonic_solids() {
+        for solid in [
+            builders::tetrahedron(),
+            builders::cube(),
+            builders::octahedron(),
+            builders::icosahedron(),
+        ] {
+            let accel = Accel::new(&solid);
+            assert!(accel.is_closed());
+            assert_eq!(accel.convexity(), Ok(()));
+            let s = accel.stats();
+            assert!(s.triangles >= solid.face_count());
+            assert!(s.grid_entries >= s.triangles);
+        }
+        let l = Accel::new(&builders::l_prism());
+        assert!(l.convexity().is_err());
+    }
+}
