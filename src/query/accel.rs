@@ -69,6 +69,8 @@ pub(super) struct YzTri {
     pub z: [f64; 3],
     /// The largest `x` of the corners: a point with larger `x` is behind it.
     pub max_x: f64,
+    /// The triangle (index into the accel's triangles).
+    pub tri: u32,
     /// `orient2d` of the projected corners: the sign of the normal's `x`.
     pub sigma: i8,
 }
@@ -86,7 +88,18 @@ pub(super) struct YzGrid {
     pub ny: usize,
     pub nz: usize,
     pub cell_start: Vec<u32>,
-    pub entries: Vec<u32>,
+    pub entries: Vec<GridEntry>,
+}
+
+/// One triangle listed in a grid cell: its `yz` record and its largest `x`
+/// rounded up to `f32`, so that triangles behind a query point are skipped
+/// without touching their record (8 bytes).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct GridEntry {
+    /// An upper bound on the triangle's largest `x`.
+    pub max_x: f32,
+    /// Index into the accel's `yz` records.
+    pub record: u32,
 }
 
 impl YzGrid {
@@ -104,7 +117,7 @@ impl YzGrid {
 
     /// The triangles listed in the cell holding `(y, z)`.
     #[inline]
-    pub fn cell(&self, y: f64, z: f64) -> &[u32] {
+    pub fn cell(&self, y: f64, z: f64) -> &[GridEntry] {
         let c = self.row(z) * self.ny + self.col(y);
         &self.entries[self.cell_start[c] as usize..self.cell_start[c + 1] as usize]
     }
@@ -185,7 +198,7 @@ impl Accel {
         let tris: Vec<[DVec3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
         let tri_face: Vec<u32> = order.iter().map(|&i| tri_face[i as usize]).collect();
         let bounds = Aabb::from_points(tris.iter().flatten().copied());
-        let yz: Vec<YzTri> = tris.iter().map(yz_tri).collect();
+        let yz = yz_records(&tris, bounds);
         let grid = build_grid(&yz, bounds);
         let boundary_edges = solid.boundary_edges().count();
         let convexity = check_convexity(solid, boundary_edges);
@@ -195,7 +208,7 @@ impl Accel {
             + nodes.capacity() * std::mem::size_of::<Node>()
             + yz.capacity() * std::mem::size_of::<YzTri>()
             + grid.cell_start.capacity() * 4
-            + grid.entries.capacity() * 4;
+            + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
         let stats = AccelStats {
             triangles: tris.len(),
             bvh_nodes: nodes.len(),
@@ -258,9 +271,44 @@ impl Accel {
     }
 }
 
-fn yz_tri(t: &[DVec3; 3]) -> YzTri {
+/// The `yz` records of the triangles, sorted along a Morton curve of their
+/// projected centroids so that the triangles of one grid cell sit close
+/// together in memory.
+fn yz_records(tris: &[[DVec3; 3]], bounds: Aabb) -> Vec<YzTri> {
+    let size = bounds.size();
+    let (sy, sz) = (
+        65535.0 / size.y.max(f64::MIN_POSITIVE),
+        65535.0 / size.z.max(f64::MIN_POSITIVE),
+    );
+    let spread = |mut x: u32| {
+        x &= 0xffff;
+        x = (x | (x << 8)) & 0x00ff_00ff;
+        x = (x | (x << 4)) & 0x0f0f_0f0f;
+        x = (x | (x << 2)) & 0x3333_3333;
+        x = (x | (x << 1)) & 0x5555_5555;
+        x
+    };
+    let mut keyed: Vec<(u32, u32)> = tris
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            let c = (t[0] + t[1] + t[2]) / 3.0;
+            let qy = ((c.y - bounds.min.y) * sy).clamp(0.0, 65535.0) as u32;
+            let qz = ((c.z - bounds.min.z) * sz).clamp(0.0, 65535.0) as u32;
+            (spread(qy) | (spread(qz) << 1), i as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
+    keyed
+        .iter()
+        .map(|&(_, i)| yz_tri(&tris[i as usize], i))
+        .collect()
+}
+
+fn yz_tri(t: &[DVec3; 3], tri: u32) -> YzTri {
     let p = |v: DVec3| DVec2::new(v.y, v.z);
     YzTri {
+        tri,
         y: [t[0].y, t[1].y, t[2].y],
         z: [t[0].z, t[1].z, t[2].z],
         max_x: t[0].x.max(t[1].x).max(t[2].x),
@@ -313,13 +361,17 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         grid.cell_start[i + 1] += grid.cell_start[i];
     }
     let mut fill: Vec<u32> = grid.cell_start[..ny * nz].to_vec();
-    grid.entries = vec![0; grid.cell_start[ny * nz] as usize];
+    grid.entries = vec![GridEntry::default(); grid.cell_start[ny * nz] as usize];
     for (i, t) in yz.iter().enumerate() {
         let (c0, c1, r0, r1) = range(&grid, t);
+        let entry = GridEntry {
+            max_x: f32_up(t.max_x),
+            record: i as u32,
+        };
         for r in r0..=r1 {
             for c in c0..=c1 {
                 let cell = r * ny + c;
-                grid.entries[fill[cell] as usize] = i as u32;
+                grid.entries[fill[cell] as usize] = entry;
                 fill[cell] += 1;
             }
         }

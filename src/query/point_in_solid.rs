@@ -139,15 +139,15 @@ impl Accel {
         }
         let q = DVec2::new(p.y, p.z);
         let mut winding = 0i32;
-        for &i in g.cell(p.y, p.z) {
-            let t = &self.yz[i as usize];
-            if t.max_x < p.x {
+        for e in g.cell(p.y, p.z) {
+            if f64::from(e.max_x) < p.x {
                 continue;
             }
+            let t = &self.yz[e.record as usize];
             match cross_x(t, q) {
                 Cross::No => {}
                 Cross::Degenerate => {
-                    let [a, b, c] = self.tris[i as usize];
+                    let [a, b, c] = self.tris[t.tri as usize];
                     if orient3d(a, b, c, p) == Sign::Zero
                         && coplanar_point_in_closed_triangle(a, b, c, p)
                     {
@@ -155,7 +155,7 @@ impl Accel {
                     }
                 }
                 Cross::Closed(perturbed_inside) => {
-                    let [a, b, c] = self.tris[i as usize];
+                    let [a, b, c] = self.tris[t.tri as usize];
                     let side = orient3d(a, b, c, p);
                     if side == Sign::Zero {
                         return XRay::OnBoundary;

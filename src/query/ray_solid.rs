@@ -3,6 +3,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::geom::exact::line_side_filter;
 use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
@@ -258,15 +259,17 @@ impl Accel {
         if t > 0.0 { t } else { f64::MIN_POSITIVE }
     }
 
+    #[inline]
     fn hit_triangle(&self, ray: &Ray, i: u32) -> TriHit {
         let [a, b, c] = self.tris[i as usize];
         let (o, d) = (ray.origin, ray.direction);
-        let s0 = line_side_sos(o, d, a, b);
-        let s1 = line_side_sos(o, d, b, c);
+        let (u, v, w) = (a - o, b - o, c - o);
+        let s0 = line_side_filter(d, u, v).unwrap_or_else(|| line_side_sos(o, d, a, b));
+        let s1 = line_side_filter(d, v, w).unwrap_or_else(|| line_side_sos(o, d, b, c));
         if s0 != s1 || s0 == Sign::Zero {
             return self.origin_check(a, b, c, o);
         }
-        let s2 = line_side_sos(o, d, c, a);
+        let s2 = line_side_filter(d, w, u).unwrap_or_else(|| line_side_sos(o, d, c, a));
         if s2 != s0 {
             return self.origin_check(a, b, c, o);
         }
@@ -278,6 +281,7 @@ impl Accel {
     }
 
     /// Whether the origin lies on the triangle (cheap rejections first).
+    #[inline]
     fn origin_check(&self, a: DVec3, b: DVec3, c: DVec3, o: DVec3) -> TriHit {
         let lo = a.min(b).min(c);
         let hi = a.max(b).max(c);
