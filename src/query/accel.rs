@@ -142,6 +142,7 @@ pub(super) struct Node {
 ///
 /// - `tris` is the fan triangulation of every face with at least three
 ///   vertices, `(v₀, vₖ, vₖ₊₁)` for `k = 1 .. n − 2` in the face's winding,
+///   with `v₀` the face's lexicographically smallest corner `(x, y, z)`,
 ///   holding the exact input coordinates; `tri_face[i]` indexes `faces`.
 /// - The BVH's `f32` node boxes contain their triangles' `f64` boxes (bounds
 ///   rounded outward), so culling never loses a triangle a ray touches.
@@ -187,6 +188,11 @@ impl Accel {
         for (id, _) in solid.faces() {
             corners.clear();
             corners.extend(solid.face_vertices(id).map(|v| solid.position(v)));
+            // Canonical fan apex: the triangulation of a face whose corners
+            // are not exactly coplanar must not depend on where its vertex
+            // list starts.
+            let apex = fan_apex(&corners);
+            corners.rotate_left(apex);
             let index = faces.len() as u32;
             faces.push(id);
             for k in 1..corners.len().saturating_sub(1) {
@@ -303,6 +309,20 @@ fn yz_records(tris: &[[DVec3; 3]], bounds: Aabb) -> Vec<YzTri> {
         .iter()
         .map(|&(_, i)| yz_tri(&tris[i as usize], i))
         .collect()
+}
+
+/// The index of the lexicographically smallest point `(x, y, z)`: the apex
+/// of a face's fan triangulation. Preserved by translations and positive
+/// scalings, independent of where the vertex list starts.
+fn fan_apex(corners: &[DVec3]) -> usize {
+    (0..corners.len())
+        .min_by(|&i, &j| {
+            let (p, q) = (corners[i], corners[j]);
+            p.x.total_cmp(&q.x)
+                .then(p.y.total_cmp(&q.y))
+                .then(p.z.total_cmp(&q.z))
+        })
+        .unwrap_or(0)
 }
 
 fn yz_tri(t: &[DVec3; 3], tri: u32) -> YzTri {
@@ -563,9 +583,11 @@ fn check_convexity(solid: &Solid, boundary_edges: usize) -> Result<(), NotConvex
     }
     let mut ring: Vec<VertexId> = Vec::new();
     for (face, data) in solid.faces() {
-        let corners: Vec<VertexId> = solid.face_vertices(face).collect();
+        let mut corners: Vec<VertexId> = solid.face_vertices(face).collect();
         let n = corners.len();
         let pos = |v: VertexId| solid.position(v);
+        let points: Vec<DVec3> = corners.iter().map(|&v| pos(v)).collect();
+        corners.rotate_left(fan_apex(&points));
         if let Some(plane) = data.plane {
             let proj = Projection::along(plane.normal);
             let want = if proj.flipped {

@@ -5,7 +5,10 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod classify;
 mod info;
+mod input;
+mod raycast;
 
 /// wingedge: a B-rep polyhedron kernel on the winged-edge structure.
 #[derive(Debug, Parser)]
@@ -30,6 +33,50 @@ enum Command {
         #[arg(long, value_name = "OUT.obj")]
         write: Option<PathBuf>,
     },
+    /// Classify points against a closed solid: prints `inside`, `outside` or
+    /// `boundary`, one per input point, in input order. Exact.
+    Classify {
+        /// The OBJ file of the solid.
+        mesh: PathBuf,
+        /// A text file with one `x y z` per line (`-` for standard input);
+        /// blank lines and `#` comments are skipped.
+        points: String,
+        /// parity (+x ray, any closed solid), normals (convex solids only) or
+        /// winding (generalized winding number; open meshes too).
+        #[arg(long, value_enum, default_value_t = MethodArg::Parity)]
+        method: MethodArg,
+    },
+    /// Cast rays at a closed solid: prints, per ray, `inside`, `outside` or
+    /// `boundary` for its origin, then the ascending parameters t > 0 of its
+    /// crossings with the boundary.
+    Raycast {
+        /// The OBJ file of the solid.
+        mesh: PathBuf,
+        /// A text file with one `ox oy oz dx dy dz` per line (`-` for standard
+        /// input); blank lines and `#` comments are skipped.
+        rays: String,
+    },
+}
+
+/// The `--method` values of `classify`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum MethodArg {
+    /// Parity of a +x ray's crossings.
+    Parity,
+    /// Inner side of every face plane (convex solids only).
+    Normals,
+    /// Generalized winding number above one half.
+    Winding,
+}
+
+impl From<MethodArg> for wingedge::query::Method {
+    fn from(m: MethodArg) -> Self {
+        match m {
+            MethodArg::Parity => wingedge::query::Method::Parity,
+            MethodArg::Normals => wingedge::query::Method::Normals,
+            MethodArg::Winding => wingedge::query::Method::Winding,
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -40,5 +87,11 @@ fn main() -> ExitCode {
             builtin,
             write,
         } => info::run(file, builtin, write),
+        Command::Classify {
+            mesh,
+            points,
+            method,
+        } => classify::run(&mesh, &points, method.into()),
+        Command::Raycast { mesh, rays } => raycast::run(&mesh, &rays),
     }
 }
