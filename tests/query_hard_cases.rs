@@ -439,3 +439,17 @@ fn bad_input_is_an_error_not_a_panic() {
             .is_ok()
     );
 }
+
+/// Regression (found by proptest): a ray grazing the sliver tetrahedron's
+/// vertex listed its two equal-`t` crossings as Exit, Enter.
+#[test]
+fn grazing_a_vertex_lists_enter_before_exit() {
+    let accel = Accel::new(&sliver_tetrahedron());
+    let (o, t) = crossings(
+        &accel,
+        DVec3::new(0.0, 0.125, 0.125),
+        DVec3::new(0.0, -1.0, -1.0),
+    );
+    assert_eq!(o, Outside);
+    assert!(t.is_empty() || t == vec![0.125, 0.125], "{t:?}");
+}

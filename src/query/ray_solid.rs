@@ -39,7 +39,9 @@ pub struct Crossing {
 ///
 /// # Invariants
 ///
-/// `hits` is sorted by ascending `t`, every `t > 0`. On a valid closed solid
+/// `hits` is sorted by ascending `t`, every `t > 0`; crossings with equal
+/// rounded `t` (a ray grazing a vertex or an edge) are listed in the order the
+/// perturbed ray meets them. On a valid closed solid
 /// the transitions alternate, starting with `Exit` when `origin` is
 /// `Inside` and `Enter` when it is `Outside`; the list ends with an `Exit`
 /// (the ray ends outside). When `origin` is `OnBoundary`, crossings at the
@@ -155,6 +157,12 @@ impl Accel {
         } else {
             Containment::Outside
         };
+        let inside = match origin {
+            Containment::Inside => true,
+            Containment::Outside => false,
+            Containment::OnBoundary => winding > 0,
+        };
+        alternate(&mut hits, inside);
         let hits = hits
             .into_iter()
             .map(|(t, i, s)| self.crossing(t, i, s))
@@ -347,6 +355,32 @@ impl Accel {
                 }
             }
         }
+    }
+}
+
+/// Orders crossings whose rounded `t` coincide (or are inverted by
+/// rounding) so that transitions alternate, starting from `inside`: the
+/// perturbed ray crosses them in such an order, infinitesimally apart. The
+/// `t` values stay ascending; a transition is only moved forward past
+/// crossings of the wrong kind, which on a valid closed solid can only be
+/// crossings at (nearly) the same `t`.
+fn alternate(hits: &mut [(f64, u32, Sign)], mut inside: bool) {
+    let ts: Vec<f64> = hits.iter().map(|h| h.0).collect();
+    for i in 0..hits.len() {
+        let want = if inside {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        };
+        if hits[i].2 != want {
+            if let Some(j) = (i + 1..hits.len()).find(|&j| hits[j].2 == want) {
+                hits[i..=j].rotate_right(1);
+            }
+        }
+        inside = hits[i].2 == Sign::Negative;
+    }
+    for (h, t) in hits.iter_mut().zip(ts) {
+        h.0 = t;
     }
 }
 
