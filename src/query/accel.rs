@@ -58,21 +58,33 @@ pub struct AccelStats {
     pub build_time: Duration,
 }
 
-/// A triangle's projection onto the `yz` plane, with what the `+x` parity
-/// ray needs to reject it: one cache line.
+/// A triangle as the `+x` parity ray needs it: its corners split by
+/// coordinate, its index and the sign of its `yz` projection (80 bytes).
 #[derive(Clone, Copy, Debug, Default)]
-#[repr(C, align(64))]
+#[repr(C)]
 pub(super) struct YzTri {
+    /// `x` of the three corners.
+    pub x: [f64; 3],
     /// `y` of the three corners.
     pub y: [f64; 3],
     /// `z` of the three corners.
     pub z: [f64; 3],
-    /// The largest `x` of the corners: a point with larger `x` is behind it.
-    pub max_x: f64,
     /// The triangle (index into the accel's triangles).
     pub tri: u32,
     /// `orient2d` of the projected corners: the sign of the normal's `x`.
     pub sigma: i8,
+}
+
+impl YzTri {
+    /// The corners as points.
+    #[inline]
+    pub fn corners(&self) -> [DVec3; 3] {
+        [0, 1, 2].map(|k| DVec3::new(self.x[k], self.y[k], self.z[k]))
+    }
+
+    fn max_x(&self) -> f64 {
+        self.x[0].max(self.x[1]).max(self.x[2])
+    }
 }
 
 /// A uniform grid over the `yz` projection of the solid's bounding box; each
@@ -115,10 +127,16 @@ impl YzGrid {
         (((z - self.z0) * self.inv_hz) as usize).min(self.nz - 1)
     }
 
+    /// The index of the cell holding `(y, z)`.
+    #[inline]
+    pub fn cell_index(&self, y: f64, z: f64) -> usize {
+        self.row(z) * self.ny + self.col(y)
+    }
+
     /// The triangles listed in the cell holding `(y, z)`.
     #[inline]
     pub fn cell(&self, y: f64, z: f64) -> &[GridEntry] {
-        let c = self.row(z) * self.ny + self.col(y);
+        let c = self.cell_index(y, z);
         &self.entries[self.cell_start[c] as usize..self.cell_start[c + 1] as usize]
     }
 }
@@ -329,9 +347,9 @@ fn yz_tri(t: &[DVec3; 3], tri: u32) -> YzTri {
     let p = |v: DVec3| DVec2::new(v.y, v.z);
     YzTri {
         tri,
+        x: [t[0].x, t[1].x, t[2].x],
         y: [t[0].y, t[1].y, t[2].y],
         z: [t[0].z, t[1].z, t[2].z],
-        max_x: t[0].x.max(t[1].x).max(t[2].x),
         sigma: orient2d(p(t[0]), p(t[1]), p(t[2])).as_i32() as i8,
     }
 }
@@ -385,7 +403,7 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
     for (i, t) in yz.iter().enumerate() {
         let (c0, c1, r0, r1) = range(&grid, t);
         let entry = GridEntry {
-            max_x: f32_up(t.max_x),
+            max_x: f32_up(t.max_x()),
             record: i as u32,
         };
         for r in r0..=r1 {
@@ -577,10 +595,6 @@ fn check_convexity(solid: &Solid, boundary_edges: usize) -> Result<(), NotConvex
     if boundary_edges > 0 {
         return Err(NotConvex::NotClosed);
     }
-    let shells = solid.shells().len();
-    if shells != 1 {
-        return Err(NotConvex::Shells { count: shells });
-    }
     let mut ring: Vec<VertexId> = Vec::new();
     for (face, data) in solid.faces() {
         let mut corners: Vec<VertexId> = solid.face_vertices(face).collect();
@@ -611,16 +625,48 @@ fn check_convexity(solid: &Solid, boundary_edges: usize) -> Result<(), NotConvex
         for other in solid.face_neighbours(face) {
             ring.extend(solid.face_vertices(other));
         }
+        ring.sort_unstable();
+        ring.dedup();
         for k in 1..n.saturating_sub(1) {
-            let [a, b, c] = [corners[0], corners[k], corners[k + 1]].map(pos);
-            for &v in &ring {
+            let tri = [corners[0], corners[k], corners[k + 1]];
+            let [a, b, c] = tri.map(pos);
+            for &v in ring.iter().filter(|v| !tri.contains(v)) {
                 if orient3d(a, b, c, pos(v)) == Sign::Positive {
                     return Err(NotConvex::VertexAbovePlane { face, vertex: v });
                 }
             }
         }
     }
+    // Only now (the local test passed) count shells: two disjoint convex
+    // shells are locally convex everywhere.
+    let shells = count_shells(solid);
+    if shells != 1 {
+        return Err(NotConvex::Shells { count: shells });
+    }
     Ok(())
+}
+
+/// The number of edge-connected components of the faces.
+fn count_shells(solid: &Solid) -> usize {
+    let mut seen: slotmap::SecondaryMap<FaceId, ()> =
+        slotmap::SecondaryMap::with_capacity(solid.face_count());
+    let mut stack = Vec::new();
+    let mut shells = 0;
+    for (start, _) in solid.faces() {
+        if seen.insert(start, ()).is_some() {
+            continue;
+        }
+        shells += 1;
+        stack.push(start);
+        while let Some(f) = stack.pop() {
+            for g in solid.face_neighbours(f) {
+                if seen.insert(g, ()).is_none() {
+                    stack.push(g);
+                }
+            }
+        }
+    }
+    shells
 }
 
 #[cfg(test)]

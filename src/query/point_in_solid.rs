@@ -10,6 +10,9 @@ use crate::geom::{Sign, orient2d, orient3d};
 use super::accel::YzTri;
 use super::{Accel, Containment, QueryError};
 
+/// Batches at least this large are classified in grid-cell order.
+const SORTED_BATCH: usize = 8192;
+
 /// How to decide inside/outside.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Method {
@@ -123,11 +126,46 @@ impl Accel {
             Method::Normals => self.convexity.map_err(QueryError::NotConvex)?,
             Method::Winding => {}
         }
-        points
+        if method == Method::Normals || points.len() < SORTED_BATCH {
+            return points
+                .par_iter()
+                .with_min_len(1024)
+                .map(|&p| self.classify_with(p, method))
+                .collect();
+        }
+        // Large batches: visit the points grouped by grid cell (a counting
+        // sort, O(n + cells)) so that each cell's triangles are fetched from
+        // memory once per group rather than once per point; answers are
+        // written back in input order.
+        let g = &self.grid;
+        let cells: Vec<u32> = points
             .par_iter()
-            .with_min_len(1024)
-            .map(|&p| self.classify_with(p, method))
-            .collect()
+            .with_min_len(4096)
+            .map(|p| g.cell_index(p.y, p.z) as u32)
+            .collect();
+        let mut start = vec![0u32; g.ny * g.nz + 1];
+        for &c in &cells {
+            start[c as usize + 1] += 1;
+        }
+        for i in 0..g.ny * g.nz {
+            start[i + 1] += start[i];
+        }
+        let mut sorted: Vec<(DVec3, u32)> = vec![(DVec3::ZERO, 0); points.len()];
+        for (i, (&c, &p)) in cells.iter().zip(points).enumerate() {
+            let slot = &mut start[c as usize];
+            sorted[*slot as usize] = (p, i as u32);
+            *slot += 1;
+        }
+        let answers: Vec<Containment> = sorted
+            .par_iter()
+            .with_min_len(4096)
+            .map(|&(p, _)| self.classify_with(p, method))
+            .collect::<Result<_, _>>()?;
+        let mut out = vec![Containment::Outside; points.len()];
+        for (&(_, i), a) in sorted.iter().zip(answers) {
+            out[i as usize] = a;
+        }
+        Ok(out)
     }
 
     /// The `+x` ray from `p`: on the boundary, or the signed crossing count.
@@ -147,7 +185,7 @@ impl Accel {
             match cross_x(t, q) {
                 Cross::No => {}
                 Cross::Degenerate => {
-                    let [a, b, c] = self.tris[t.tri as usize];
+                    let [a, b, c] = t.corners();
                     if orient3d(a, b, c, p) == Sign::Zero
                         && coplanar_point_in_closed_triangle(a, b, c, p)
                     {
@@ -155,7 +193,7 @@ impl Accel {
                     }
                 }
                 Cross::Closed(perturbed_inside) => {
-                    let [a, b, c] = self.tris[t.tri as usize];
+                    let [a, b, c] = t.corners();
                     let side = orient3d(a, b, c, p);
                     if side == Sign::Zero {
                         return XRay::OnBoundary;
