@@ -71,7 +71,6 @@ fn main() {
         .num_threads(1)
         .build()
         .expect("pool");
-    let pool1 = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
     let pool2 = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()

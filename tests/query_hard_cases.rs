@@ -12,12 +12,15 @@ use wingedge::query::{Accel, Containment, Method, QueryError, Transition};
 
 use Containment::{Inside, OnBoundary, Outside};
 
+/// The next `f64` above `x` (finite, non-zero `x`).
 fn up(x: f64) -> f64 {
-    x.next_up()
+    let b = x.to_bits();
+    f64::from_bits(if x > 0.0 { b + 1 } else { b - 1 })
 }
 
+/// The next `f64` below `x` (finite, non-zero `x`).
 fn down(x: f64) -> f64 {
-    x.next_down()
+    -up(-x)
 }
 
 fn classify_all(accel: &Accel, p: DVec3) -> Containment {
@@ -159,7 +162,7 @@ fn silhouette_edges_and_vertices_cross_zero_or_two_times() {
     ] {
         let (origin, t) = crossings(&cube, o, d);
         assert_eq!(origin, Outside);
-        assert!(t.len() == 0 || t.len() == 2, "{o} {d}: {t:?}");
+        assert!(t.is_empty() || t.len() == 2, "{o} {d}: {t:?}");
     }
     // The parity classifier's own +x ray along a silhouette edge.
     assert_eq!(classify_all(&cube, DVec3::new(-2.0, 1.0, 1.0)), Outside);

@@ -153,6 +153,78 @@ pub(super) struct Node {
     pub count: u32,
 }
 
+/// A BVH node as traversed: the boxes of both children in one cache line,
+/// so that deciding where to descend touches only the parent.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+pub(super) struct Node2 {
+    /// Lower corners of the two children's boxes (rounded down).
+    pub min: [[f32; 3]; 2],
+    /// Upper corners of the two children's boxes (rounded up); an empty
+    /// child has `min = +∞`, `max = −∞`.
+    pub max: [[f32; 3]; 2],
+    /// Per child: the first triangle of a leaf, or the index of an inner
+    /// node.
+    pub child: [u32; 2],
+    /// Per child: the number of triangles of a leaf; 0 for an inner node.
+    pub count: [u32; 2],
+}
+
+/// Turns the binary BVH (one box per node) into [`Node2`]s: one per inner
+/// node, plus a root holding the whole tree as its first child.
+fn to_node2(nodes: &[Node]) -> Vec<Node2> {
+    let inner: Vec<usize> = (0..nodes.len()).filter(|&i| nodes[i].count == 0).collect();
+    let mut index = vec![u32::MAX; nodes.len()];
+    for (k, &i) in inner.iter().enumerate() {
+        index[i] = k as u32 + 1;
+    }
+    let empty = Node {
+        min: [f32::INFINITY; 3],
+        max: [f32::NEG_INFINITY; 3],
+        first: 0,
+        count: 0,
+    };
+    let make = |a: &Node, ai: usize, b: &Node, bi: usize| {
+        let link = |n: &Node, i: usize| {
+            if n.count > 0 {
+                (n.first, n.count)
+            } else {
+                (index[i], 0)
+            }
+        };
+        let (ca, na) = link(a, ai);
+        let (cb, nb) = link(b, bi);
+        Node2 {
+            min: [a.min, b.min],
+            max: [a.max, b.max],
+            child: [ca, cb],
+            count: [na, nb],
+        }
+    };
+    let mut out = Vec::with_capacity(inner.len() + 1);
+    // The root holds the whole tree as child 0 and an empty child 1 (never
+    // entered: its box is empty). Without triangles both children are empty.
+    let whole = if nodes
+        .first()
+        .is_some_and(|n| n.count > 0 || nodes.len() > 1)
+    {
+        &nodes[0]
+    } else {
+        &empty
+    };
+    let mut root = make(whole, 0, &empty, 0);
+    root.child[1] = u32::MAX;
+    if std::ptr::eq(whole, &empty) {
+        root.child[0] = u32::MAX;
+    }
+    out.push(root);
+    for &i in &inner {
+        let (l, r) = (i + 1, nodes[i].first as usize);
+        out.push(make(&nodes[l], l, &nodes[r], r));
+    }
+    out
+}
+
 /// The acceleration structure of one solid, built once and shared by every
 /// query (it is `Send + Sync`; batch queries split work over rayon's pool).
 ///
@@ -161,7 +233,7 @@ pub(super) struct Node {
 /// - `tris` is the fan triangulation of every face with at least three
 ///   vertices, `(v₀, vₖ, vₖ₊₁)` for `k = 1 .. n − 2` in the face's winding,
 ///   with `v₀` the face's lexicographically smallest corner `(x, y, z)`,
-///   holding the exact input coordinates; `tri_face[i]` indexes `faces`.
+///   holding the exact input coordinates; `tri_face[i]` is its face.
 /// - The BVH's `f32` node boxes contain their triangles' `f64` boxes (bounds
 ///   rounded outward), so culling never loses a triangle a ray touches.
 /// - Every triangle whose projected `yz` box contains a point `(y, z)` is
@@ -170,9 +242,8 @@ pub(super) struct Node {
 #[derive(Clone, Debug)]
 pub struct Accel {
     pub(super) tris: Vec<[DVec3; 3]>,
-    pub(super) tri_face: Vec<u32>,
-    pub(super) faces: Vec<FaceId>,
-    pub(super) nodes: Vec<Node>,
+    pub(super) tri_face: Vec<FaceId>,
+    pub(super) nodes: Vec<Node2>,
     pub(super) yz: Vec<YzTri>,
     pub(super) grid: YzGrid,
     pub(super) bounds: Aabb,
@@ -199,7 +270,6 @@ impl Accel {
     #[must_use]
     pub fn new(solid: &Solid) -> Accel {
         let start = Instant::now();
-        let mut faces = Vec::with_capacity(solid.face_count());
         let mut tris = Vec::with_capacity(solid.face_count() * 2);
         let mut tri_face = Vec::with_capacity(solid.face_count() * 2);
         let mut corners: smallvec::SmallVec<[DVec3; 8]> = smallvec::SmallVec::new();
@@ -211,25 +281,24 @@ impl Accel {
             // list starts.
             let apex = fan_apex(&corners);
             corners.rotate_left(apex);
-            let index = faces.len() as u32;
-            faces.push(id);
             for k in 1..corners.len().saturating_sub(1) {
                 tris.push([corners[0], corners[k], corners[k + 1]]);
-                tri_face.push(index);
+                tri_face.push(id);
             }
         }
-        let (nodes, order) = build_bvh(&tris);
+        let (binary, order) = build_bvh(&tris);
+        let nodes = to_node2(&binary);
+        drop(binary);
         let tris: Vec<[DVec3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
-        let tri_face: Vec<u32> = order.iter().map(|&i| tri_face[i as usize]).collect();
+        let tri_face: Vec<FaceId> = order.iter().map(|&i| tri_face[i as usize]).collect();
         let bounds = Aabb::from_points(tris.iter().flatten().copied());
         let yz = yz_records(&tris, bounds);
         let grid = build_grid(&yz, bounds);
         let boundary_edges = solid.boundary_edges().count();
         let convexity = check_convexity(solid, boundary_edges);
         let memory_bytes = tris.capacity() * std::mem::size_of::<[DVec3; 3]>()
-            + tri_face.capacity() * 4
-            + faces.capacity() * std::mem::size_of::<FaceId>()
-            + nodes.capacity() * std::mem::size_of::<Node>()
+            + tri_face.capacity() * std::mem::size_of::<FaceId>()
+            + nodes.capacity() * std::mem::size_of::<Node2>()
             + yz.capacity() * std::mem::size_of::<YzTri>()
             + grid.cell_start.capacity() * 4
             + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
@@ -244,7 +313,6 @@ impl Accel {
         let mut accel = Accel {
             tris,
             tri_face,
-            faces,
             nodes,
             yz,
             grid,

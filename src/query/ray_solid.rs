@@ -8,7 +8,7 @@ use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
 
-use super::accel::Node;
+use super::accel::Node2;
 use super::{Accel, Containment, QueryError};
 
 /// Whether the ray enters or leaves the solid at a crossing.
@@ -58,8 +58,8 @@ pub struct RayCrossings {
 
 /// Per-ray constants for box tests.
 struct RayBox {
-    origin: DVec3,
-    inv: DVec3,
+    origin: [f64; 3],
+    inv: [f64; 3],
     neg: [bool; 3],
 }
 
@@ -72,23 +72,23 @@ impl RayBox {
     fn new(ray: &Ray) -> RayBox {
         let inv = DVec3::ONE / ray.direction;
         RayBox {
-            origin: ray.origin,
-            inv,
+            origin: ray.origin.to_array(),
+            inv: inv.to_array(),
             neg: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
         }
     }
 
-    /// The entry parameter of the node's box if the ray (`t ≥ 0`) may touch
+    /// The entry parameter of child `k`'s box if the ray (`t ≥ 0`) may touch
     /// it before `t_max`; conservative.
-    #[inline]
-    fn enter(&self, n: &Node, t_max: f64) -> Option<f64> {
+    #[inline(always)]
+    fn enter(&self, n: &Node2, k: usize, t_max: f64) -> Option<f64> {
         let mut t0 = 0.0f64;
         let mut t1 = t_max;
-        for k in 0..3 {
-            let (lo, hi) = (f64::from(n.min[k]), f64::from(n.max[k]));
-            let (near, far) = if self.neg[k] { (hi, lo) } else { (lo, hi) };
-            let tn = (near - self.origin[k]) * self.inv[k];
-            let tf = (far - self.origin[k]) * self.inv[k] * SLAB_GROW;
+        for a in 0..3 {
+            let (lo, hi) = (f64::from(n.min[k][a]), f64::from(n.max[k][a]));
+            let (near, far) = if self.neg[a] { (hi, lo) } else { (lo, hi) };
+            let tn = (near - self.origin[a]) * self.inv[a];
+            let tf = (far - self.origin[a]) * self.inv[a] * SLAB_GROW;
             // NaN (0 · ∞: origin on the slab plane of a parallel ray) leaves
             // the bound unchanged.
             if tn > t0 {
@@ -248,7 +248,7 @@ impl Accel {
     fn crossing(&self, t: f64, i: u32, s: Sign) -> Crossing {
         Crossing {
             t,
-            face: self.faces[self.tri_face[i as usize] as usize],
+            face: self.tri_face[i as usize],
             transition: if s == Sign::Positive {
                 Transition::Exit
             } else {
@@ -305,51 +305,52 @@ impl Accel {
 
     /// Visits the triangles of every leaf whose box the ray may touch before
     /// the current limit, near child first. `visit(i, t_max)` returns the new
-    /// limit.
+    /// limit. Deferred subtrees are kept with their entry parameter, so that
+    /// a subtree beyond the limit is dropped without touching its node.
     fn traverse(&self, ray: &Ray, t_max: f64, mut visit: impl FnMut(u32, f64) -> f64) {
         let rb = RayBox::new(ray);
         let mut limit = t_max;
-        let mut stack: smallvec::SmallVec<[u32; 64]> = smallvec::SmallVec::new();
+        let mut stack: smallvec::SmallVec<[(u32, f64); 64]> = smallvec::SmallVec::new();
         let nodes = &self.nodes;
-        if nodes.is_empty() || rb.enter(&nodes[0], limit).is_none() {
-            return;
-        }
         let mut current = 0u32;
         loop {
             let node = &nodes[current as usize];
-            if node.count > 0 {
-                let first = node.first;
-                for i in first..first + node.count {
-                    limit = visit(i, limit);
+            let e0 = rb.enter(node, 0, limit);
+            let e1 = rb.enter(node, 1, limit);
+            // Leaves are tested at once, nearer first; inner children are
+            // descended into, nearer first.
+            let order = match (e0, e1) {
+                (Some(a), Some(b)) if b < a => [(1, b), (0, a)],
+                (Some(a), Some(b)) => [(0, a), (1, b)],
+                (Some(a), None) => [(0, a), (2, 0.0)],
+                (None, Some(b)) => [(1, b), (2, 0.0)],
+                (None, None) => [(2, 0.0), (2, 0.0)],
+            };
+            let mut next: Option<u32> = None;
+            for (k, t) in order {
+                if k == 2 || t > limit {
+                    continue;
                 }
-            } else {
-                let (l, r) = (current + 1, node.first);
-                let tl = rb.enter(&nodes[l as usize], limit);
-                let tr = rb.enter(&nodes[r as usize], limit);
-                match (tl, tr) {
-                    (Some(a), Some(b)) => {
-                        let (near, far) = if a <= b { (l, r) } else { (r, l) };
-                        stack.push(far);
-                        current = near;
-                        continue;
+                let (child, count) = (node.child[k], node.count[k]);
+                if count > 0 {
+                    for i in child..child + count {
+                        limit = visit(i, limit);
                     }
-                    (Some(_), None) => {
-                        current = l;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        current = r;
-                        continue;
-                    }
-                    (None, None) => {}
+                } else if next.is_none() {
+                    next = Some(child);
+                } else {
+                    stack.push((child, t));
                 }
             }
-            // Pop the next node that is still worth visiting.
+            if let Some(n) = next {
+                current = n;
+                continue;
+            }
             loop {
-                let Some(n) = stack.pop() else {
+                let Some((n, t)) = stack.pop() else {
                     return;
                 };
-                if rb.enter(&nodes[n as usize], limit).is_some() {
+                if t <= limit {
                     current = n;
                     break;
                 }
