@@ -173,6 +173,32 @@ pub fn line_side_filter(d: DVec3, u: DVec3, v: DVec3) -> Option<Sign> {
     }
 }
 
+/// [`line_side_filter`] on scalar coordinates: `d = (dx, dy, dz)`,
+/// `u = a − o`, `v = b − o` (rounded). Written on plain `f64`s so that hot
+/// loops keep everything in registers.
+#[must_use]
+#[inline(always)]
+pub fn line_side_filter_scalar(d: [f64; 3], u: [f64; 3], v: [f64; 3]) -> Option<Sign> {
+    let m12 = u[1] * v[2];
+    let m21 = u[2] * v[1];
+    let n12 = u[2] * v[0];
+    let n21 = u[0] * v[2];
+    let o12 = u[0] * v[1];
+    let o21 = u[1] * v[0];
+    let det = d[0] * (m12 - m21) + d[1] * (n12 - n21) + d[2] * (o12 - o21);
+    let permanent = d[0].abs() * (m12.abs() + m21.abs())
+        + d[1].abs() * (n12.abs() + n21.abs())
+        + d[2].abs() * (o12.abs() + o21.abs());
+    let bound = DET3_BOUND * permanent;
+    if det > bound {
+        Some(Sign::Positive)
+    } else if -det > bound {
+        Some(Sign::Negative)
+    } else {
+        None
+    }
+}
+
 /// Which side of the line through `origin` with direction `direction` the
 /// directed segment `a → b` passes: the exact sign of
 /// `det[direction, a − origin, b − origin]` (the permuted inner product of

@@ -3,6 +3,7 @@
 use std::time::{Duration, Instant};
 
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::geom::polygon::Projection;
@@ -270,32 +271,25 @@ impl Accel {
     #[must_use]
     pub fn new(solid: &Solid) -> Accel {
         let start = Instant::now();
-        let mut tris = Vec::with_capacity(solid.face_count() * 2);
-        let mut tri_face = Vec::with_capacity(solid.face_count() * 2);
-        let mut corners: smallvec::SmallVec<[DVec3; 8]> = smallvec::SmallVec::new();
-        for (id, _) in solid.faces() {
-            corners.clear();
-            corners.extend(solid.face_vertices(id).map(|v| solid.position(v)));
-            // Canonical fan apex: the triangulation of a face whose corners
-            // are not exactly coplanar must not depend on where its vertex
-            // list starts.
-            let apex = fan_apex(&corners);
-            corners.rotate_left(apex);
-            for k in 1..corners.len().saturating_sub(1) {
-                tris.push([corners[0], corners[k], corners[k + 1]]);
-                tri_face.push(id);
-            }
-        }
-        let (binary, order) = build_bvh(&tris);
-        let nodes = to_node2(&binary);
-        drop(binary);
-        let tris: Vec<[DVec3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
-        let tri_face: Vec<FaceId> = order.iter().map(|&i| tri_face[i as usize]).collect();
-        let bounds = Aabb::from_points(tris.iter().flatten().copied());
-        let yz = yz_records(&tris, bounds);
-        let grid = build_grid(&yz, bounds);
         let boundary_edges = solid.boundary_edges().count();
-        let convexity = check_convexity(solid, boundary_edges);
+        // The convexity verdict (for the normals method) is independent of
+        // the rest: computed alongside.
+        let (convexity, (tris, tri_face, nodes, bounds, yz, grid)) = rayon::join(
+            || check_convexity(solid, boundary_edges),
+            || {
+                let (tris, tri_face) = fan_triangles(solid);
+                let (binary, order) = build_bvh(&tris);
+                let nodes = to_node2(&binary);
+                drop(binary);
+                let tris: Vec<[DVec3; 3]> = order.par_iter().map(|&i| tris[i as usize]).collect();
+                let tri_face: Vec<FaceId> =
+                    order.par_iter().map(|&i| tri_face[i as usize]).collect();
+                let bounds = Aabb::from_points(tris.iter().flatten().copied());
+                let yz = yz_records(&tris, bounds);
+                let grid = build_grid(&yz, bounds);
+                (tris, tri_face, nodes, bounds, yz, grid)
+            },
+        );
         let memory_bytes = tris.capacity() * std::mem::size_of::<[DVec3; 3]>()
             + tri_face.capacity() * std::mem::size_of::<FaceId>()
             + nodes.capacity() * std::mem::size_of::<Node2>()
@@ -381,7 +375,7 @@ fn yz_records(tris: &[[DVec3; 3]], bounds: Aabb) -> Vec<YzTri> {
         x
     };
     let mut keyed: Vec<(u32, u32)> = tris
-        .iter()
+        .par_iter()
         .enumerate()
         .map(|(i, t)| {
             let c = (t[0] + t[1] + t[2]) / 3.0;
@@ -390,11 +384,41 @@ fn yz_records(tris: &[[DVec3; 3]], bounds: Aabb) -> Vec<YzTri> {
             (spread(qy) | (spread(qz) << 1), i as u32)
         })
         .collect();
-    keyed.sort_unstable();
+    keyed.par_sort_unstable();
     keyed
-        .iter()
+        .par_iter()
         .map(|&(_, i)| yz_tri(&tris[i as usize], i))
         .collect()
+}
+
+/// The fan triangles of every face (apex at [`fan_apex`]) and their faces,
+/// in face order.
+fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
+    let ids: Vec<FaceId> = solid.faces().map(|(id, _)| id).collect();
+    let per_face: Vec<smallvec::SmallVec<[[DVec3; 3]; 2]>> = ids
+        .par_iter()
+        .with_min_len(1024)
+        .map(|&id| {
+            let mut corners: smallvec::SmallVec<[DVec3; 8]> =
+                solid.face_vertices(id).map(|v| solid.position(v)).collect();
+            // Canonical fan apex: the triangulation of a face whose corners
+            // are not exactly coplanar must not depend on where its vertex
+            // list starts.
+            let apex = fan_apex(&corners);
+            corners.rotate_left(apex);
+            (1..corners.len().saturating_sub(1))
+                .map(|k| [corners[0], corners[k], corners[k + 1]])
+                .collect()
+        })
+        .collect();
+    let count: usize = per_face.iter().map(|f| f.len()).sum();
+    let mut tris = Vec::with_capacity(count);
+    let mut tri_face = Vec::with_capacity(count);
+    for (&id, fan) in ids.iter().zip(&per_face) {
+        tris.extend_from_slice(fan);
+        tri_face.extend(std::iter::repeat_n(id, fan.len()));
+    }
+    (tris, tri_face)
 }
 
 /// The index of the lexicographically smallest point `(x, y, z)`: the apex
@@ -537,8 +561,8 @@ fn half_area(b: &Aabb) -> f64 {
 
 /// Builds the BVH; returns the nodes and the triangle order of the leaves.
 fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>) {
-    let boxes: Vec<Aabb> = tris.iter().map(|t| Aabb::from_points(*t)).collect();
-    let centres: Vec<DVec3> = boxes.iter().map(Aabb::center).collect();
+    let boxes: Vec<Aabb> = tris.par_iter().map(|t| Aabb::from_points(*t)).collect();
+    let centres: Vec<DVec3> = boxes.par_iter().map(Aabb::center).collect();
     let mut order: Vec<u32> = (0..tris.len() as u32).collect();
     let mut nodes = Vec::with_capacity(2 * tris.len() / LEAF_SIZE + 1);
     if tris.is_empty() {
@@ -550,22 +574,16 @@ fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>) {
         });
         return (nodes, order);
     }
-    build_node(&boxes, &centres, &mut order, 0, &mut nodes);
+    let _ = nodes;
+    let nodes = build_node_parallel(&boxes, &centres, &mut order, 0);
     (nodes, order)
 }
 
-fn build_node(
-    boxes: &[Aabb],
-    centres: &[DVec3],
-    order: &mut [u32],
-    offset: usize,
-    nodes: &mut Vec<Node>,
-) {
+fn node_of(boxes: &[Aabb], order: &[u32], offset: usize) -> Node {
     let bounds = order
         .iter()
         .fold(Aabb::EMPTY, |b, &i| b.union(boxes[i as usize]));
-    let me = nodes.len();
-    nodes.push(Node {
+    Node {
         min: [
             f32_down(bounds.min.x),
             f32_down(bounds.min.y),
@@ -578,11 +596,13 @@ fn build_node(
         ],
         first: offset as u32,
         count: order.len() as u32,
-    });
-    let n = order.len();
-    if n <= LEAF_SIZE {
-        return;
     }
+}
+
+/// Splits `order` (more than [`LEAF_SIZE`] triangles) by binned SAH on the
+/// longest axis of the centroids' box; returns the size of the first part.
+fn partition(centres: &[DVec3], boxes: &[Aabb], order: &mut [u32]) -> usize {
+    let n = order.len();
     let cb = Aabb::from_points(order.iter().map(|&i| centres[i as usize]));
     let ext = cb.size();
     let axis = if ext.x >= ext.y && ext.x >= ext.z {
@@ -648,12 +668,67 @@ fn build_node(
         n / 2
     };
     let mid = if mid == 0 || mid == n { n / 2 } else { mid };
+    mid
+}
+
+fn build_node(
+    boxes: &[Aabb],
+    centres: &[DVec3],
+    order: &mut [u32],
+    offset: usize,
+    nodes: &mut Vec<Node>,
+) {
+    let me = nodes.len();
+    nodes.push(node_of(boxes, order, offset));
+    if order.len() <= LEAF_SIZE {
+        return;
+    }
+    let mid = partition(centres, boxes, order);
     let (left, right) = order.split_at_mut(mid);
     build_node(boxes, centres, left, offset, nodes);
     let second = nodes.len() as u32;
     build_node(boxes, centres, right, offset + mid, nodes);
     nodes[me].first = second;
     nodes[me].count = 0;
+}
+
+/// Subtrees at least this large are built on two threads.
+const PARALLEL_BUILD: usize = 16 * 1024;
+
+/// [`build_node`] with the two halves of large subtrees built in parallel;
+/// returns the subtree's nodes with indices local to it.
+fn build_node_parallel(
+    boxes: &[Aabb],
+    centres: &[DVec3],
+    order: &mut [u32],
+    offset: usize,
+) -> Vec<Node> {
+    let mut nodes = Vec::new();
+    if order.len() < PARALLEL_BUILD {
+        build_node(boxes, centres, order, offset, &mut nodes);
+        return nodes;
+    }
+    nodes.push(node_of(boxes, order, offset));
+    let mid = partition(centres, boxes, order);
+    let (left, right) = order.split_at_mut(mid);
+    let (l, r) = rayon::join(
+        || build_node_parallel(boxes, centres, left, offset),
+        || build_node_parallel(boxes, centres, right, offset + mid),
+    );
+    let shift = |n: &Node, base: u32| {
+        let mut n = *n;
+        if n.count == 0 {
+            n.first += base;
+        }
+        n
+    };
+    nodes.reserve(l.len() + r.len());
+    nodes.extend(l.iter().map(|n| shift(n, 1)));
+    let second = nodes.len() as u32;
+    nodes.extend(r.iter().map(|n| shift(n, second)));
+    nodes[0].first = second;
+    nodes[0].count = 0;
+    nodes
 }
 
 // ---------------------------------------------------------------------------
@@ -663,53 +738,65 @@ fn check_convexity(solid: &Solid, boundary_edges: usize) -> Result<(), NotConvex
     if boundary_edges > 0 {
         return Err(NotConvex::NotClosed);
     }
-    let mut ring: Vec<VertexId> = Vec::new();
-    for (face, data) in solid.faces() {
-        let mut corners: Vec<VertexId> = solid.face_vertices(face).collect();
-        let n = corners.len();
-        let pos = |v: VertexId| solid.position(v);
-        let points: Vec<DVec3> = corners.iter().map(|&v| pos(v)).collect();
-        corners.rotate_left(fan_apex(&points));
-        if let Some(plane) = data.plane {
-            let proj = Projection::along(plane.normal);
-            let want = if proj.flipped {
-                Sign::Negative
-            } else {
-                Sign::Positive
-            };
-            for i in 0..n {
-                let [a, b, c] = [corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]]
-                    .map(|v| proj.apply(pos(v)));
-                if orient2d(a, b, c) == -want {
-                    return Err(NotConvex::ReflexCorner {
-                        face,
-                        vertex: corners[i],
-                    });
-                }
-            }
-        }
-        ring.clear();
-        ring.extend(corners.iter().copied());
-        for other in solid.face_neighbours(face) {
-            ring.extend(solid.face_vertices(other));
-        }
-        ring.sort_unstable();
-        ring.dedup();
-        for k in 1..n.saturating_sub(1) {
-            let tri = [corners[0], corners[k], corners[k + 1]];
-            let [a, b, c] = tri.map(pos);
-            for &v in ring.iter().filter(|v| !tri.contains(v)) {
-                if orient3d(a, b, c, pos(v)) == Sign::Positive {
-                    return Err(NotConvex::VertexAbovePlane { face, vertex: v });
-                }
-            }
-        }
+    let ids: Vec<FaceId> = solid.faces().map(|(id, _)| id).collect();
+    // Faces are checked in parallel; the first failure in face order is
+    // reported, so the verdict is deterministic.
+    if let Some(err) = ids
+        .par_iter()
+        .with_min_len(1024)
+        .find_map_first(|&face| face_convexity(solid, face).err())
+    {
+        return Err(err);
     }
     // Only now (the local test passed) count shells: two disjoint convex
     // shells are locally convex everywhere.
     let shells = count_shells(solid);
     if shells != 1 {
         return Err(NotConvex::Shells { count: shells });
+    }
+    Ok(())
+}
+
+/// The local convexity test of one face: no reflex corner, and no vertex of
+/// the face or of its neighbours strictly above any of its fan triangles.
+fn face_convexity(solid: &Solid, face: FaceId) -> Result<(), NotConvex> {
+    let mut corners: smallvec::SmallVec<[VertexId; 8]> = solid.face_vertices(face).collect();
+    let n = corners.len();
+    let pos = |v: VertexId| solid.position(v);
+    let points: smallvec::SmallVec<[DVec3; 8]> = corners.iter().map(|&v| pos(v)).collect();
+    corners.rotate_left(fan_apex(&points));
+    if let Some(plane) = solid.face(face).plane {
+        let proj = Projection::along(plane.normal);
+        let want = if proj.flipped {
+            Sign::Negative
+        } else {
+            Sign::Positive
+        };
+        for i in 0..n {
+            let [a, b, c] = [corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]]
+                .map(|v| proj.apply(pos(v)));
+            if orient2d(a, b, c) == -want {
+                return Err(NotConvex::ReflexCorner {
+                    face,
+                    vertex: corners[i],
+                });
+            }
+        }
+    }
+    let mut ring: smallvec::SmallVec<[VertexId; 32]> = corners.iter().copied().collect();
+    for other in solid.face_neighbours(face) {
+        ring.extend(solid.face_vertices(other));
+    }
+    ring.sort_unstable();
+    ring.dedup();
+    for k in 1..n.saturating_sub(1) {
+        let tri = [corners[0], corners[k], corners[k + 1]];
+        let [a, b, c] = tri.map(pos);
+        for &v in ring.iter().filter(|v| !tri.contains(v)) {
+            if orient3d(a, b, c, pos(v)) == Sign::Positive {
+                return Err(NotConvex::VertexAbovePlane { face, vertex: v });
+            }
+        }
     }
     Ok(())
 }

@@ -3,7 +3,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::geom::exact::line_side_filter;
+use crate::geom::exact::line_side_filter_scalar;
 use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
@@ -191,11 +191,29 @@ impl Accel {
         for (index, ray) in rays.iter().enumerate() {
             self.check_ray(ray, index)?;
         }
-        Ok(rays
+        if rays.len() < SORTED_BATCH {
+            return Ok(rays
+                .par_iter()
+                .with_min_len(512)
+                .map(|r| self.first_hit_unchecked(r))
+                .collect());
+        }
+        // Large batches: cast the rays in the order of a 6-D Morton code of
+        // (origin, direction), so that rays cast one after the other walk
+        // mostly the same BVH nodes and triangles, which are then still in
+        // cache; answers are written back in input order.
+        let order = coherent_order(rays);
+        let sorted: Vec<Ray> = order.par_iter().map(|&i| rays[i as usize]).collect();
+        let answers: Vec<Option<Crossing>> = sorted
             .par_iter()
-            .with_min_len(512)
+            .with_min_len(1024)
             .map(|r| self.first_hit_unchecked(r))
-            .collect())
+            .collect();
+        let mut out = vec![None; rays.len()];
+        for (&i, a) in order.iter().zip(answers) {
+            out[i as usize] = a;
+        }
+        Ok(out)
     }
 
     /// [`Accel::ray_crossings`] for every ray, in order, on all cores.
@@ -269,20 +287,23 @@ impl Accel {
 
     #[inline]
     fn hit_triangle(&self, ray: &Ray, i: u32) -> TriHit {
-        let [a, b, c] = self.tris[i as usize];
-        let (o, d) = (ray.origin, ray.direction);
-        let (u, v, w) = (a - o, b - o, c - o);
-        let s0 = line_side_filter(d, u, v).unwrap_or_else(|| line_side_sos(o, d, a, b));
-        let s1 = line_side_filter(d, v, w).unwrap_or_else(|| line_side_sos(o, d, b, c));
+        let [a, b, c] = &self.tris[i as usize];
+        let (o, d) = (&ray.origin, &ray.direction);
+        let dd = [d.x, d.y, d.z];
+        let u = [a.x - o.x, a.y - o.y, a.z - o.z];
+        let v = [b.x - o.x, b.y - o.y, b.z - o.z];
+        let s0 = line_side_filter_scalar(dd, u, v).unwrap_or_else(|| line_side_sos(*o, *d, *a, *b));
+        let w = [c.x - o.x, c.y - o.y, c.z - o.z];
+        let s1 = line_side_filter_scalar(dd, v, w).unwrap_or_else(|| line_side_sos(*o, *d, *b, *c));
         if s0 != s1 || s0 == Sign::Zero {
-            return self.origin_check(a, b, c, o);
+            return self.origin_check(*a, *b, *c, *o);
         }
-        let s2 = line_side_filter(d, w, u).unwrap_or_else(|| line_side_sos(o, d, c, a));
+        let s2 = line_side_filter_scalar(dd, w, u).unwrap_or_else(|| line_side_sos(*o, *d, *c, *a));
         if s2 != s0 {
-            return self.origin_check(a, b, c, o);
+            return self.origin_check(*a, *b, *c, *o);
         }
-        match orient3d(a, b, c, o) {
-            Sign::Zero => self.origin_check(a, b, c, o),
+        match orient3d(*a, *b, *c, *o) {
+            Sign::Zero => self.origin_check(*a, *b, *c, *o),
             side if side == -s0 => TriHit::Cross(s0),
             _ => TriHit::Miss,
         }
@@ -357,6 +378,39 @@ impl Accel {
             }
         }
     }
+}
+
+/// Batches at least this large are cast in a coherent order.
+const SORTED_BATCH: usize = 8192;
+
+/// Ray indices sorted by a 6-D Morton code of the ray's origin (within the
+/// origins' bounding box) and its normalized direction, 10 bits per
+/// coordinate.
+fn coherent_order(rays: &[Ray]) -> Vec<u32> {
+    let bounds = rays
+        .iter()
+        .fold(crate::geom::Aabb::EMPTY, |b, r| b.grow(r.origin));
+    let size = bounds.size().max(DVec3::splat(f64::MIN_POSITIVE));
+    let quantize = |x: f64| (x.clamp(0.0, 1.0) * 1023.0) as u64;
+    let mut keyed: Vec<(u64, u32)> = rays
+        .par_iter()
+        .with_min_len(4096)
+        .enumerate()
+        .map(|(i, r)| {
+            let o = (r.origin - bounds.min) / size;
+            let d = r.direction.normalize_or_zero() * 0.5 + DVec3::splat(0.5);
+            let q = [o.x, o.y, o.z, d.x, d.y, d.z].map(quantize);
+            let mut key = 0u64;
+            for bit in (0..10).rev() {
+                for &c in &q {
+                    key = (key << 1) | ((c >> bit) & 1);
+                }
+            }
+            (key, i as u32)
+        })
+        .collect();
+    keyed.par_sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
 }
 
 /// Orders crossings whose rounded `t` coincide (or are inverted by
