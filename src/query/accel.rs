@@ -667,8 +667,7 @@ fn partition(centres: &[DVec3], boxes: &[Aabb], order: &mut [u32]) -> usize {
     } else {
         n / 2
     };
-    let mid = if mid == 0 || mid == n { n / 2 } else { mid };
-    mid
+    if mid == 0 || mid == n { n / 2 } else { mid }
 }
 
 fn build_node(
