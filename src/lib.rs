@@ -25,3 +25,8 @@ pub mod mesh;
 pub mod query;
 
 pub use glam;
+
+/// The README's code blocks, compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -222,12 +222,12 @@ mod tests {
         // The classic example: points on the line y = x near 0.5 with one
         // coordinate nudged by an ulp. Naive evaluation gets many wrong.
         let base = 0.5;
-        let ulp = f64::EPSILON / 2.0 * base;
+        let ulp = f64::EPSILON / 2.0; // one ulp of 0.5
         let a = v2(12.0, 12.0);
         let b = v2(24.0, 24.0);
         assert_eq!(orient2d(v2(base, base), a, b), Sign::Zero);
-        assert_eq!(orient2d(v2(base, base + ulp), a, b), Sign::Negative);
-        assert_eq!(orient2d(v2(base + ulp, base), a, b), Sign::Positive);
+        assert_eq!(orient2d(v2(base, base + ulp), a, b), Sign::Positive);
+        assert_eq!(orient2d(v2(base + ulp, base), a, b), Sign::Negative);
     }
 
     #[test]

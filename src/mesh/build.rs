@@ -397,16 +397,25 @@ fn pinch(h: &HalfEdges, out: &Outgoing, vertex: usize) -> BuildError {
 
 fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
     let mut solid = Solid::default();
-    let mut vertex_ids = vec![VertexId::null(); soup.positions.len()];
+    // Vertices in soup order, referenced ones only.
+    let mut referenced = vec![false; soup.positions.len()];
     for &v in &h.from[..h.face_count] {
-        if vertex_ids[v].is_null() {
-            vertex_ids[v] = solid.vertices.insert(Vertex {
+        referenced[v] = true;
+    }
+    let vertex_ids: Vec<VertexId> = referenced
+        .iter()
+        .enumerate()
+        .map(|(v, &used)| {
+            if !used {
+                return VertexId::null();
+            }
+            solid.vertices.insert(Vertex {
                 position: soup.positions[v],
                 edge: EdgeId::null(),
                 source_index: Some(v),
-            });
-        }
-    }
+            })
+        })
+        .collect();
     // Faces first with placeholder edges, so that edges can name them.
     let face_ids: Vec<FaceId> = soup
         .polygons

@@ -76,7 +76,8 @@ impl Solid {
         self.faces
             .keys()
             .map(|f| self.face_volume_moment(f, r).0)
-            .sum()
+            .sum::<f64>()
+            / 6.0
     }
 
     /// The total area of the faces (each face's Newell vector area).
@@ -107,11 +108,12 @@ impl Solid {
             .keys()
             .map(|f| self.face_volume_moment(f, r))
             .fold((0.0, DVec3::ZERO), |(v, m), (dv, dm)| (v + dv, m + dm));
-        (volume != 0.0).then(|| r + moment / volume)
+        (volume != 0.0).then(|| r + moment / (4.0 * volume))
     }
 
-    /// The signed volume of the cone from `r` over `face`, and its first
-    /// moment about `r`.
+    /// Six times the signed volume of the cone from `r` over `face`, and
+    /// twenty-four times its first moment about `r` (the factors are applied
+    /// once, after summing, to round less).
     fn face_volume_moment(&self, face: FaceId, r: DVec3) -> (f64, DVec3) {
         let mut corners = self.face_vertices(face).map(|v| self.position(v) - r);
         let Some(a) = corners.next() else {
@@ -123,9 +125,9 @@ impl Solid {
         };
         let (mut volume, mut moment) = (0.0, DVec3::ZERO);
         for c in corners {
-            let v = a.dot(b.cross(c)) / 6.0;
+            let v = a.dot(b.cross(c));
             volume += v;
-            moment += v * (a + b + c) / 4.0;
+            moment += v * (a + b + c);
             b = c;
         }
         (volume, moment)
@@ -179,6 +181,7 @@ impl Solid {
             shell.boundary_edge_count += usize::from(e.right_face.is_none());
         }
         for shell in &mut shells {
+            shell.signed_volume /= 6.0;
             shell.euler_characteristic =
                 shell.vertex_count as i64 - shell.edge_count as i64 + shell.faces.len() as i64;
         }

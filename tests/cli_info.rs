@@ -1,0 +1,45 @@
+//! The `wingedge info` command on bundled fixtures and built-ins.
+
+use std::process::Command;
+
+fn wingedge(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_wingedge"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn info_on_the_bundled_dodecahedron() {
+    let (code, out, _) = wingedge(&["info", "fixtures/dodecahedron.obj"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("vertices 20  edges 30  faces 12  euler characteristic 2"),
+        "{out}"
+    );
+    assert!(out.contains("genus 0"), "{out}");
+    assert!(out.contains("volume 14.4721359550"), "{out}");
+}
+
+#[test]
+fn info_on_builtins_and_bad_names() {
+    let (code, out, _) = wingedge(&["info", "--builtin", "prism"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("volume 3.0000000000"), "{out}");
+    let (code, _, err) = wingedge(&["info", "--builtin", "sphere"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("unknown built-in solid 'sphere'"), "{err}");
+}
+
+#[test]
+fn info_on_a_missing_file_is_an_error_naming_it() {
+    let (code, _, err) = wingedge(&["info", "fixtures/no-such-file.obj"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("fixtures/no-such-file.obj"), "{err}");
+}
