@@ -213,4 +213,52 @@ mod tests {
         .unwrap();
         assert_eq!(s, LineFaceHit::Parallel);
     }
+
+    #[test]
+    fn ranges_of_rays_and_segments_and_the_notch_of_a_non_convex_face() {
+        let solid = builders::l_prism();
+        let top = top_face(&solid);
+        let hit =
+            |p1: DVec3, p2: DVec3, kind| intersect_line_face(&solid, top, p1, p2, kind).unwrap();
+        let below = DVec3::new(0.5, 0.5, 0.0);
+        let above = DVec3::new(0.5, 0.5, 2.0);
+        // The plane z = 1 is crossed at u = 0.5 going up.
+        assert_eq!(
+            hit(below, above, LineKind::Segment),
+            LineFaceHit::Inside { u: 0.5 }
+        );
+        // A ray pointing away from the face misses; the line does not.
+        assert_eq!(
+            hit(above, above + DVec3::Z, LineKind::Ray),
+            LineFaceHit::Miss
+        );
+        assert!(matches!(
+            hit(above, above + DVec3::Z, LineKind::Line),
+            LineFaceHit::Inside { .. }
+        ));
+        // A segment ending short of the plane misses; ending on it hits at u = 1.
+        let short = DVec3::new(0.5, 0.5, 0.5);
+        assert_eq!(hit(below, short, LineKind::Segment), LineFaceHit::Miss);
+        assert_eq!(
+            hit(below, DVec3::new(0.5, 0.5, 1.0), LineKind::Segment),
+            LineFaceHit::Inside { u: 1.0 }
+        );
+        // The notch of the L (x, y in (1, 2)) is outside the face.
+        let notch = |z: f64| DVec3::new(1.5, 1.5, z);
+        assert_eq!(
+            hit(notch(0.0), notch(2.0), LineKind::Segment),
+            LineFaceHit::Miss
+        );
+        // A slanted line through the reflex corner (1, 1, 1).
+        assert!(matches!(
+            hit(DVec3::new(0.0, 0.0, 0.0), DVec3::new(2.0, 2.0, 2.0), LineKind::Line),
+            LineFaceHit::OnVertex { u, .. } if u == 0.5
+        ));
+        // Bad input is an error.
+        assert!(intersect_line_face(&solid, top, below, below, LineKind::Line).is_err());
+        assert!(
+            intersect_line_face(&solid, top, below, DVec3::splat(f64::NAN), LineKind::Line)
+                .is_err()
+        );
+    }
 }
