@@ -59,8 +59,9 @@ pub struct AccelStats {
     pub build_time: Duration,
 }
 
-/// A triangle as the `+x` parity ray needs it: its corners split by
-/// coordinate, its index and the sign of its `yz` projection (80 bytes).
+/// One fan triangle as the queries need it: its exact corners split by
+/// coordinate and the sign of its `yz` projection (80 bytes). Stored in BVH
+/// leaf order; the grid and the BVH both index this one array.
 #[derive(Clone, Copy, Debug, Default)]
 #[repr(C)]
 pub(super) struct YzTri {
@@ -70,8 +71,6 @@ pub(super) struct YzTri {
     pub y: [f64; 3],
     /// `z` of the three corners.
     pub z: [f64; 3],
-    /// The triangle (index into the accel's triangles).
-    pub tri: u32,
     /// `orient2d` of the projected corners: the sign of the normal's `x`.
     pub sigma: i8,
 }
@@ -111,7 +110,7 @@ pub(super) struct YzGrid {
 pub(super) struct GridEntry {
     /// An upper bound on the triangle's largest `x`.
     pub max_x: f32,
-    /// Index into the accel's `yz` records.
+    /// Index into the accel's triangles.
     pub record: u32,
 }
 
@@ -231,7 +230,7 @@ fn to_node2(nodes: &[Node]) -> Vec<Node2> {
 ///
 /// # Invariants
 ///
-/// - `tris` is the fan triangulation of every face with at least three
+/// - `tris` (in BVH leaf order) is the fan triangulation of every face with at least three
 ///   vertices, `(v₀, vₖ, vₖ₊₁)` for `k = 1 .. n − 2` in the face's winding,
 ///   with `v₀` the face's lexicographically smallest corner `(x, y, z)`,
 ///   holding the exact input coordinates; `tri_face[i]` is its face.
@@ -242,10 +241,9 @@ fn to_node2(nodes: &[Node]) -> Vec<Node2> {
 ///   coordinates).
 #[derive(Clone, Debug)]
 pub struct Accel {
-    pub(super) tris: Vec<[DVec3; 3]>,
+    pub(super) tris: Vec<YzTri>,
     pub(super) tri_face: Vec<FaceId>,
     pub(super) nodes: Vec<Node2>,
-    pub(super) yz: Vec<YzTri>,
     pub(super) grid: YzGrid,
     pub(super) bounds: Aabb,
     pub(super) boundary_edges: usize,
@@ -274,26 +272,30 @@ impl Accel {
         let boundary_edges = solid.boundary_edges().count();
         // The convexity verdict (for the normals method) is independent of
         // the rest: computed alongside.
-        let (convexity, (tris, tri_face, nodes, bounds, yz, grid)) = rayon::join(
+        let (convexity, (tris, tri_face, nodes, bounds, grid)) = rayon::join(
             || check_convexity(solid, boundary_edges),
             || {
                 let (tris, tri_face) = fan_triangles(solid);
                 let (binary, order) = build_bvh(&tris);
                 let nodes = to_node2(&binary);
                 drop(binary);
-                let tris: Vec<[DVec3; 3]> = order.par_iter().map(|&i| tris[i as usize]).collect();
+                let tris: Vec<YzTri> = order
+                    .par_iter()
+                    .map(|&i| yz_tri(&tris[i as usize]))
+                    .collect();
                 let tri_face: Vec<FaceId> =
                     order.par_iter().map(|&i| tri_face[i as usize]).collect();
-                let bounds = Aabb::from_points(tris.iter().flatten().copied());
-                let yz = yz_records(&tris, bounds);
-                let grid = build_grid(&yz, bounds);
-                (tris, tri_face, nodes, bounds, yz, grid)
+                let bounds = tris
+                    .iter()
+                    .flat_map(YzTri::corners)
+                    .fold(Aabb::EMPTY, Aabb::grow);
+                let grid = build_grid(&tris, bounds);
+                (tris, tri_face, nodes, bounds, grid)
             },
         );
-        let memory_bytes = tris.capacity() * std::mem::size_of::<[DVec3; 3]>()
+        let memory_bytes = tris.capacity() * std::mem::size_of::<YzTri>()
             + tri_face.capacity() * std::mem::size_of::<FaceId>()
             + nodes.capacity() * std::mem::size_of::<Node2>()
-            + yz.capacity() * std::mem::size_of::<YzTri>()
             + grid.cell_start.capacity() * 4
             + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
         let stats = AccelStats {
@@ -308,7 +310,6 @@ impl Accel {
             tris,
             tri_face,
             nodes,
-            yz,
             grid,
             bounds,
             boundary_edges,
@@ -357,40 +358,6 @@ impl Accel {
     }
 }
 
-/// The `yz` records of the triangles, sorted along a Morton curve of their
-/// projected centroids so that the triangles of one grid cell sit close
-/// together in memory.
-fn yz_records(tris: &[[DVec3; 3]], bounds: Aabb) -> Vec<YzTri> {
-    let size = bounds.size();
-    let (sy, sz) = (
-        65535.0 / size.y.max(f64::MIN_POSITIVE),
-        65535.0 / size.z.max(f64::MIN_POSITIVE),
-    );
-    let spread = |mut x: u32| {
-        x &= 0xffff;
-        x = (x | (x << 8)) & 0x00ff_00ff;
-        x = (x | (x << 4)) & 0x0f0f_0f0f;
-        x = (x | (x << 2)) & 0x3333_3333;
-        x = (x | (x << 1)) & 0x5555_5555;
-        x
-    };
-    let mut keyed: Vec<(u32, u32)> = tris
-        .par_iter()
-        .enumerate()
-        .map(|(i, t)| {
-            let c = (t[0] + t[1] + t[2]) / 3.0;
-            let qy = ((c.y - bounds.min.y) * sy).clamp(0.0, 65535.0) as u32;
-            let qz = ((c.z - bounds.min.z) * sz).clamp(0.0, 65535.0) as u32;
-            (spread(qy) | (spread(qz) << 1), i as u32)
-        })
-        .collect();
-    keyed.par_sort_unstable();
-    keyed
-        .par_iter()
-        .map(|&(_, i)| yz_tri(&tris[i as usize], i))
-        .collect()
-}
-
 /// The fan triangles of every face (apex at [`fan_apex`]) and their faces,
 /// in face order.
 fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
@@ -435,10 +402,9 @@ fn fan_apex(corners: &[DVec3]) -> usize {
         .unwrap_or(0)
 }
 
-fn yz_tri(t: &[DVec3; 3], tri: u32) -> YzTri {
+fn yz_tri(t: &[DVec3; 3]) -> YzTri {
     let p = |v: DVec3| DVec2::new(v.y, v.z);
     YzTri {
-        tri,
         x: [t[0].x, t[1].x, t[2].x],
         y: [t[0].y, t[1].y, t[2].y],
         z: [t[0].z, t[1].z, t[2].z],

@@ -33,7 +33,7 @@ impl Accel {
         }
         self.convexity.map_err(QueryError::NotConvex)?;
         let mut on_plane = false;
-        for &[a, b, c] in &self.tris {
+        for [a, b, c] in self.tris.iter().map(|t| t.corners()) {
             match orient3d(a, b, c, p) {
                 Sign::Positive => return Ok(Containment::Outside),
                 Sign::Zero => on_plane |= !collinear3d(a, b, c),

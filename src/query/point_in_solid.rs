@@ -181,7 +181,7 @@ impl Accel {
             if f64::from(e.max_x) < p.x {
                 continue;
             }
-            let t = &self.yz[e.record as usize];
+            let t = &self.tris[e.record as usize];
             match cross_x(t, q) {
                 Cross::No => {}
                 Cross::Degenerate => {

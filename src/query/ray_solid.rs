@@ -279,7 +279,7 @@ impl Accel {
     /// clamped to the smallest positive `f64` (the crossing is known exactly
     /// to be in front of the origin).
     fn t_of(&self, ray: &Ray, i: u32) -> f64 {
-        let [a, b, c] = self.tris[i as usize];
+        let [a, b, c] = self.tris[i as usize].corners();
         let n = (b - a).cross(c - a);
         let t = n.dot(a - ray.origin) / n.dot(ray.direction);
         if t > 0.0 { t } else { f64::MIN_POSITIVE }
@@ -287,7 +287,7 @@ impl Accel {
 
     #[inline]
     fn hit_triangle(&self, ray: &Ray, i: u32) -> TriHit {
-        let [a, b, c] = &self.tris[i as usize];
+        let [a, b, c] = &self.tris[i as usize].corners();
         let (o, d) = (&ray.origin, &ray.direction);
         let dd = [d.x, d.y, d.z];
         let u = [a.x - o.x, a.y - o.y, a.z - o.z];

@@ -63,7 +63,7 @@ impl Accel {
 
     pub(super) fn winding_number_unchecked(&self, p: DVec3) -> f64 {
         let mut total = 0.0;
-        for &[ta, tb, tc] in &self.tris {
+        for [ta, tb, tc] in self.tris.iter().map(|t| t.corners()) {
             let (a, b, c) = (ta - p, tb - p, tc - p);
             let (la, lb, lc) = (a.length(), b.length(), c.length());
             let mut det = a.dot(b.cross(c));
