@@ -6,14 +6,22 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use thiserror::Error;
 
-use crate::geom::polygon::Projection;
+use crate::geom::polygon::{Axis, Projection};
 use crate::geom::{Aabb, Sign, orient2d, orient3d};
-use crate::mesh::{FaceId, Solid, VertexId};
+use crate::mesh::{FaceId, Solid};
 
 /// Why a solid is not convex (the normals method refuses it).
-#[derive(Clone, Copy, Debug, Error, PartialEq, Eq)]
+///
+/// Decided exactly on the fan triangles: every edge of the triangulation
+/// (face edges and fan diagonals) must be shared with one triangle running it
+/// the other way, whose third corner is not strictly above the first
+/// triangle's plane and, when exactly in it, lies across the edge (no fold).
+/// A closed connected surface that is convex at every edge bounds a convex
+/// body.
+#[derive(Clone, Copy, Debug, Error, PartialEq)]
 pub enum NotConvex {
-    /// The surface has holes.
+    /// The surface has holes (an edge of a triangle has no partner running it
+    /// the other way).
     #[error("the surface is not closed")]
     NotClosed,
     /// The surface has more than one connected shell.
@@ -22,23 +30,24 @@ pub enum NotConvex {
         /// How many shells.
         count: usize,
     },
-    /// A face polygon turns the wrong way at one of its corners.
-    #[error("face {face:?} has a reflex corner at vertex {vertex:?}")]
+    /// Across an edge of face `face`, the neighbouring corner `point` lies
+    /// strictly outside the face's plane: a reflex edge (or a face whose
+    /// corners are not exactly coplanar, bent outward).
+    #[error("the corner {point} lies strictly outside the plane of face {face:?}")]
+    ReflexEdge {
+        /// The face.
+        face: FaceId,
+        /// The offending corner.
+        point: DVec3,
+    },
+    /// Two coplanar triangles of face `face` fold over each other across an
+    /// edge: the face has a reflex corner.
+    #[error("face {face:?} folds over itself near {point} (a reflex corner)")]
     ReflexCorner {
         /// The face.
         face: FaceId,
-        /// The corner.
-        vertex: VertexId,
-    },
-    /// A vertex of a face or of a neighbouring face lies strictly outside
-    /// the plane of one of the face's fan triangles (a reflex edge, or a
-    /// face that is not exactly planar).
-    #[error("vertex {vertex:?} lies strictly outside the plane of face {face:?}")]
-    VertexAbovePlane {
-        /// The face.
-        face: FaceId,
-        /// The vertex.
-        vertex: VertexId,
+        /// The offending corner.
+        point: DVec3,
     },
 }
 
@@ -247,7 +256,7 @@ pub struct Accel {
     pub(super) grid: YzGrid,
     pub(super) bounds: Aabb,
     pub(super) boundary_edges: usize,
-    pub(super) convexity: Result<(), NotConvex>,
+    pub(super) convexity: std::sync::OnceLock<Result<(), NotConvex>>,
     pub(super) stats: AccelStats,
 }
 
@@ -259,8 +268,8 @@ const LEAF_SIZE: usize = 4;
 const BINS: usize = 16;
 
 impl Accel {
-    /// Builds the accel of `solid`: fan triangles, BVH, `yz` grid and the
-    /// convexity verdict used by the normals method.
+    /// Builds the accel of `solid`: fan triangles, BVH and `yz` grid (the
+    /// convexity verdict of the normals method is computed on first use).
     ///
     /// Never fails: an open solid gets an accel too (the winding number is
     /// defined for it; parity and crossings then return
@@ -270,29 +279,20 @@ impl Accel {
     pub fn new(solid: &Solid) -> Accel {
         let start = Instant::now();
         let boundary_edges = solid.boundary_edges().count();
-        // The convexity verdict (for the normals method) is independent of
-        // the rest: computed alongside.
-        let (convexity, (tris, tri_face, nodes, bounds, grid)) = rayon::join(
-            || check_convexity(solid, boundary_edges),
-            || {
-                let (tris, tri_face) = fan_triangles(solid);
-                let (binary, order) = build_bvh(&tris);
-                let nodes = to_node2(&binary);
-                drop(binary);
-                let tris: Vec<YzTri> = order
-                    .par_iter()
-                    .map(|&i| yz_tri(&tris[i as usize]))
-                    .collect();
-                let tri_face: Vec<FaceId> =
-                    order.par_iter().map(|&i| tri_face[i as usize]).collect();
-                let bounds = tris
-                    .iter()
-                    .flat_map(YzTri::corners)
-                    .fold(Aabb::EMPTY, Aabb::grow);
-                let grid = build_grid(&tris, bounds);
-                (tris, tri_face, nodes, bounds, grid)
-            },
-        );
+        let (tris, tri_face) = fan_triangles(solid);
+        let (binary, order) = build_bvh(&tris);
+        let nodes = to_node2(&binary);
+        drop(binary);
+        let tris: Vec<YzTri> = order
+            .par_iter()
+            .map(|&i| yz_tri(&tris[i as usize]))
+            .collect();
+        let tri_face: Vec<FaceId> = order.par_iter().map(|&i| tri_face[i as usize]).collect();
+        let bounds = tris
+            .iter()
+            .flat_map(YzTri::corners)
+            .fold(Aabb::EMPTY, Aabb::grow);
+        let grid = build_grid(&tris, bounds);
         let memory_bytes = tris.capacity() * std::mem::size_of::<YzTri>()
             + tri_face.capacity() * std::mem::size_of::<FaceId>()
             + nodes.capacity() * std::mem::size_of::<Node2>()
@@ -313,7 +313,7 @@ impl Accel {
             grid,
             bounds,
             boundary_edges,
-            convexity,
+            convexity: std::sync::OnceLock::new(),
             stats,
         };
         accel.stats.build_time = start.elapsed();
@@ -338,13 +338,17 @@ impl Accel {
         self.boundary_edges == 0
     }
 
-    /// `Ok` when the solid is convex (decided exactly), else why not.
+    /// `Ok` when the solid is convex (decided exactly, see [`NotConvex`]),
+    /// else why not. Computed on first use (`O(n log n)` in the triangles)
+    /// and cached.
     ///
     /// # Errors
     ///
-    /// The first reason found; see [`NotConvex`].
+    /// The first reason found in triangle order; see [`NotConvex`].
     pub fn convexity(&self) -> Result<(), NotConvex> {
-        self.convexity
+        *self
+            .convexity
+            .get_or_init(|| check_convexity(&self.tris, &self.tri_face, self.boundary_edges))
     }
 
     pub(super) fn require_closed(&self) -> Result<(), super::QueryError> {
@@ -699,94 +703,119 @@ fn build_node_parallel(
 // ---------------------------------------------------------------------------
 // Convexity, decided exactly on the fan triangles.
 
-fn check_convexity(solid: &Solid, boundary_edges: usize) -> Result<(), NotConvex> {
+/// The exact convexity test on the fan triangles; see [`NotConvex`].
+fn check_convexity(
+    tris: &[YzTri],
+    tri_face: &[FaceId],
+    boundary_edges: usize,
+) -> Result<(), NotConvex> {
     if boundary_edges > 0 {
         return Err(NotConvex::NotClosed);
     }
-    let ids: Vec<FaceId> = solid.faces().map(|(id, _)| id).collect();
-    // Faces are checked in parallel; the first failure in face order is
-    // reported, so the verdict is deterministic.
-    if let Some(err) = ids
+    let key = |p: DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+    // Every directed edge (by exact corner coordinates) with its triangle and
+    // the triangle's third corner; sorted so that partners can be found.
+    let mut edges: Vec<([u64; 3], [u64; 3], u32, u8)> = tris
         .par_iter()
-        .with_min_len(1024)
-        .find_map_first(|&face| face_convexity(solid, face).err())
-    {
-        return Err(err);
+        .enumerate()
+        .flat_map_iter(|(i, t)| {
+            let c = t.corners();
+            (0..3).map(move |k| {
+                (
+                    key(c[k]),
+                    key(c[(k + 1) % 3]),
+                    i as u32,
+                    ((k + 2) % 3) as u8,
+                )
+            })
+        })
+        .collect();
+    edges.par_sort_unstable();
+    let partner = |from: [u64; 3], to: [u64; 3]| {
+        edges
+            .binary_search_by(|e| (e.0, e.1).cmp(&(from, to)))
+            .ok()
+            .map(|j| edges[j])
+    };
+    // Local test at every edge, in parallel; the first failure in edge order
+    // is reported.
+    let local = edges.par_iter().find_map_first(|&(from, to, t, _)| {
+        let Some((_, _, u, opposite)) = partner(to, from) else {
+            return Some(NotConvex::NotClosed);
+        };
+        let [a, b, c] = tris[t as usize].corners();
+        let d = tris[u as usize].corners()[opposite as usize];
+        let face = tri_face[t as usize];
+        match orient3d(a, b, c, d) {
+            Sign::Positive => Some(NotConvex::ReflexEdge { face, point: d }),
+            Sign::Negative => None,
+            Sign::Zero => {
+                // Coplanar neighbours must lie across the shared edge.
+                let (p, q) = (from, to);
+                let [pp, qq] = [p, q].map(|k| {
+                    DVec3::new(
+                        f64::from_bits(k[0]),
+                        f64::from_bits(k[1]),
+                        f64::from_bits(k[2]),
+                    )
+                });
+                let r = [a, b, c]
+                    .into_iter()
+                    .find(|&v| key(v) != p && key(v) != q)
+                    .unwrap_or(a);
+                folded(pp, qq, r, d).then_some(NotConvex::ReflexCorner { face, point: d })
+            }
+        }
+    });
+    if let Some(reason) = local {
+        return Err(reason);
     }
-    // Only now (the local test passed) count shells: two disjoint convex
-    // shells are locally convex everywhere.
-    let shells = count_shells(solid);
+    let shells = count_shells(tris.len(), &edges);
     if shells != 1 {
         return Err(NotConvex::Shells { count: shells });
     }
     Ok(())
 }
 
-/// The local convexity test of one face: no reflex corner, and no vertex of
-/// the face or of its neighbours strictly above any of its fan triangles.
-fn face_convexity(solid: &Solid, face: FaceId) -> Result<(), NotConvex> {
-    let mut corners: smallvec::SmallVec<[VertexId; 8]> = solid.face_vertices(face).collect();
-    let n = corners.len();
-    let pos = |v: VertexId| solid.position(v);
-    let points: smallvec::SmallVec<[DVec3; 8]> = corners.iter().map(|&v| pos(v)).collect();
-    corners.rotate_left(fan_apex(&points));
-    if let Some(plane) = solid.face(face).plane {
-        let proj = Projection::along(plane.normal);
-        let want = if proj.flipped {
-            Sign::Negative
-        } else {
-            Sign::Positive
+/// Whether `r` and `s`, coplanar with the edge `p q`, lie strictly on the
+/// same side of it (decided in an axis plane where `p, q, r` do not
+/// collapse). Degenerate triangles never fold.
+fn folded(p: DVec3, q: DVec3, r: DVec3, s: DVec3) -> bool {
+    for axis in [Axis::X, Axis::Y, Axis::Z] {
+        let proj = Projection {
+            axis,
+            flipped: false,
         };
-        for i in 0..n {
-            let [a, b, c] = [corners[(i + n - 1) % n], corners[i], corners[(i + 1) % n]]
-                .map(|v| proj.apply(pos(v)));
-            if orient2d(a, b, c) == -want {
-                return Err(NotConvex::ReflexCorner {
-                    face,
-                    vertex: corners[i],
-                });
-            }
+        let [pp, qq, rr, ss] = [p, q, r, s].map(|v| proj.apply(v));
+        let side_r = orient2d(pp, qq, rr);
+        if side_r != Sign::Zero {
+            return orient2d(pp, qq, ss) == side_r;
         }
     }
-    let mut ring: smallvec::SmallVec<[VertexId; 32]> = corners.iter().copied().collect();
-    for other in solid.face_neighbours(face) {
-        ring.extend(solid.face_vertices(other));
-    }
-    ring.sort_unstable();
-    ring.dedup();
-    for k in 1..n.saturating_sub(1) {
-        let tri = [corners[0], corners[k], corners[k + 1]];
-        let [a, b, c] = tri.map(pos);
-        for &v in ring.iter().filter(|v| !tri.contains(v)) {
-            if orient3d(a, b, c, pos(v)) == Sign::Positive {
-                return Err(NotConvex::VertexAbovePlane { face, vertex: v });
-            }
-        }
-    }
-    Ok(())
+    false
 }
 
-/// The number of edge-connected components of the faces.
-fn count_shells(solid: &Solid) -> usize {
-    let mut seen: slotmap::SecondaryMap<FaceId, ()> =
-        slotmap::SecondaryMap::with_capacity(solid.face_count());
-    let mut stack = Vec::new();
-    let mut shells = 0;
-    for (start, _) in solid.faces() {
-        if seen.insert(start, ()).is_some() {
-            continue;
+/// The number of edge-connected components of the triangles, from the
+/// sorted directed edges (union–find).
+fn count_shells(n: usize, edges: &[([u64; 3], [u64; 3], u32, u8)]) -> usize {
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn root(parent: &mut [u32], mut i: u32) -> u32 {
+        while parent[i as usize] != i {
+            let grand = parent[parent[i as usize] as usize];
+            parent[i as usize] = grand;
+            i = grand;
         }
-        shells += 1;
-        stack.push(start);
-        while let Some(f) = stack.pop() {
-            for g in solid.face_neighbours(f) {
-                if seen.insert(g, ()).is_none() {
-                    stack.push(g);
-                }
+        i
+    }
+    for &(from, to, t, _) in edges {
+        if let Ok(j) = edges.binary_search_by(|e| (e.0, e.1).cmp(&(to, from))) {
+            let (a, b) = (root(&mut parent, t), root(&mut parent, edges[j].2));
+            if a != b {
+                parent[a as usize] = b;
             }
         }
     }
-    shells
+    (0..n as u32).filter(|&i| root(&mut parent, i) == i).count()
 }
 
 #[cfg(test)]

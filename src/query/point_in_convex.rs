@@ -14,14 +14,14 @@ impl Accel {
     /// (the seed's "dot product of the normal with a vector to a vertex",
     /// without rounding). Cost `O(faces)`.
     ///
-    /// Convexity is decided exactly when the accel is built
-    /// ([`Accel::convexity`]): closed, one shell, no reflex face corner, and
-    /// no vertex of a face or of its neighbours strictly above the plane of
-    /// any of the face's fan triangles. A closed connected surface that is
-    /// convex at every edge is the boundary of a convex body, so the answer
-    /// then agrees with parity. Faces whose corners are not exactly coplanar
-    /// are handled through their fan triangles (a slightly non-planar face
-    /// bent outward is a reflex edge and is refused).
+    /// Convexity is decided exactly on first use and cached
+    /// ([`Accel::convexity`], [`NotConvex`](super::NotConvex)): closed, one
+    /// shell, and convex (or flat without folding) across every edge of the
+    /// fan triangulation. A closed connected surface that is convex at every
+    /// edge is the boundary of a convex body, so the answer then agrees with
+    /// parity. Faces whose corners are not exactly coplanar are handled
+    /// through their fan triangles (one bent outward is a reflex edge and is
+    /// refused).
     ///
     /// # Errors
     ///
@@ -31,7 +31,7 @@ impl Accel {
         if !p.is_finite() {
             return Err(QueryError::NonFinitePoint { index: 0, point: p });
         }
-        self.convexity.map_err(QueryError::NotConvex)?;
+        self.convexity().map_err(QueryError::NotConvex)?;
         let mut on_plane = false;
         for [a, b, c] in self.tris.iter().map(|t| t.corners()) {
             match orient3d(a, b, c, p) {

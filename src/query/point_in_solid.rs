@@ -123,7 +123,7 @@ impl Accel {
         }
         match method {
             Method::Parity => self.require_closed()?,
-            Method::Normals => self.convexity.map_err(QueryError::NotConvex)?,
+            Method::Normals => self.convexity().map_err(QueryError::NotConvex)?,
             Method::Winding => {}
         }
         if method == Method::Normals || points.len() < SORTED_BATCH {
