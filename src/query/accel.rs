@@ -518,6 +518,7 @@ fn next_down_f32(f: f32) -> f32 {
 #[derive(Clone, Copy)]
 struct Bin {
     bounds: Aabb,
+    centres: Aabb,
     count: usize,
 }
 
@@ -545,14 +546,15 @@ fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>) {
         return (nodes, order);
     }
     let _ = nodes;
-    let nodes = build_node_parallel(&boxes, &centres, &mut order, 0);
+    let ext = Extent {
+        bounds: boxes.iter().fold(Aabb::EMPTY, |b, x| b.union(*x)),
+        centres: centres.iter().fold(Aabb::EMPTY, |b, &c| b.grow(c)),
+    };
+    let nodes = build_node_parallel(&boxes, &centres, &mut order, 0, &ext);
     (nodes, order)
 }
 
-fn node_of(boxes: &[Aabb], order: &[u32], offset: usize) -> Node {
-    let bounds = order
-        .iter()
-        .fold(Aabb::EMPTY, |b, &i| b.union(boxes[i as usize]));
+fn node_of(bounds: &Aabb, order: &[u32], offset: usize) -> Node {
     Node {
         min: [
             f32_down(bounds.min.x),
@@ -569,31 +571,60 @@ fn node_of(boxes: &[Aabb], order: &[u32], offset: usize) -> Node {
     }
 }
 
-/// Splits `order` (more than [`LEAF_SIZE`] triangles) by binned SAH on the
-/// longest axis of the centroids' box; returns the size of the first part.
-fn partition(centres: &[DVec3], boxes: &[Aabb], order: &mut [u32]) -> usize {
+/// The boxes of a subtree: of its triangles and of their centroids.
+#[derive(Clone, Copy)]
+struct Extent {
+    bounds: Aabb,
+    centres: Aabb,
+}
+
+impl Extent {
+    fn of(boxes: &[Aabb], centres: &[DVec3], order: &[u32]) -> Extent {
+        order.iter().fold(
+            Extent {
+                bounds: Aabb::EMPTY,
+                centres: Aabb::EMPTY,
+            },
+            |e, &i| Extent {
+                bounds: e.bounds.union(boxes[i as usize]),
+                centres: e.centres.grow(centres[i as usize]),
+            },
+        )
+    }
+}
+
+/// Splits `order` (more than [`LEAF_SIZE`] triangles, centroids in
+/// `ext.centres`) by binned SAH on the longest axis of the centroids' box;
+/// returns the size of the first part and the extents of both parts.
+fn partition(
+    centres: &[DVec3],
+    boxes: &[Aabb],
+    order: &mut [u32],
+    ext: &Extent,
+) -> (usize, Extent, Extent) {
     let n = order.len();
-    let cb = Aabb::from_points(order.iter().map(|&i| centres[i as usize]));
-    let ext = cb.size();
-    let axis = if ext.x >= ext.y && ext.x >= ext.z {
+    let size = ext.centres.size();
+    let axis = if size.x >= size.y && size.x >= size.z {
         0
-    } else if ext.y >= ext.z {
+    } else if size.y >= size.z {
         1
     } else {
         2
     };
-    let lo = cb.min[axis];
-    let width = ext[axis];
-    let mid = if width > 0.0 {
+    let lo = ext.centres.min[axis];
+    let width = size[axis];
+    if width > 0.0 {
         let scale = BINS as f64 / width;
         let bin_of = |i: u32| (((centres[i as usize][axis] - lo) * scale) as usize).min(BINS - 1);
         let mut bins = [Bin {
             bounds: Aabb::EMPTY,
+            centres: Aabb::EMPTY,
             count: 0,
         }; BINS];
         for &i in order.iter() {
             let b = &mut bins[bin_of(i)];
             b.bounds = b.bounds.union(boxes[i as usize]);
+            b.centres = b.centres.grow(centres[i as usize]);
             b.count += 1;
         }
         // Sweep from the right for suffix areas.
@@ -630,14 +661,31 @@ fn partition(centres: &[DVec3], boxes: &[Aabb], order: &mut [u32]) -> usize {
                     left += 1;
                 }
             }
-            left
-        } else {
-            n / 2
+            let merge = |range: std::ops::Range<usize>| {
+                bins[range].iter().fold(
+                    Extent {
+                        bounds: Aabb::EMPTY,
+                        centres: Aabb::EMPTY,
+                    },
+                    |e, b| Extent {
+                        bounds: e.bounds.union(b.bounds),
+                        centres: e.centres.union(b.centres),
+                    },
+                )
+            };
+            if left > 0 && left < n {
+                return (left, merge(0..split + 1), merge(split + 1..BINS));
+            }
         }
-    } else {
-        n / 2
-    };
-    if mid == 0 || mid == n { n / 2 } else { mid }
+    }
+    // No useful split (all centroids equal): halve by count.
+    let mid = n / 2;
+    let (l, r) = order.split_at(mid);
+    (
+        mid,
+        Extent::of(boxes, centres, l),
+        Extent::of(boxes, centres, r),
+    )
 }
 
 fn build_node(
@@ -645,18 +693,19 @@ fn build_node(
     centres: &[DVec3],
     order: &mut [u32],
     offset: usize,
+    ext: &Extent,
     nodes: &mut Vec<Node>,
 ) {
     let me = nodes.len();
-    nodes.push(node_of(boxes, order, offset));
+    nodes.push(node_of(&ext.bounds, order, offset));
     if order.len() <= LEAF_SIZE {
         return;
     }
-    let mid = partition(centres, boxes, order);
+    let (mid, le, re) = partition(centres, boxes, order, ext);
     let (left, right) = order.split_at_mut(mid);
-    build_node(boxes, centres, left, offset, nodes);
+    build_node(boxes, centres, left, offset, &le, nodes);
     let second = nodes.len() as u32;
-    build_node(boxes, centres, right, offset + mid, nodes);
+    build_node(boxes, centres, right, offset + mid, &re, nodes);
     nodes[me].first = second;
     nodes[me].count = 0;
 }
@@ -671,18 +720,19 @@ fn build_node_parallel(
     centres: &[DVec3],
     order: &mut [u32],
     offset: usize,
+    ext: &Extent,
 ) -> Vec<Node> {
     let mut nodes = Vec::new();
     if order.len() < PARALLEL_BUILD {
-        build_node(boxes, centres, order, offset, &mut nodes);
+        build_node(boxes, centres, order, offset, ext, &mut nodes);
         return nodes;
     }
-    nodes.push(node_of(boxes, order, offset));
-    let mid = partition(centres, boxes, order);
+    nodes.push(node_of(&ext.bounds, order, offset));
+    let (mid, le, re) = partition(centres, boxes, order, ext);
     let (left, right) = order.split_at_mut(mid);
     let (l, r) = rayon::join(
-        || build_node_parallel(boxes, centres, left, offset),
-        || build_node_parallel(boxes, centres, right, offset + mid),
+        || build_node_parallel(boxes, centres, left, offset, &le),
+        || build_node_parallel(boxes, centres, right, offset + mid, &re),
     );
     let shift = |n: &Node, base: u32| {
         let mut n = *n;
