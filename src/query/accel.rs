@@ -213,19 +213,17 @@ fn to_node2(nodes: &[Node]) -> Vec<Node2> {
     let mut out = Vec::with_capacity(inner.len() + 1);
     // The root holds the whole tree as child 0 and an empty child 1 (never
     // entered: its box is empty). Without triangles both children are empty.
-    let whole = if nodes
+    let has_triangles = nodes
         .first()
-        .is_some_and(|n| n.count > 0 || nodes.len() > 1)
-    {
-        &nodes[0]
-    } else {
-        &empty
-    };
-    let mut root = make(whole, 0, &empty, 0);
-    root.child[1] = u32::MAX;
-    if std::ptr::eq(whole, &empty) {
-        root.child[0] = u32::MAX;
+        .is_some_and(|n| n.count > 0 || nodes.len() > 1);
+    if !has_triangles {
+        let mut root = make(&empty, 0, &empty, 0);
+        root.child = [u32::MAX; 2];
+        out.push(root);
+        return out;
     }
+    let mut root = make(&nodes[0], 0, &empty, 0);
+    root.child[1] = u32::MAX;
     out.push(root);
     for &i in &inner {
         let (l, r) = (i + 1, nodes[i].first as usize);
@@ -898,5 +896,19 @@ mod tests {
         }
         let l = Accel::new(&builders::l_prism());
         assert!(l.convexity().is_err());
+    }
+
+    #[test]
+    fn an_empty_solid_has_an_empty_accel() {
+        let accel = Accel::new(&Solid::default());
+        assert_eq!(accel.stats().triangles, 0);
+        assert_eq!(
+            accel.classify(DVec3::new(0.5, 0.5, 0.5)),
+            Ok(super::super::Containment::Outside)
+        );
+        let ray = crate::geom::Ray::new(DVec3::ZERO, DVec3::X);
+        assert_eq!(accel.first_hit(&ray), Ok(None));
+        assert!(accel.ray_crossings(&ray).unwrap().hits.is_empty());
+        assert_eq!(accel.winding_number(DVec3::ZERO), Ok(0.0));
     }
 }
