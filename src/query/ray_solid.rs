@@ -191,7 +191,8 @@ impl Accel {
         for (index, ray) in rays.iter().enumerate() {
             self.check_ray(ray, index)?;
         }
-        if rays.len() < SORTED_BATCH {
+        // Small meshes fit in cache: sorting would cost more than it saves.
+        if rays.len() < SORTED_BATCH || self.tris.len() < COHERENT_MIN_TRIANGLES {
             return Ok(rays
                 .par_iter()
                 .with_min_len(512)
@@ -380,8 +381,10 @@ impl Accel {
     }
 }
 
-/// Batches at least this large are cast in a coherent order.
+/// Batches at least this large are cast in a coherent order...
 const SORTED_BATCH: usize = 8192;
+/// ...on meshes with at least this many triangles.
+const COHERENT_MIN_TRIANGLES: usize = 16 * 1024;
 
 /// Ray indices sorted by a 6-D Morton code of the ray's origin (within the
 /// origins' bounding box) and its normalized direction, 10 bits per
