@@ -13,6 +13,10 @@
 //! hit, each best of 3 on 1 and on 2 threads. Answers are written to
 //! `<name>.in.wingedge.u8` (1 inside, 0 outside, 2 boundary) and
 //! `<name>.hit.wingedge.f64` (first-hit `t`, `inf` for a miss).
+//!
+//! Profiling aids: `WINGEDGE_ONLY=points|rays|build` restricts the work
+//! (`build`: ten accel builds, no table row); `WINGEDGE_CPU=1` prints wall
+//! and calling-thread CPU time of each measurement to stderr.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
