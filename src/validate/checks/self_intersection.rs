@@ -303,16 +303,19 @@ fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Triangle) -> bo
             let (a1, a2) = (pa[(i + 1) % 3], pa[(i + 2) % 3]);
             let (b1, b2) = (pb[(j + 1) % 3], pb[(j + 2) % 3]);
             let v = pa[i];
-            let coplanar = orient3d(pa[0], pa[1], pa[2], b1) == Sign::Zero
-                && orient3d(pa[0], pa[1], pa[2], b2) == Sign::Zero;
-            if coplanar {
-                // Near v each triangle is its corner: interiors overlap iff
-                // the two corners do.
+            let side_a = |p: DVec3| orient3d(pa[0], pa[1], pa[2], p);
+            let (s1, s2) = (side_a(b1), side_a(b2));
+            if s1 == Sign::Zero && s2 == Sign::Zero {
+                // Coplanar. Near v each triangle is its corner: interiors
+                // overlap iff the two corners do.
                 let projection = projection_of(pa);
                 let p = |x: DVec3| projection.apply(x);
-                corners_overlap(p(v), [p(a1), p(a2)], [p(b1), p(b2)])
-            } else {
-                segment_crosses_interior(a1, a2, pb) || segment_crosses_interior(b1, b2, pa)
+                return corners_overlap(p(v), [p(a1), p(a2)], [p(b1), p(b2)]);
+            }
+            let side_b = |p: DVec3| orient3d(pb[0], pb[1], pb[2], p);
+            (s1 != Sign::Zero && s2 == -s1 && crosses_inside(b1, b2, pa)) || {
+                let (t1, t2) = (side_b(a1), side_b(a2));
+                t1 != Sign::Zero && t2 == -t1 && crosses_inside(a1, a2, pb)
             }
         }
         [(i0, _), (i1, _)] => {
@@ -410,15 +413,10 @@ fn corners_overlap(v: DVec2, a: [DVec2; 2], b: [DVec2; 2]) -> bool {
         || (same_ray(a[0], b[0]) && same_ray(a[1], b[1]))
 }
 
-/// Whether segment `ab` passes through the open interior of triangle `t`:
-/// its ends strictly on opposite sides of `t`'s plane and the crossing
-/// point strictly inside `t`. Exact.
-fn segment_crosses_interior(a: DVec3, b: DVec3, t: [DVec3; 3]) -> bool {
-    let sa = orient3d(t[0], t[1], t[2], a);
-    let sb = orient3d(t[0], t[1], t[2], b);
-    if sa == Sign::Zero || sb != -sa {
-        return false;
-    }
+/// For a segment `ab` whose ends lie strictly on opposite sides of the
+/// plane of triangle `t`: whether it crosses that plane strictly inside `t`
+/// (the line passes all three edges on the same side). Exact.
+fn crosses_inside(a: DVec3, b: DVec3, t: [DVec3; 3]) -> bool {
     let s = orient3d(a, b, t[0], t[1]);
     s != Sign::Zero && orient3d(a, b, t[1], t[2]) == s && orient3d(a, b, t[2], t[0]) == s
 }
