@@ -16,13 +16,15 @@
 //! ## Layers
 //!
 //! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out) →
-//! [`query`] (line–face, ray–solid, point-in-polyhedron).
+//! [`validate`] (named checks and a graded verdict) → [`query`] (line–face,
+//! ray–solid, point-in-polyhedron).
 #![warn(missing_docs)]
 
 pub mod geom;
 pub mod io;
 pub mod mesh;
 pub mod query;
+pub mod validate;
 
 pub use glam;
 

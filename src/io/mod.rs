@@ -1,8 +1,11 @@
-//! OBJ in and out.
+//! OBJ in and out: reading with tobj plus a line pass of our own (every face
+//! knows its line), welding split vertices, writing.
 
-mod obj_read;
+mod obj;
 mod obj_write;
+mod weld;
 
 pub use crate::mesh::PolygonSoup;
-pub use obj_read::{ObjError, read_obj};
+pub use obj::{ObjError, ObjImport, ObjOptions, import_obj, import_obj_bytes, read_obj};
 pub use obj_write::{to_obj_string, write_obj};
+pub use weld::{WeldMode, WeldRefusal, WeldReport};

@@ -1,0 +1,207 @@
+//! `wingedge validate FILE...`: a verdict per file, every defect located.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use serde_json::{Value, json};
+use wingedge::geom::Tolerance;
+use wingedge::io::{ObjOptions, WeldMode, import_obj};
+use wingedge::validate::{Options, Report, Rule, validate_import};
+
+/// The `validate` flags, as parsed by clap.
+pub struct Args {
+    pub files: Vec<PathBuf>,
+    pub json: bool,
+    pub weld: Option<f64>,
+    pub no_weld: bool,
+    pub planarity: Option<f64>,
+    pub show: usize,
+}
+
+pub fn run(args: Args) -> ExitCode {
+    for (flag, value) in [("--weld", args.weld), ("--planarity", args.planarity)] {
+        if let Some(v) = value.filter(|v| !(v.is_finite() && *v >= 0.0)) {
+            eprintln!(
+                "error: {flag} {v}: a tolerance is a finite fraction of the bounding-box diagonal, at least 0"
+            );
+            return ExitCode::from(2);
+        }
+    }
+    let mut tolerance = Tolerance::default();
+    if let Some(p) = args.planarity {
+        tolerance.planarity = p;
+    }
+    let weld = match (args.no_weld, args.weld) {
+        (true, _) => WeldMode::None,
+        (false, Some(t)) => WeldMode::Within(Tolerance {
+            weld: t,
+            ..tolerance
+        }),
+        (false, None) => WeldMode::Exact,
+    };
+    let options = Options {
+        tolerance,
+        ..Options::default()
+    };
+    let mut unreadable = false;
+    let mut invalid = false;
+    let mut json_out = Vec::new();
+    for path in &args.files {
+        let outcome = import_obj(path, &ObjOptions { weld })
+            .map_err(|e| (e.to_string(), e.line()))
+            .and_then(|import| {
+                validate_import(&import, &options)
+                    .map(|report| (import, report))
+                    .map_err(|e| (format!("{}: {e}", path.display()), None))
+            });
+        match outcome {
+            Err((message, line)) => {
+                unreadable = true;
+                if args.json {
+                    json_out.push(json!({
+                        "file": path.display().to_string(),
+                        "valid": false,
+                        "error": message,
+                        "line": line,
+                        "vertices": null, "edges": null, "faces": null,
+                        "shells": null, "genus": null, "volume": null,
+                        "violations": [],
+                    }));
+                } else {
+                    emit(&format!(
+                        "{}: unreadable\n  error: {message}\n",
+                        path.display()
+                    ));
+                }
+            }
+            Ok((import, report)) => {
+                invalid |= !report.is_valid();
+                if args.json {
+                    json_out.push(to_json(path, &import.weld, &report));
+                } else {
+                    emit(&describe(path, &import.weld, &report, args.show));
+                }
+            }
+        }
+    }
+    if args.json {
+        match serde_json::to_string_pretty(&Value::Array(json_out)) {
+            Ok(text) => emit(&format!("{text}\n")),
+            Err(e) => {
+                eprintln!("error: cannot write JSON: {e}");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    if unreadable {
+        ExitCode::from(2)
+    } else if invalid {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+/// Writes to standard output; a reader that went away (`| head`) is not an
+/// error worth a panic.
+fn emit(text: &str) {
+    use std::io::Write as _;
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
+}
+
+fn to_json(path: &std::path::Path, weld: &wingedge::io::WeldReport, report: &Report) -> Value {
+    let mut value = serde_json::to_value(report).unwrap_or(Value::Null);
+    let counts: serde_json::Map<String, Value> = Rule::ALL
+        .iter()
+        .map(|&r| (r.name().to_string(), json!(report.count(r))))
+        .collect();
+    if let Value::Object(map) = &mut value {
+        map.insert("file".into(), json!(path.display().to_string()));
+        map.insert("valid".into(), json!(report.is_valid()));
+        map.insert("verdict".into(), json!(report.validity.describe()));
+        map.insert("counts".into(), Value::Object(counts));
+        map.insert(
+            "weld".into(),
+            json!({
+                "mode": match weld.mode {
+                    WeldMode::None => "none".to_string(),
+                    WeldMode::Exact => "exact".to_string(),
+                    WeldMode::Within(t) => format!("within {}", t.weld),
+                },
+                "merged": weld.merged,
+                "refused": weld.refused.iter().map(ToString::to_string).collect::<Vec<_>>(),
+            }),
+        );
+    }
+    value
+}
+
+fn describe(
+    path: &std::path::Path,
+    weld: &wingedge::io::WeldReport,
+    report: &Report,
+    show: usize,
+) -> String {
+    let number = |x: Option<f64>| x.map_or_else(|| "-".to_string(), |v| format!("{v:.6}"));
+    let mut out = format!(
+        "{}: {}\n  vertices {}  edges {}  faces {}  shells {}  holes {}  genus {}  volume {}  area {:.6}\n",
+        path.display(),
+        report.validity.describe(),
+        report.vertices,
+        report.edges,
+        report.faces,
+        report.shells,
+        report.holes,
+        report
+            .genus
+            .map_or_else(|| "-".to_string(), |g| g.to_string()),
+        number(report.volume),
+        report.area,
+    );
+    if weld.merged > 0 || !weld.refused.is_empty() {
+        out += &format!("  weld: merged {} vertices\n", weld.merged);
+        for r in &weld.refused {
+            out += &format!("    {r}\n");
+        }
+    }
+    if report.shell_details.len() > 1 {
+        for (i, s) in report.shell_details.iter().enumerate().take(show) {
+            out += &format!(
+                "  shell {i}: faces {}  χ {}  genus {}  volume {:.6}  {}  depth {}\n",
+                s.faces,
+                s.euler_characteristic,
+                s.genus.map_or_else(|| "-".to_string(), |g| g.to_string()),
+                s.volume,
+                if s.closed { "closed" } else { "open" },
+                match (s.closed, s.depth) {
+                    (false, _) => "-".to_string(),
+                    (true, None) => "undecided".to_string(),
+                    (true, Some(d)) => d.to_string(),
+                },
+            );
+        }
+        if report.shell_details.len() > show {
+            out += &format!(
+                "  … and {} more shells\n",
+                report.shell_details.len() - show
+            );
+        }
+    }
+    if let Some(why) = &report.not_built {
+        out += &format!("  not built as a winged-edge solid: {why}\n");
+    }
+    for rule in Rule::ALL {
+        let count = report.count(rule);
+        if count == 0 {
+            continue;
+        }
+        out += &format!("  {rule}: {count}\n");
+        for v in report.of(rule).take(show) {
+            out += &format!("    {}\n", v.message);
+        }
+        if count > show {
+            out += &format!("    … and {} more\n", count - show);
+        }
+    }
+    out
+}

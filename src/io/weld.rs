@@ -1,0 +1,561 @@
+//! Welding coincident vertices of an imported soup, only where it closes
+//! open edges.
+//!
+//! Exporters often split vertices (one copy per face, for normals or texture
+//! seams), which leaves every edge open. A weld merges such copies, but a
+//! careless weld damages valid input: two solids touching at a corner would
+//! be pinched into one non-manifold vertex, and a face with two coincident
+//! corners would repeat a vertex. So the weld here is conservative:
+//!
+//! 1. Vertices are grouped into *clusters*: bit-identical positions
+//!    ([`WeldMode::Exact`], `-0.0` counts as `0.0`) or positions within a
+//!    distance ([`WeldMode::Within`]).
+//! 2. Two open edge uses are glued only when they join the same two clusters
+//!    in opposite directions and no other edge use joins those clusters; the
+//!    glue merges their end vertices pairwise. So no edge ever gets a third
+//!    face and no orientation is contradicted.
+//! 3. A merged vertex whose faces would form more than one fan (a pinch), or
+//!    that would appear twice in one face, is not merged; the refusal is
+//!    reported ([`WeldRefusal`]). This repeats until nothing is refused.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::geom::{Aabb, Tolerance};
+use crate::mesh::PolygonSoup;
+
+/// Which vertices a weld may merge.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum WeldMode {
+    /// Merge nothing.
+    None,
+    /// Merge vertices with bit-identical positions (the default).
+    #[default]
+    Exact,
+    /// Merge vertices closer than `tolerance.weld × diagonal` of the model's
+    /// bounding box (see [`Tolerance::weld_distance`]); pairs are linked
+    /// transitively, so a chain of close vertices forms one cluster.
+    Within(Tolerance),
+}
+
+/// A merge the weld refused, so that it is never silent.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum WeldRefusal {
+    /// Merging would make a face visit a vertex twice.
+    WouldRepeatVertex {
+        /// The face (0-based number in the file).
+        face: usize,
+        /// Its OBJ line.
+        line: Option<usize>,
+    },
+    /// Merging would join separate fans of faces at one vertex.
+    WouldPinch {
+        /// The vertex (1-based OBJ number of the first copy).
+        vertex: usize,
+        /// Its `v` line.
+        line: usize,
+    },
+}
+
+impl std::fmt::Display for WeldRefusal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            WeldRefusal::WouldRepeatVertex { face, line } => write!(
+                f,
+                "not welded: face {face}{} would visit a vertex twice",
+                line.map(|l| format!(" (line {l})")).unwrap_or_default()
+            ),
+            WeldRefusal::WouldPinch { vertex, line } => write!(
+                f,
+                "not welded: the copies of OBJ vertex #{vertex} (line {line}) would join separate fans of faces (a pinch)"
+            ),
+        }
+    }
+}
+
+/// What a weld did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct WeldReport {
+    /// The mode used.
+    pub mode: WeldMode,
+    /// How many vertices were merged into others (vertices before minus
+    /// vertices after).
+    pub merged: usize,
+    /// Merges refused, with the reason.
+    pub refused: Vec<WeldRefusal>,
+}
+
+struct UnionFind(Vec<usize>);
+
+impl UnionFind {
+    fn new(n: usize) -> UnionFind {
+        UnionFind((0..n).collect())
+    }
+    fn find(&mut self, mut i: usize) -> usize {
+        while self.0[i] != i {
+            self.0[i] = self.0[self.0[i]];
+            i = self.0[i];
+        }
+        i
+    }
+    fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            // The smaller index becomes the root: the first copy represents.
+            self.0[ra.max(rb)] = ra.min(rb);
+        }
+    }
+}
+
+/// Welds `soup` as `mode` says and compacts it: each merged class becomes its
+/// first copy. Returns the soup, the `v` line and OBJ number of each new
+/// vertex, and the report.
+pub(crate) fn weld(
+    soup: PolygonSoup,
+    vertex_lines: Vec<usize>,
+    mode: WeldMode,
+) -> (PolygonSoup, Vec<usize>, Vec<usize>, WeldReport) {
+    let n = soup.positions.len();
+    let numbers: Vec<usize> = (1..=n).collect();
+    let Some(cluster) = clusters(&soup.positions, mode) else {
+        let report = WeldReport {
+            mode,
+            ..WeldReport::default()
+        };
+        return (soup, vertex_lines, numbers, report);
+    };
+    let mut shared = vec![false; n];
+    for (v, &c) in cluster.iter().enumerate() {
+        if c != v {
+            shared[c] = true;
+            shared[v] = true;
+        }
+    }
+    if !shared.contains(&true) {
+        // No two vertices coincide: nothing to weld (the common case).
+        let report = WeldReport {
+            mode,
+            ..WeldReport::default()
+        };
+        return (soup, vertex_lines, numbers, report);
+    }
+    let candidates = glue_candidates(&soup, &cluster, &shared);
+    let incident = incident_polygons(&soup);
+    let mut blocked = vec![false; n];
+    let mut refused = Vec::new();
+    let uf = loop {
+        let mut uf = UnionFind::new(n);
+        for &[a1, b1, a2, b2] in &candidates {
+            if ![a1, b1, a2, b2].iter().any(|&v| blocked[v]) {
+                uf.union(a1, b2);
+                uf.union(b1, a2);
+            }
+        }
+        let before = refused.len();
+        refuse_repeats(&soup, &mut uf, &mut blocked, &mut refused);
+        refuse_pinches(
+            &soup,
+            &incident,
+            &vertex_lines,
+            &mut uf,
+            &mut blocked,
+            &mut refused,
+        );
+        if refused.len() == before {
+            break uf;
+        }
+    };
+    compact(soup, vertex_lines, numbers, uf, mode, refused)
+}
+
+/// The cluster of each vertex, or `None` when nothing may be merged.
+fn clusters(positions: &[DVec3], mode: WeldMode) -> Option<Vec<usize>> {
+    let canonical = |p: DVec3| [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
+    match mode {
+        WeldMode::None => None,
+        WeldMode::Within(tolerance) => {
+            let diagonal = Aabb::from_points(positions.iter().copied()).diagonal();
+            let d = tolerance.weld_distance(diagonal);
+            if d.is_nan() || d <= 0.0 || !d.is_finite() {
+                return clusters(positions, WeldMode::Exact);
+            }
+            let cell = |p: DVec3| (p / d).floor().as_i64vec3();
+            let mut grid: HashMap<glam::I64Vec3, Vec<usize>> = HashMap::new();
+            let mut uf = UnionFind::new(positions.len());
+            for (i, &p) in positions.iter().enumerate() {
+                let c = cell(p);
+                for dx in -1..=1 {
+                    for dy in -1..=1 {
+                        for dz in -1..=1 {
+                            let key = c + glam::I64Vec3::new(dx, dy, dz);
+                            if let Some(list) = grid.get(&key) {
+                                for &j in list {
+                                    if positions[j].distance(p) <= d {
+                                        uf.union(i, j);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+                grid.entry(c).or_default().push(i);
+            }
+            Some((0..positions.len()).map(|i| uf.find(i)).collect())
+        }
+        WeldMode::Exact => {
+            let mut order: Vec<usize> = (0..positions.len()).collect();
+            order.par_sort_unstable_by_key(|&i| (canonical(positions[i]), i));
+            let mut cluster = vec![0; positions.len()];
+            for group in order.chunk_by(|&a, &b| canonical(positions[a]) == canonical(positions[b]))
+            {
+                // Sorted by index within the group: the first is the smallest.
+                for &i in group {
+                    cluster[i] = group[0];
+                }
+            }
+            Some(cluster)
+        }
+    }
+}
+
+/// Pairs of open edge uses `a1→b1`, `a2→b2` that join the same two clusters
+/// in opposite directions, with no third use between those clusters. Only
+/// edges touching a `shared` vertex (one whose cluster has other members)
+/// can be glued, so only those are looked at.
+fn glue_candidates(soup: &PolygonSoup, cluster: &[usize], shared: &[bool]) -> Vec<[usize; 4]> {
+    // (low cluster, high cluster, from, to)
+    let mut uses: Vec<(usize, usize, usize, usize)> = Vec::new();
+    for p in &soup.polygons {
+        let k = p.vertices.len();
+        for i in 0..k {
+            let (a, b) = (p.vertices[i], p.vertices[(i + 1) % k]);
+            let (ca, cb) = (cluster[a], cluster[b]);
+            if ca != cb && (shared[a] || shared[b]) {
+                uses.push((ca.min(cb), ca.max(cb), a, b));
+            }
+        }
+    }
+    uses.sort_unstable();
+    let mut out = Vec::new();
+    for group in uses.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+        if let [(_, _, a1, b1), (_, _, a2, b2)] = *group {
+            let opposite = cluster[a1] == cluster[b2];
+            let already_twins = a1 == b2 && b1 == a2;
+            if opposite && !already_twins {
+                out.push([a1, b1, a2, b2]);
+            }
+        }
+    }
+    out
+}
+
+/// Vertex → polygons using it, as offsets into one list.
+fn incident_polygons(soup: &PolygonSoup) -> (Vec<usize>, Vec<usize>) {
+    let n = soup.positions.len();
+    let mut offsets = vec![0usize; n + 1];
+    for p in &soup.polygons {
+        for &v in &p.vertices {
+            offsets[v + 1] += 1;
+        }
+    }
+    for i in 0..n {
+        offsets[i + 1] += offsets[i];
+    }
+    let mut fill = offsets.clone();
+    let mut list = vec![0usize; offsets[n]];
+    for (index, p) in soup.polygons.iter().enumerate() {
+        for &v in &p.vertices {
+            list[fill[v]] = index;
+            fill[v] += 1;
+        }
+    }
+    (offsets, list)
+}
+
+/// Blocks every member of the classes whose roots are given: one pass over
+/// the vertices however many classes are blocked.
+fn block_classes(uf: &mut UnionFind, blocked: &mut [bool], roots: &[usize]) {
+    if roots.is_empty() {
+        return;
+    }
+    let roots: std::collections::HashSet<usize> = roots.iter().copied().collect();
+    for (v, flag) in blocked.iter_mut().enumerate() {
+        if roots.contains(&uf.find(v)) {
+            *flag = true;
+        }
+    }
+}
+
+fn refuse_repeats(
+    soup: &PolygonSoup,
+    uf: &mut UnionFind,
+    blocked: &mut [bool],
+    refused: &mut Vec<WeldRefusal>,
+) {
+    let mut roots: Vec<usize> = Vec::new();
+    let mut bad_roots = Vec::new();
+    for (index, p) in soup.polygons.iter().enumerate() {
+        roots.clear();
+        roots.extend(p.vertices.iter().map(|&v| uf.find(v)));
+        let mut merged_twice = None;
+        for (i, &r) in roots.iter().enumerate() {
+            let original_repeat = p.vertices[..i].contains(&p.vertices[i]);
+            if roots[..i].contains(&r) && !original_repeat {
+                merged_twice = Some(r);
+            }
+        }
+        if let Some(r) = merged_twice {
+            bad_roots.push(r);
+            refused.push(WeldRefusal::WouldRepeatVertex {
+                face: p.attributes.source_index.unwrap_or(index),
+                line: p.attributes.line,
+            });
+        }
+    }
+    block_classes(uf, blocked, &bad_roots);
+}
+
+fn refuse_pinches(
+    soup: &PolygonSoup,
+    incident: &(Vec<usize>, Vec<usize>),
+    vertex_lines: &[usize],
+    uf: &mut UnionFind,
+    blocked: &mut [bool],
+    refused: &mut Vec<WeldRefusal>,
+) {
+    let n = blocked.len();
+    let mut members: HashMap<usize, Vec<usize>> = HashMap::new();
+    for v in 0..n {
+        let r = uf.find(v);
+        if r != v {
+            members.entry(r).or_insert_with(|| vec![r]).push(v);
+        }
+    }
+    let mut roots: Vec<usize> = members.keys().copied().collect();
+    roots.sort_unstable();
+    let mut bad_roots = Vec::new();
+    for root in roots {
+        let mut polygons: Vec<usize> = members[&root]
+            .iter()
+            .flat_map(|&m| incident.1[incident.0[m]..incident.0[m + 1]].iter().copied())
+            .collect();
+        polygons.sort_unstable();
+        polygons.dedup();
+        // Each polygon touches the vertex through its two edges there; two
+        // polygons sharing such an edge belong to one fan.
+        let mut by_neighbour: HashMap<usize, Vec<usize>> = HashMap::new();
+        for (slot, &index) in polygons.iter().enumerate() {
+            let p = &soup.polygons[index];
+            let k = p.vertices.len();
+            for i in 0..k {
+                if uf.find(p.vertices[i]) == root {
+                    for j in [(i + 1) % k, (i + k - 1) % k] {
+                        let other = uf.find(p.vertices[j]);
+                        if other != root {
+                            by_neighbour.entry(other).or_default().push(slot);
+                        }
+                    }
+                }
+            }
+        }
+        let mut fans = UnionFind::new(polygons.len());
+        for slots in by_neighbour.values() {
+            for w in slots.windows(2) {
+                fans.union(w[0], w[1]);
+            }
+        }
+        let count = (0..polygons.len()).filter(|&i| fans.find(i) == i).count();
+        if count > 1 {
+            refused.push(WeldRefusal::WouldPinch {
+                vertex: root + 1,
+                line: vertex_lines[root],
+            });
+            bad_roots.push(root);
+        }
+    }
+    block_classes(uf, blocked, &bad_roots);
+}
+
+fn compact(
+    soup: PolygonSoup,
+    vertex_lines: Vec<usize>,
+    numbers: Vec<usize>,
+    mut uf: UnionFind,
+    mode: WeldMode,
+    refused: Vec<WeldRefusal>,
+) -> (PolygonSoup, Vec<usize>, Vec<usize>, WeldReport) {
+    let n = soup.positions.len();
+    let mut new_index = vec![usize::MAX; n];
+    let mut positions = Vec::with_capacity(n);
+    let mut lines = Vec::with_capacity(n);
+    let mut new_numbers = Vec::with_capacity(n);
+    for v in 0..n {
+        let r = uf.find(v);
+        if r == v {
+            new_index[v] = positions.len();
+            positions.push(soup.positions[v]);
+            lines.push(vertex_lines[v]);
+            new_numbers.push(numbers[v]);
+        } else {
+            // Roots are the smallest member, so they were numbered first.
+            new_index[v] = new_index[r];
+        }
+    }
+    let merged = n - positions.len();
+    let mut polygons = soup.polygons;
+    for p in &mut polygons {
+        for v in &mut p.vertices {
+            *v = new_index[*v];
+        }
+    }
+    let report = WeldReport {
+        mode,
+        merged,
+        refused,
+    };
+    (
+        PolygonSoup {
+            positions,
+            polygons,
+        },
+        lines,
+        new_numbers,
+        report,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Solid;
+
+    /// A cube with every face carrying its own four corners (24 vertices).
+    fn split_cube() -> PolygonSoup {
+        let corner =
+            |i: usize| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64);
+        let faces = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        let mut positions = Vec::new();
+        let mut polygons = Vec::new();
+        for f in faces {
+            let base = positions.len();
+            positions.extend(f.iter().map(|&c| corner(c)));
+            polygons.push(vec![base, base + 1, base + 2, base + 3]);
+        }
+        PolygonSoup::new(positions, polygons)
+    }
+
+    #[test]
+    fn a_split_cube_is_welded_closed() {
+        let soup = split_cube();
+        let lines = (1..=24).collect();
+        let (welded, lines, numbers, report) = weld(soup, lines, WeldMode::Exact);
+        assert_eq!(report.merged, 16);
+        assert!(report.refused.is_empty());
+        assert_eq!(welded.positions.len(), 8);
+        assert_eq!(lines.len(), 8);
+        assert_eq!(numbers[0], 1);
+        let solid = Solid::try_from_soup(&welded).unwrap();
+        assert!(solid.is_closed());
+        assert_eq!(solid.euler_characteristic(), 2);
+    }
+
+    #[test]
+    fn no_weld_and_tolerant_weld() {
+        let (s, ..) = weld(split_cube(), (1..=24).collect(), WeldMode::None);
+        assert_eq!(s.positions.len(), 24);
+        let mut soup = split_cube();
+        soup.positions[0].x += 1e-9;
+        let (s, _, _, r) = weld(soup.clone(), (1..=24).collect(), WeldMode::Exact);
+        assert!(s.positions.len() > 8, "{r:?}");
+        let tolerance = Tolerance {
+            weld: 1e-6,
+            ..Tolerance::default()
+        };
+        let (s, ..) = weld(soup, (1..=24).collect(), WeldMode::Within(tolerance));
+        assert_eq!(s.positions.len(), 8);
+    }
+
+    #[test]
+    fn two_split_cubes_touching_at_a_corner_weld_into_two_solids() {
+        // Each cube's 24 corner copies weld into 8; the shared corner (1,1,1)
+        // of the first and (1,1,1) of the second are not merged into one
+        // pinch vertex: no edge glues copies of different cubes.
+        let a = split_cube();
+        let mut soup = a.clone();
+        for p in &a.polygons {
+            soup.polygons
+                .push(crate::mesh::Polygon::new(p.vertices.iter().map(|v| v + 24)));
+        }
+        soup.positions
+            .extend(a.positions.iter().map(|&p| p + DVec3::ONE));
+        let (welded, _, _, report) = weld(soup, (1..=48).collect(), WeldMode::Exact);
+        assert_eq!(report.merged, 32);
+        assert!(report.refused.is_empty());
+        assert_eq!(welded.positions.len(), 16);
+        let solid = Solid::try_from_soup(&welded).unwrap();
+        assert_eq!(solid.shells().len(), 2);
+    }
+
+    #[test]
+    fn a_weld_that_would_make_a_face_repeat_a_vertex_is_refused() {
+        // Quad 0 has corners 1 and 2 a hair apart. Triangle 1 glues to the
+        // quad along 0–1 and triangle 2 along 2–3; both triangles use vertex
+        // 5, so gluing both would merge corners 1 and 2 of the quad.
+        let positions = vec![
+            DVec3::new(0., 0., 0.),
+            DVec3::new(1., 0., 0.),
+            DVec3::new(1., 1e-7, 0.),
+            DVec3::new(0., 1., 0.),
+            DVec3::new(0., 0., 0.),
+            DVec3::new(1., 1e-7, 0.),
+            DVec3::new(0.5, -1., 0.),
+            DVec3::new(0., 1., 0.),
+            DVec3::new(0.5, 2., 0.),
+        ];
+        let soup = PolygonSoup::new(positions, [vec![0, 1, 2, 3], vec![5, 4, 6], vec![7, 5, 8]]);
+        let tolerance = Tolerance {
+            weld: 1e-6,
+            ..Tolerance::default()
+        };
+        let (welded, _, _, report) = weld(soup, (1..=9).collect(), WeldMode::Within(tolerance));
+        assert!(
+            report
+                .refused
+                .iter()
+                .any(|r| matches!(r, WeldRefusal::WouldRepeatVertex { face: 0, .. })),
+            "{report:?}"
+        );
+        let quad = &welded.polygons[0].vertices;
+        let mut distinct = quad.to_vec();
+        distinct.sort_unstable();
+        distinct.dedup();
+        assert_eq!(distinct.len(), 4, "{quad:?}");
+    }
+
+    #[test]
+    fn coincident_corners_without_glued_edges_stay_apart() {
+        // Two triangles touching at a corner through two separate vertices:
+        // no pair of their open edges joins the same positions, so nothing
+        // is merged (a weld by position alone would make a pinch).
+        let positions = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::ZERO,
+            -DVec3::X,
+            -DVec3::Y,
+        ];
+        let soup = PolygonSoup::new(positions, [[0, 1, 2], [3, 4, 5]]);
+        let (s, _, _, report) = weld(soup, (1..=6).collect(), WeldMode::Exact);
+        assert_eq!(s.positions.len(), 6, "{report:?}");
+    }
+}

@@ -1,0 +1,58 @@
+//! The faces around a vertex must form a single fan; two cones sharing a tip
+//! do not.
+
+use rayon::prelude::*;
+
+use super::super::context::Context;
+use super::super::report::{Rule, Violation};
+
+/// Every vertex whose faces fall into more than one group when faces are
+/// joined through the edges they share at the vertex.
+pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
+    (0..ctx.soup.positions.len())
+        .into_par_iter()
+        .filter_map(|v| {
+            let mut faces: Vec<usize> = ctx.vertex_faces(v).iter().map(|&f| f as usize).collect();
+            faces.dedup();
+            if faces.len() < 2 {
+                return None;
+            }
+            let mut parent: Vec<usize> = (0..faces.len()).collect();
+            fn root(parent: &mut [usize], mut i: usize) -> usize {
+                while parent[i] != i {
+                    parent[i] = parent[parent[i]];
+                    i = parent[i];
+                }
+                i
+            }
+            for &e in ctx.vertex_edges(v) {
+                let uses = ctx.uses(e as usize);
+                let slot = |f: usize| faces.binary_search(&f).ok();
+                if let Some(first) = uses.first().and_then(|u| slot(u.face())) {
+                    for u in &uses[1..] {
+                        if let Some(other) = slot(u.face()) {
+                            let (a, b) = (root(&mut parent, first), root(&mut parent, other));
+                            parent[a] = b;
+                        }
+                    }
+                }
+            }
+            let fans = (0..faces.len())
+                .filter(|&i| root(&mut parent, i) == i)
+                .count();
+            (fans > 1).then(|| Violation {
+                rule: Rule::NonManifoldVertex,
+                message: format!(
+                    "{} is a pinch point: its {} faces form {fans} separate fans",
+                    ctx.vertex_name(v),
+                    faces.len()
+                ),
+                line: ctx.vertex_line(v),
+                lines: ctx.vertex_line(v).into_iter().collect(),
+                vertices: vec![v],
+                faces,
+                value: Some(fans as f64),
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,645 @@
+//! A face crossing or touching another face anywhere but at the vertices
+//! and edges they share.
+//!
+//! Faces are cut into triangles (ear clipping in the face's axis projection,
+//! decided with exact `orient2d`), the triangles are binned in a uniform grid
+//! sized from their average extent (the broad phase, written here; the query
+//! layer's BVH is not used by design), and every pair of triangles of
+//! different faces whose boxes overlap is tested exactly: only `orient3d` and
+//! `orient2d` signs decide, no epsilon. Cells are processed in parallel. Each
+//! pair is tested in exactly one cell (the one holding the lowest corner of
+//! the two boxes' overlap).
+//!
+//! How a pair is tested depends on the vertices its triangles share:
+//!
+//! - none: any common point is a defect (crossing or touching);
+//! - one vertex `v`, triangles `(v, a, b)` and `(v, c, d)`: reported when
+//!   they cross, that is when segment `ab` passes strictly through the
+//!   interior of the second triangle or `cd` through the first (a fin
+//!   through a neighbour), or, when the two are coplanar, when their
+//!   corners at `v` overlap (a flat fan that wraps over itself). Contacts
+//!   only along boundaries beyond `v` (a vertex on a neighbour's edge, as a
+//!   zero-area sliver produces) are not reported: the degenerate face that
+//!   causes them is;
+//! - an edge `uw`, triangles `(u, w, a)` and `(u, w, b)`: when not coplanar
+//!   they meet only along `uw`; when coplanar they overlap (a fold) iff `a`
+//!   and `b` lie on the same side of `uw`.
+//!
+//! Faces that are not polygons, degenerate faces and later copies of
+//! duplicate faces are left out: other rules report them.
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+use super::super::context::{Context, Shape};
+use super::super::report::{Rule, Violation};
+use crate::geom::polygon::{Projection, segments_touch};
+use crate::geom::{Sign, orient2d, orient3d};
+
+/// A triangle of a face: three soup vertices and the face.
+#[derive(Clone, Copy, Debug)]
+struct Triangle {
+    vertices: [usize; 3],
+    face: usize,
+}
+
+/// Every pair of faces that cross or touch without sharing a vertex.
+pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
+    let triangles = triangulate(ctx);
+    let pairs = intersecting_face_pairs(ctx, &triangles);
+    pairs
+        .into_iter()
+        .map(|(a, b)| {
+            let lines: Vec<usize> = [a, b].iter().filter_map(|&f| ctx.face_line(f)).collect();
+            Violation {
+                rule: Rule::SelfIntersection,
+                message: format!(
+                    "{} and {} intersect{}",
+                    ctx.face_name(a),
+                    ctx.face_name(b),
+                    if faces_share_a_vertex(ctx, a, b) {
+                        " beyond the vertices they share"
+                    } else {
+                        ""
+                    }
+                ),
+                line: lines.first().copied(),
+                lines,
+                vertices: Vec::new(),
+                faces: vec![a, b],
+                value: None,
+            }
+        })
+        .collect()
+}
+
+fn triangulate(ctx: &Context) -> Vec<Triangle> {
+    (0..ctx.face_count())
+        .into_par_iter()
+        .filter(|&f| {
+            ctx.shape[f] == Shape::Polygon && ctx.duplicate_of[f].is_none() && !ctx.degenerate[f]
+        })
+        .flat_map_iter(|face| {
+            let c = ctx.corners(face);
+            let out: Vec<Triangle> = if c.len() == 3 {
+                vec![Triangle {
+                    vertices: [c[0], c[1], c[2]],
+                    face,
+                }]
+            } else {
+                ear_clip(ctx, face)
+                    .into_iter()
+                    .map(|vertices| Triangle { vertices, face })
+                    .collect()
+            };
+            out
+        })
+        .collect()
+}
+
+/// Triangles covering a polygon: ear clipping in its axis projection with
+/// exact orientation tests; a fan for whatever part is not simple.
+fn ear_clip(ctx: &Context, face: usize) -> Vec<[usize; 3]> {
+    let corners = ctx.corners(face);
+    let points: Vec<DVec3> = corners.iter().map(|&v| ctx.position(v)).collect();
+    let projection = ctx.projection(face);
+    let convex = if projection.flipped {
+        Sign::Negative
+    } else {
+        Sign::Positive
+    };
+    let p2: Vec<DVec2> = points.iter().map(|&p| projection.apply(p)).collect();
+    let mut ring: Vec<usize> = (0..corners.len()).collect();
+    let mut out = Vec::with_capacity(corners.len() - 2);
+    'clip: while ring.len() > 3 {
+        let k = ring.len();
+        for i in 0..k {
+            let (a, b, c) = (ring[(i + k - 1) % k], ring[i], ring[(i + 1) % k]);
+            if orient2d(p2[a], p2[b], p2[c]) != convex {
+                continue;
+            }
+            let blocked = ring.iter().any(|&o| {
+                o != a
+                    && o != b
+                    && o != c
+                    && orient2d(p2[a], p2[b], p2[o]) != -convex
+                    && orient2d(p2[b], p2[c], p2[o]) != -convex
+                    && orient2d(p2[c], p2[a], p2[o]) != -convex
+            });
+            if !blocked {
+                out.push([corners[a], corners[b], corners[c]]);
+                ring.remove(i);
+                continue 'clip;
+            }
+        }
+        // No ear: the polygon is not simple in projection. Fan the rest.
+        for i in 1..ring.len() - 1 {
+            out.push([corners[ring[0]], corners[ring[i]], corners[ring[i + 1]]]);
+        }
+        return out;
+    }
+    out.push([corners[ring[0]], corners[ring[1]], corners[ring[2]]]);
+    out
+}
+
+/// The uniform grid: cells of one size over the triangles' bounding box.
+struct Grid {
+    origin: DVec3,
+    inverse_cell: f64,
+    dims: [u64; 3],
+}
+
+impl Grid {
+    fn cell(&self, p: DVec3) -> [u64; 3] {
+        let q = (p - self.origin) * self.inverse_cell;
+        let clamp = |x: f64, n: u64| (x.max(0.0) as u64).min(n - 1);
+        [
+            clamp(q.x, self.dims[0]),
+            clamp(q.y, self.dims[1]),
+            clamp(q.z, self.dims[2]),
+        ]
+    }
+
+    fn key(&self, c: [u64; 3]) -> u64 {
+        (c[0] * self.dims[1] + c[1]) * self.dims[2] + c[2]
+    }
+}
+
+fn bounds(ctx: &Context, t: &Triangle) -> (DVec3, DVec3) {
+    let [a, b, c] = t.vertices.map(|v| ctx.position(v));
+    (a.min(b).min(c), a.max(b).max(c))
+}
+
+fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize, usize)> {
+    if triangles.len() < 2 {
+        return Vec::new();
+    }
+    let boxes: Vec<(DVec3, DVec3)> = triangles.par_iter().map(|t| bounds(ctx, t)).collect();
+    let (lo, hi) = boxes.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), b| (lo.min(b.0), hi.max(b.1)),
+    );
+    let mean_extent =
+        boxes.iter().map(|b| (b.1 - b.0).max_element()).sum::<f64>() / boxes.len() as f64;
+    // At most ~2^20 cells per axis and about as many cells as triangles.
+    let size = hi - lo;
+    let budget = (triangles.len() as f64).cbrt().max(1.0) * 2.0;
+    let cell = mean_extent
+        .max(size.max_element() / budget)
+        .max(size.max_element() / f64::from(1u32 << 20));
+    let cell = if cell > 0.0 && cell.is_finite() {
+        cell
+    } else {
+        1.0
+    };
+    let dims_of = |x: f64| ((x / cell) as u64 + 1).clamp(1, 1 << 20);
+    let grid = Grid {
+        origin: lo,
+        inverse_cell: 1.0 / cell,
+        dims: [dims_of(size.x), dims_of(size.y), dims_of(size.z)],
+    };
+    // Triangles much larger than the cells (a ground plane under a detailed
+    // model) would fill the grid: they are tested against every box instead.
+    let cells_of = |b: &(DVec3, DVec3)| {
+        let (c0, c1) = (grid.cell(b.0), grid.cell(b.1));
+        (0..3).map(|k| c1[k] - c0[k] + 1).product::<u64>()
+    };
+    let large: Vec<usize> = (0..boxes.len())
+        .filter(|&i| cells_of(&boxes[i]) > MAX_CELLS_PER_TRIANGLE)
+        .collect();
+    let mut is_large = vec![false; boxes.len()];
+    for &i in &large {
+        is_large[i] = true;
+    }
+    let test = |a: usize, b: usize| -> Option<(usize, usize)> {
+        let (ta, tb) = (&triangles[a], &triangles[b]);
+        if ta.face == tb.face {
+            return None;
+        }
+        triangles_meet_beyond_shared(ctx, ta, tb)
+            .then(|| (ta.face.min(tb.face), ta.face.max(tb.face)))
+    };
+    let overlap = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| !a.0.max(b.0).cmpgt(a.1.min(b.1)).any();
+    let (boxes_ref, is_large_ref, test_ref) = (&boxes, &is_large, &test);
+    let large_pairs: Vec<(usize, usize)> = large
+        .par_iter()
+        .flat_map_iter(|&a| {
+            let (boxes, is_large, test) = (boxes_ref, is_large_ref, test_ref);
+            (0..boxes.len())
+                // Each large pair once (from its lower index).
+                .filter(move |&b| b != a && !(is_large[b] && b < a))
+                .filter(move |&b| overlap(&boxes[a], &boxes[b]))
+                .filter_map(move |b| test(a, b))
+        })
+        .collect();
+    let mut entries: Vec<(u64, u32)> = boxes
+        .par_iter()
+        .enumerate()
+        .filter(|(i, _)| !is_large[*i])
+        .flat_map_iter(|(i, b)| {
+            let (c0, c1) = (grid.cell(b.0), grid.cell(b.1));
+            let grid = &grid;
+            (c0[0]..=c1[0]).flat_map(move |x| {
+                (c0[1]..=c1[1]).flat_map(move |y| {
+                    (c0[2]..=c1[2]).map(move |z| (grid.key([x, y, z]), i as u32))
+                })
+            })
+        })
+        .collect();
+    entries.par_sort_unstable();
+    let runs: Vec<&[(u64, u32)]> = entries.chunk_by(|a, b| a.0 == b.0).collect();
+    let mut pairs: Vec<(usize, usize)> = runs
+        .par_iter()
+        .flat_map_iter(|run| {
+            let mut found = Vec::new();
+            let key = run[0].0;
+            for (i, &(_, a)) in run.iter().enumerate() {
+                let (a, ba) = (a as usize, boxes[a as usize]);
+                for &(_, b) in &run[i + 1..] {
+                    let (b, bb) = (b as usize, boxes[b as usize]);
+                    let low = ba.0.max(bb.0);
+                    if low.cmpgt(ba.1.min(bb.1)).any() {
+                        continue;
+                    }
+                    if grid.key(grid.cell(low)) != key {
+                        continue;
+                    }
+                    found.extend(test(a, b));
+                }
+            }
+            found
+        })
+        .collect();
+    pairs.extend(large_pairs);
+    pairs.par_sort_unstable();
+    pairs.dedup();
+    pairs
+}
+
+/// A triangle whose box spans more grid cells than this is tested against
+/// every box rather than binned (a grid cell is about one average triangle).
+const MAX_CELLS_PER_TRIANGLE: u64 = 4096;
+
+fn faces_share_a_vertex(ctx: &Context, a: usize, b: usize) -> bool {
+    let (ca, cb) = (ctx.corners(a), ctx.corners(b));
+    ca.iter().any(|v| cb.contains(v))
+}
+
+/// Whether two triangles of different faces meet anywhere but at the
+/// vertices (or the edge) they share; see the module documentation.
+fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Triangle) -> bool {
+    let pa = a.vertices.map(|v| ctx.position(v));
+    let pb = b.vertices.map(|v| ctx.position(v));
+    let shared: smallvec::SmallVec<[(usize, usize); 3]> = (0..3)
+        .filter_map(|i| {
+            (0..3)
+                .find(|&j| b.vertices[j] == a.vertices[i])
+                .map(|j| (i, j))
+        })
+        .collect();
+    match shared[..] {
+        [] => triangles_intersect(pa, pb),
+        [(i, j)] => {
+            let (a1, a2) = (pa[(i + 1) % 3], pa[(i + 2) % 3]);
+            let (b1, b2) = (pb[(j + 1) % 3], pb[(j + 2) % 3]);
+            let v = pa[i];
+            let side_a = |p: DVec3| orient3d(pa[0], pa[1], pa[2], p);
+            let (s1, s2) = (side_a(b1), side_a(b2));
+            if s1 == Sign::Zero && s2 == Sign::Zero {
+                // Coplanar. Near v each triangle is its corner: interiors
+                // overlap iff the two corners do.
+                let projection = projection_of(pa);
+                let p = |x: DVec3| projection.apply(x);
+                return corners_overlap(p(v), [p(a1), p(a2)], [p(b1), p(b2)]);
+            }
+            let side_b = |p: DVec3| orient3d(pb[0], pb[1], pb[2], p);
+            (s1 != Sign::Zero && s2 == -s1 && crosses_inside(b1, b2, pa)) || {
+                let (t1, t2) = (side_b(a1), side_b(a2));
+                t1 != Sign::Zero && t2 == -t1 && crosses_inside(a1, a2, pb)
+            }
+        }
+        [(i0, _), (i1, _)] => {
+            let (u, w) = (pa[i0], pa[i1]);
+            let a_far = pa[3 - i0 - i1];
+            let b_far = pb[(0..3)
+                .find(|&k| !a.vertices.contains(&b.vertices[k]))
+                .unwrap_or(0)];
+            if orient3d(u, w, a_far, b_far) != Sign::Zero {
+                return false;
+            }
+            let projection = projection_of(pa);
+            let (u2, w2) = (projection.apply(u), projection.apply(w));
+            let sa = orient2d(u2, w2, projection.apply(a_far));
+            sa != Sign::Zero && sa == orient2d(u2, w2, projection.apply(b_far))
+        }
+        // The same three vertices: a duplicate, reported as such.
+        _ => false,
+    }
+}
+
+/// Whether two closed, non-degenerate triangles share a point, decided
+/// exactly.
+pub(crate) fn triangles_intersect(p: [DVec3; 3], q: [DVec3; 3]) -> bool {
+    let sq = q.map(|x| orient3d(p[0], p[1], p[2], x));
+    if same_strict_side(sq) {
+        return false;
+    }
+    let sp = p.map(|x| orient3d(q[0], q[1], q[2], x));
+    if same_strict_side(sp) {
+        return false;
+    }
+    if sq.iter().all(|&s| s == Sign::Zero) {
+        return coplanar_triangles_intersect(p, q);
+    }
+    // Not coplanar: the intersection, if any, is a segment whose ends lie on
+    // edges of the triangles, so some edge of one meets the other.
+    (0..3).any(|i| segment_meets_triangle(p[i], p[(i + 1) % 3], sp[i], sp[(i + 1) % 3], q))
+        || (0..3).any(|i| segment_meets_triangle(q[i], q[(i + 1) % 3], sq[i], sq[(i + 1) % 3], p))
+}
+
+fn same_strict_side(s: [Sign; 3]) -> bool {
+    s[0] != Sign::Zero && s[0] == s[1] && s[1] == s[2]
+}
+
+/// Whether segment `ab` meets closed triangle `t`, given the exact sides
+/// `sa`, `sb` of `a` and `b` against `t`'s plane.
+fn segment_meets_triangle(a: DVec3, b: DVec3, sa: Sign, sb: Sign, t: [DVec3; 3]) -> bool {
+    if sa == sb && sa != Sign::Zero {
+        return false;
+    }
+    if sa == Sign::Zero && sb == Sign::Zero {
+        let projection = projection_of(t);
+        let t2 = t.map(|x| projection.apply(x));
+        let (a2, b2) = (projection.apply(a), projection.apply(b));
+        return point_in_triangle_2d(a2, t2)
+            || (0..3).any(|i| segments_touch(a2, b2, t2[i], t2[(i + 1) % 3]));
+    }
+    // The line through a and b pierces the plane at one point of the
+    // segment; it lies in the closed triangle iff the line passes no edge on
+    // the outside, i.e. the three signs are not mixed.
+    let s = [
+        orient3d(a, b, t[0], t[1]),
+        orient3d(a, b, t[1], t[2]),
+        orient3d(a, b, t[2], t[0]),
+    ];
+    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
+}
+
+/// Whether the corners at `v` of two coplanar triangles `(v, a…)` and
+/// `(v, b…)` (each less than a half-turn) share an open set of directions:
+/// a side ray of one strictly inside the other, or the same two side rays.
+/// Exact (2-D orientations and coordinate comparisons).
+fn corners_overlap(v: DVec2, a: [DVec2; 2], b: [DVec2; 2]) -> bool {
+    let ccw = |[p, q]: [DVec2; 2]| {
+        if orient2d(v, p, q) == Sign::Negative {
+            [q, p]
+        } else {
+            [p, q]
+        }
+    };
+    let (a, b) = (ccw(a), ccw(b));
+    let strictly_inside = |[p, q]: [DVec2; 2], r: DVec2| {
+        orient2d(v, p, r) == Sign::Positive && orient2d(v, r, q) == Sign::Positive
+    };
+    // Same ray from v: collinear and every coordinate on the same side of v.
+    let same_ray = |p: DVec2, q: DVec2| {
+        let side = |x: f64, o: f64| Sign::of(x - o);
+        orient2d(v, p, q) == Sign::Zero
+            && side(p.x, v.x) == side(q.x, v.x)
+            && side(p.y, v.y) == side(q.y, v.y)
+    };
+    b.iter().any(|&r| strictly_inside(a, r))
+        || a.iter().any(|&r| strictly_inside(b, r))
+        || (same_ray(a[0], b[0]) && same_ray(a[1], b[1]))
+}
+
+/// For a segment `ab` whose ends lie strictly on opposite sides of the
+/// plane of triangle `t`: whether it crosses that plane strictly inside `t`
+/// (the line passes all three edges on the same side). Exact.
+fn crosses_inside(a: DVec3, b: DVec3, t: [DVec3; 3]) -> bool {
+    let s = orient3d(a, b, t[0], t[1]);
+    s != Sign::Zero && orient3d(a, b, t[1], t[2]) == s && orient3d(a, b, t[2], t[0]) == s
+}
+
+/// An axis projection under which `t` keeps a non-zero area (checked
+/// exactly; the rounded normal only proposes the axis).
+fn projection_of(t: [DVec3; 3]) -> Projection {
+    let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+    let first = Projection::along(normal);
+    let nondegenerate = |p: Projection| {
+        let t2 = t.map(|x| p.apply(x));
+        orient2d(t2[0], t2[1], t2[2]) != Sign::Zero
+    };
+    if nondegenerate(first) {
+        return first;
+    }
+    [DVec3::X, DVec3::Y, DVec3::Z]
+        .into_iter()
+        .map(Projection::along)
+        .find(|&p| nondegenerate(p))
+        .unwrap_or(first)
+}
+
+fn point_in_triangle_2d(p: DVec2, t: [DVec2; 3]) -> bool {
+    let s = [
+        orient2d(t[0], t[1], p),
+        orient2d(t[1], t[2], p),
+        orient2d(t[2], t[0], p),
+    ];
+    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
+}
+
+fn coplanar_triangles_intersect(p: [DVec3; 3], q: [DVec3; 3]) -> bool {
+    let projection = projection_of(p);
+    let p2 = p.map(|x| projection.apply(x));
+    let q2 = q.map(|x| projection.apply(x));
+    (0..3).any(|i| (0..3).any(|j| segments_touch(p2[i], p2[(i + 1) % 3], q2[j], q2[(j + 1) % 3])))
+        || point_in_triangle_2d(q2[0], p2)
+        || point_in_triangle_2d(p2[0], q2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn small_triangle() -> impl Strategy<Value = [DVec3; 3]> {
+        prop::array::uniform3((0i32..4, 0i32..4, 0i32..3))
+            .prop_map(|t| t.map(|(x, y, z)| DVec3::new(f64::from(x), f64::from(y), f64::from(z))))
+    }
+
+    fn non_degenerate(t: &[DVec3; 3]) -> bool {
+        !crate::geom::collinear3d(t[0], t[1], t[2])
+    }
+
+    fn report_for(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> Vec<Vec<usize>> {
+        let soup = crate::mesh::PolygonSoup::new(positions, polygons);
+        let report =
+            crate::validate::validate_soup(&soup, None, &crate::validate::Options::default())
+                .unwrap();
+        report
+            .of(crate::validate::Rule::SelfIntersection)
+            .map(|v| v.faces.clone())
+            .collect()
+    }
+
+    #[test]
+    fn neighbours_that_fold_or_cross() {
+        let p = vec![
+            v(0., 0., 0.),
+            v(1., 0., 0.),
+            v(0., 1., 0.),
+            v(1., 1., 0.),
+            v(0.3, 0.4, 0.),
+            v(0.5, 0.5, 1.),
+        ];
+        // Sharing edge 0–1: opposite sides (a flat square), no defect; same
+        // side (a fold), a defect; with a dihedral angle, none.
+        assert!(report_for(p.clone(), vec![vec![0, 1, 3], vec![0, 3, 2]]).is_empty());
+        assert_eq!(
+            report_for(p.clone(), vec![vec![0, 1, 2], vec![1, 0, 4]]),
+            [vec![0, 1]]
+        );
+        assert!(report_for(p.clone(), vec![vec![0, 1, 2], vec![1, 0, 5]]).is_empty());
+        // Sharing vertex 0: a fin through the other triangle, and one that
+        // only touches at the shared vertex.
+        let q = vec![
+            v(0., 0., 0.),
+            v(2., 0., 0.),
+            v(0., 2., 0.),
+            v(0.5, 0.5, -1.),
+            v(0.5, 0.5, 1.),
+            v(-1., -1., -1.),
+            v(-1., -2., 1.),
+        ];
+        assert_eq!(
+            report_for(q.clone(), vec![vec![0, 1, 2], vec![0, 3, 4]]),
+            [vec![0, 1]]
+        );
+        assert!(report_for(q, vec![vec![0, 1, 2], vec![0, 5, 6]]).is_empty());
+        // Sharing vertex 0 in one plane: corners that overlap, and corners
+        // that only meet along a ray.
+        let r = vec![
+            v(0., 0., 0.),
+            v(2., 0., 0.),
+            v(0., 2., 0.),
+            v(1., 0.5, 0.),
+            v(0.5, 1., 0.),
+            v(-2., 0., 0.),
+        ];
+        assert_eq!(
+            report_for(r.clone(), vec![vec![0, 1, 2], vec![0, 3, 4]]),
+            [vec![0, 1]]
+        );
+        assert!(report_for(r, vec![vec![0, 1, 2], vec![0, 2, 5]]).is_empty());
+    }
+
+    #[test]
+    fn a_huge_triangle_is_tested_against_everything() {
+        // A 40 × 40 plate of small triangles and a huge slanted triangle
+        // through it, spanning about 30 cells along each axis: far more
+        // than MAX_CELLS_PER_TRIANGLE.
+        let n = 40;
+        let mut positions = Vec::new();
+        for i in 0..=n {
+            for j in 0..=n {
+                positions.push(DVec3::new(i as f64, j as f64, 0.0));
+            }
+        }
+        let at = |i: usize, j: usize| i * (n + 1) + j;
+        let mut polygons = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                polygons.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                polygons.push(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        let base = positions.len();
+        let big = [
+            DVec3::new(-1e4, -1e4, -1e4),
+            DVec3::new(1e4, 1e4, -1e4),
+            DVec3::new(0.0, 35.0, 1e4),
+        ];
+        positions.extend(big);
+        polygons.push(vec![base, base + 1, base + 2]);
+        let soup = crate::mesh::PolygonSoup::new(positions.clone(), polygons.clone());
+        let expected = polygons[..polygons.len() - 1]
+            .iter()
+            .filter(|p| triangles_intersect([0, 1, 2].map(|k| positions[p[k]]), big))
+            .count();
+        assert!(expected > n, "{expected}");
+        let report =
+            crate::validate::validate_soup(&soup, None, &crate::validate::Options::default())
+                .unwrap();
+        assert_eq!(
+            report.count(crate::validate::Rule::SelfIntersection),
+            expected
+        );
+    }
+
+    proptest! {
+        /// On a small integer grid (full of coplanar, collinear and touching
+        /// cases) the answer does not depend on argument order, on which
+        /// vertex comes first, or on orientation.
+        #[test]
+        fn the_test_is_symmetric(p in small_triangle(), q in small_triangle()) {
+            prop_assume!(non_degenerate(&p) && non_degenerate(&q));
+            let base = triangles_intersect(p, q);
+            prop_assert_eq!(triangles_intersect(q, p), base);
+            prop_assert_eq!(triangles_intersect([p[1], p[2], p[0]], q), base);
+            prop_assert_eq!(triangles_intersect([p[0], p[2], p[1]], [q[2], q[1], q[0]]), base);
+            // Sharing a vertex position means touching.
+            if p.iter().any(|v| q.contains(v)) {
+                prop_assert!(base);
+            }
+        }
+    }
+
+    fn v(x: f64, y: f64, z: f64) -> DVec3 {
+        DVec3::new(x, y, z)
+    }
+
+    #[test]
+    fn crossing_touching_and_apart() {
+        let t = [v(0., 0., 0.), v(2., 0., 0.), v(0., 2., 0.)];
+        // Pierces the interior.
+        assert!(triangles_intersect(
+            t,
+            [v(0.5, 0.5, -1.), v(0.5, 0.5, 1.), v(3., 3., 0.5)]
+        ));
+        // Touches with a vertex on t's edge.
+        assert!(triangles_intersect(
+            t,
+            [v(1., 0., 0.), v(1., -1., 1.), v(1., -1., -1.)]
+        ));
+        // Above, apart.
+        assert!(!triangles_intersect(
+            t,
+            [v(0., 0., 1.), v(1., 0., 1.), v(0., 1., 2.)]
+        ));
+        // Line of planes crosses both, but the triangles miss each other.
+        assert!(!triangles_intersect(
+            t,
+            [v(3., 3., -1.), v(3., 3., 1.), v(4., 2., 0.)]
+        ));
+        // Coplanar overlap and coplanar apart.
+        assert!(triangles_intersect(
+            t,
+            [v(1., 1., 0.), v(3., 1., 0.), v(1., 3., 0.)]
+        ));
+        assert!(!triangles_intersect(
+            t,
+            [v(2., 2., 0.), v(3., 2., 0.), v(2., 3., 0.)]
+        ));
+        // One ulp above the plane: apart, decided exactly.
+        let up = f64::EPSILON;
+        assert!(!triangles_intersect(
+            t,
+            [v(0.5, 0.5, up), v(1.5, 0.1, up), v(0.1, 1.5, 2.)]
+        ));
+        assert!(triangles_intersect(
+            t,
+            [v(0.5, 0.5, 0.), v(1.5, 0.1, up), v(0.1, 1.5, 2.)]
+        ));
+    }
+}

@@ -1,0 +1,252 @@
+//! Exact signs of sums that no single predicate covers: the signed volume of
+//! a closed shell, and the winding number of a closed shell around a point.
+//!
+//! The volume sign is filtered first (a rounded sum with a forward error
+//! bound) and falls back to exact expansion arithmetic (Shewchuk's
+//! `two_sum`/`two_product` and `grow_expansion`) only when the filter cannot
+//! decide, so nearly flat shells get the right sign too.
+
+use glam::{DVec2, DVec3};
+
+use crate::geom::{Sign, orient2d, orient3d};
+
+/// A non-overlapping expansion: an exact sum of `f64` components, smallest
+/// magnitude first.
+#[derive(Clone, Debug, Default)]
+struct Expansion(Vec<f64>);
+
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bv = s - a;
+    let av = s - bv;
+    (s, (a - av) + (b - bv))
+}
+
+fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+impl Expansion {
+    /// Adds `x` exactly (Shewchuk's grow-expansion with zero elimination).
+    fn add(&mut self, x: f64) {
+        let mut q = x;
+        let mut out = Vec::with_capacity(self.0.len() + 1);
+        for &e in &self.0 {
+            let (s, err) = two_sum(q, e);
+            if err != 0.0 {
+                out.push(err);
+            }
+            q = s;
+        }
+        if q != 0.0 {
+            out.push(q);
+        }
+        self.0 = out;
+    }
+
+    /// Adds `sign · a · b · c` exactly.
+    fn add_product(&mut self, sign: f64, a: f64, b: f64, c: f64) {
+        let (p, e) = two_product(a, b);
+        let (p1, e1) = two_product(p, c);
+        let (p2, e2) = two_product(e, c);
+        for term in [e2, p2, e1, p1] {
+            self.add(sign * term);
+        }
+    }
+
+    fn sign(&self) -> Sign {
+        self.0.last().map_or(Sign::Zero, |&x| Sign::of(x))
+    }
+}
+
+/// The filter for [`volume_sign`]: `Σ a·(b × c)` in rounded arithmetic with
+/// a forward error bound, accumulated triangle by triangle.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct VolumeFilter {
+    sum: f64,
+    magnitude: f64,
+    count: f64,
+}
+
+impl VolumeFilter {
+    /// Adds one triangle's `a·(b × c)`.
+    pub fn add(&mut self, a: DVec3, b: DVec3, c: DVec3) {
+        let terms = [
+            a.x * b.y * c.z,
+            -a.x * b.z * c.y,
+            -a.y * b.x * c.z,
+            a.y * b.z * c.x,
+            a.z * b.x * c.y,
+            -a.z * b.y * c.x,
+        ];
+        for t in terms {
+            self.sum += t;
+            self.magnitude += t.abs();
+        }
+        self.count += 1.0;
+    }
+
+    /// Adds another filter's sums (triangles of the same shell).
+    pub fn merge(&mut self, other: &VolumeFilter) {
+        self.sum += other.sum;
+        self.magnitude += other.magnitude;
+        self.count += other.count;
+    }
+
+    /// The sign when the rounded sum is certain to have it. Each product
+    /// carries at most 2 rounding errors and the running sums one per
+    /// addition: `|error| ≤ (6n + 8) ε Σ|terms|` (generous).
+    pub fn sign(&self) -> Option<Sign> {
+        let bound = (6.0 * self.count + 8.0) * f64::EPSILON * self.magnitude;
+        (self.sum.is_finite() && bound.is_finite() && self.sum.abs() > bound)
+            .then(|| Sign::of(self.sum))
+    }
+}
+
+/// The exact sign of `Σ a·(b × c)` over the given triangles: six times the
+/// signed volume of a closed triangulated surface (positive when outward).
+#[must_use]
+pub(crate) fn volume_sign(triangles: &[[DVec3; 3]]) -> Sign {
+    let mut filter = VolumeFilter::default();
+    for &[a, b, c] in triangles {
+        filter.add(a, b, c);
+    }
+    if let Some(sign) = filter.sign() {
+        return sign;
+    }
+    let mut exact = Expansion::default();
+    for [a, b, c] in triangles {
+        exact.add_product(1.0, a.x, b.y, c.z);
+        exact.add_product(-1.0, a.x, b.z, c.y);
+        exact.add_product(-1.0, a.y, b.x, c.z);
+        exact.add_product(1.0, a.y, b.z, c.x);
+        exact.add_product(1.0, a.z, b.x, c.y);
+        exact.add_product(-1.0, a.z, b.y, c.x);
+    }
+    exact.sign()
+}
+
+/// The side of the `yz`-projected point `p` against the directed edge `ab`,
+/// with `p` perturbed by `(ε, ε²)` (Simulation of Simplicity) so that it is
+/// never exactly on an edge: consistent for the two faces sharing an edge.
+fn perturbed_side(a: DVec2, b: DVec2, p: DVec2) -> Sign {
+    let s = orient2d(a, b, p);
+    if s != Sign::Zero {
+        return s;
+    }
+    // d/dpx of orient2d(a, b, p) is a.y − b.y; d/dpy is b.x − a.x.
+    if a.y != b.y {
+        return if a.y > b.y {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        };
+    }
+    if a.x != b.x {
+        return if b.x > a.x {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        };
+    }
+    Sign::Zero
+}
+
+/// The winding number of a closed triangulated surface around `p`, counted
+/// along the ray `p + t·x̂`, `t > 0`: `1` inside an outward shell, `-1`
+/// inside an inward one, `0` outside. Exact, with ties of the ray against
+/// edges and vertices broken by symbolic perturbation of `p` by `(0, ε, ε²)`.
+/// `None` when `p` lies on a face the ray crosses; a point on a face parallel
+/// to the ray is counted as the perturbed point.
+#[must_use]
+pub(crate) fn winding_number(triangles: &[[DVec3; 3]], p: DVec3) -> Option<i64> {
+    let yz = |v: DVec3| DVec2::new(v.y, v.z);
+    let q = yz(p);
+    let mut winding = 0;
+    for &[a, b, c] in triangles {
+        // Cheap rejection on the projected box.
+        let (lo_y, hi_y) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
+        let (lo_z, hi_z) = (a.z.min(b.z).min(c.z), a.z.max(b.z).max(c.z));
+        if p.y < lo_y || p.y > hi_y || p.z < lo_z || p.z > hi_z || p.x > a.x.max(b.x).max(c.x) {
+            continue;
+        }
+        let (a2, b2, c2) = (yz(a), yz(b), yz(c));
+        let s = perturbed_side(a2, b2, q);
+        if s == Sign::Zero || perturbed_side(b2, c2, q) != s || perturbed_side(c2, a2, q) != s {
+            continue;
+        }
+        // s is the sign of the triangle's normal along x. The crossing is
+        // ahead of p when p is behind the plane as seen along the normal.
+        match orient3d(a, b, c, p) {
+            Sign::Zero => return None,
+            side if side == -s => winding += s.as_i32() as i64,
+            _ => {}
+        }
+    }
+    Some(winding)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube(offset: DVec3, scale: f64, outward: bool) -> Vec<[DVec3; 3]> {
+        let solid = crate::mesh::builders::cube();
+        let mut out = Vec::new();
+        for (f, _) in solid.faces() {
+            let v: Vec<DVec3> = solid
+                .face_vertices(f)
+                .map(|v| solid.position(v) * scale + offset)
+                .collect();
+            for i in 1..v.len() - 1 {
+                out.push(if outward {
+                    [v[0], v[i], v[i + 1]]
+                } else {
+                    [v[0], v[i + 1], v[i]]
+                });
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn volume_sign_and_winding() {
+        let c = cube(DVec3::new(1e8, 0., 0.), 1.0, true);
+        assert_eq!(volume_sign(&c), Sign::Positive);
+        assert_eq!(volume_sign(&cube(DVec3::ZERO, 1.0, false)), Sign::Negative);
+        let c = cube(DVec3::ZERO, 1.0, true);
+        assert_eq!(winding_number(&c, DVec3::ZERO), Some(1));
+        // On a face the ray crosses: on the surface.
+        assert_eq!(winding_number(&c, DVec3::new(-1., 0.5, 0.25)), None);
+        // On a face parallel to the ray: the perturbed point (y + ε) is in.
+        assert_eq!(winding_number(&c, DVec3::new(0., -1., 0.)), Some(1));
+        // Rays through edges and vertices: perturbation keeps the count exact.
+        assert_eq!(winding_number(&c, DVec3::new(-5., 1., 1.)), Some(0));
+        assert_eq!(winding_number(&c, DVec3::new(-5., 0., 0.)), Some(0));
+        assert_eq!(winding_number(&c, DVec3::new(0.5, 0., 0.)), Some(1));
+        assert_eq!(winding_number(&c, DVec3::new(5., 0., 0.)), Some(0));
+        let inward = cube(DVec3::ZERO, 1.0, false);
+        assert_eq!(
+            winding_number(&inward, DVec3::new(0.25, 0.5, -0.5)),
+            Some(-1)
+        );
+    }
+
+    #[test]
+    fn exact_fallback_for_a_flat_shell() {
+        // A doubly covered triangle encloses nothing: the sum is exactly 0.
+        let t = [
+            DVec3::new(0.1, 0.2, 0.3),
+            DVec3::new(1.7, 0.9, 0.3),
+            DVec3::new(0.4, 2.2, 1.3),
+        ];
+        let flat = vec![t, [t[0], t[2], t[1]]];
+        assert_eq!(volume_sign(&flat), Sign::Zero);
+        let mut e = Expansion::default();
+        e.add(1e100);
+        e.add(1.0);
+        e.add(-1e100);
+        assert_eq!(e.sign(), Sign::Positive);
+    }
+}

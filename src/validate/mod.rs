@@ -1,0 +1,399 @@
+//! Validation of imported polyhedra: named checks over the soup and over the
+//! winged-edge solid, every instance located, and a graded verdict.
+//!
+//! Data flow: [`PolygonSoup`] (with OBJ lines) → soup checks (they work on
+//! anything: non-manifold edges, pinches, holes) → the faces that are
+//! polygons are built into a [`Solid`] → solid checks
+//! (shell orientation against nesting) and measures (shells, Euler
+//! characteristic, genus, volume, area) → [`Report`].
+//!
+//! Each check lives in its own file under `checks/`, named after what is
+//! wrong; see [`Rule`] for the list and for how overlapping defects are
+//! attributed to exactly one rule.
+
+mod checks;
+mod context;
+mod exact;
+mod report;
+mod solid_view;
+
+use rayon::prelude::*;
+use thiserror::Error;
+
+use crate::geom::Tolerance;
+use crate::io::ObjImport;
+use crate::mesh::{PolygonSoup, Solid};
+
+pub use report::{Report, Rule, ShellSummary, Validity, Violation};
+
+/// What to judge and how strictly.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// The planarity tolerance (`tolerance.planarity`, a fraction of the
+    /// model's bounding-box diagonal) used by [`Rule::NonPlanarFace`].
+    pub tolerance: Tolerance,
+    /// Whether to run the self-intersection check (on by default).
+    pub self_intersection: bool,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            tolerance: Tolerance::default(),
+            self_intersection: true,
+        }
+    }
+}
+
+/// Why a soup cannot be validated at all (an [`ObjImport`] never has these).
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ValidateError {
+    /// A polygon refers to a vertex that does not exist.
+    #[error("polygon {polygon} refers to vertex {index}, but there are only {len} vertices")]
+    IndexOutOfRange {
+        /// The polygon.
+        polygon: usize,
+        /// The bad index.
+        index: usize,
+        /// The number of vertices.
+        len: usize,
+    },
+    /// More vertices, faces or corners than validation can index.
+    #[error("{count} {what}: more than validation supports ({max})")]
+    TooLarge {
+        /// What there are too many of.
+        what: &'static str,
+        /// How many there are.
+        count: usize,
+        /// The limit.
+        max: usize,
+    },
+    /// A vertex position is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite position")]
+    NonFinite {
+        /// The vertex.
+        vertex: usize,
+    },
+}
+
+/// Validates an imported OBJ file; messages name OBJ lines.
+///
+/// # Errors
+///
+/// [`ValidateError::TooLarge`] for more than 2³² − 1 vertices, faces or
+/// corners.
+pub fn validate_import(import: &ObjImport, options: &Options) -> Result<Report, ValidateError> {
+    validate_soup(&import.soup, Some(&import.vertex_lines), options)
+}
+
+/// Validates a polygon soup; `vertex_lines` (one per position) lets
+/// messages name the `v` line of a vertex.
+///
+/// # Errors
+///
+/// [`ValidateError`] when an index is out of range, a position is not
+/// finite or the soup is too large (nothing can be judged then).
+pub fn validate_soup(
+    soup: &PolygonSoup,
+    vertex_lines: Option<&[usize]>,
+    options: &Options,
+) -> Result<Report, ValidateError> {
+    check_soup(soup)?;
+    let lines = vertex_lines.filter(|l| l.len() == soup.positions.len());
+    Ok(run(soup, lines, options).0)
+}
+
+/// Validates an imported OBJ file and also returns the winged-edge solid
+/// when its faces could be built into one (so that callers need not build
+/// it again).
+///
+/// # Errors
+///
+/// As for [`validate_import`].
+pub fn validate_and_build(
+    import: &ObjImport,
+    options: &Options,
+) -> Result<(Report, Option<Solid>), ValidateError> {
+    check_soup(&import.soup)?;
+    Ok(run(&import.soup, Some(&import.vertex_lines), options))
+}
+
+fn check_soup(soup: &PolygonSoup) -> Result<(), ValidateError> {
+    let len = soup.positions.len();
+    let corners: usize = soup.polygons.iter().map(|p| p.vertices.len()).sum();
+    for (what, count) in [
+        ("vertices", len),
+        ("faces", soup.polygons.len()),
+        ("face corners", corners),
+    ] {
+        if count > context::MAX_ELEMENTS {
+            return Err(ValidateError::TooLarge {
+                what,
+                count,
+                max: context::MAX_ELEMENTS,
+            });
+        }
+    }
+    for (polygon, p) in soup.polygons.iter().enumerate() {
+        if let Some(&index) = p.vertices.iter().find(|&&i| i >= len) {
+            return Err(ValidateError::IndexOutOfRange {
+                polygon,
+                index,
+                len,
+            });
+        }
+    }
+    if let Some(vertex) = soup.positions.iter().position(|p| !p.is_finite()) {
+        return Err(ValidateError::NonFinite { vertex });
+    }
+    Ok(())
+}
+
+fn run(
+    soup: &PolygonSoup,
+    vertex_lines: Option<&[usize]>,
+    options: &Options,
+) -> (Report, Option<Solid>) {
+    let start = std::time::Instant::now();
+    // The soup usually needs no cleaning (no repeats in a row, no duplicate
+    // or broken faces): build the solid from it while the context is made.
+    let (ctx, raw) = rayon::join(
+        || context::Context::new(soup, vertex_lines, options.tolerance),
+        || Solid::try_from_soup(soup),
+    );
+    let prepared = start.elapsed().as_secs_f64();
+    let soup_checks: [fn(&context::Context) -> Vec<Violation>; 13] = [
+        checks::vertex_in_fewer_than_three_edges::check,
+        checks::vertex_in_fewer_than_three_faces::check,
+        checks::edge_without_two_distinct_vertices::check,
+        checks::edge_in_one_face::check,
+        checks::edge_in_more_than_two_faces::check,
+        checks::face_with_fewer_than_three_vertices::check,
+        checks::face_with_fewer_than_three_edges::check,
+        checks::unreferenced_vertex::check,
+        checks::duplicate_face::check,
+        checks::inconsistent_orientation::check,
+        checks::non_manifold_vertex::check,
+        checks::non_planar_face::check,
+        checks::degenerate_face::check,
+    ];
+    let ((intersections, si_seconds), (mut violations, built)) = rayon::join(
+        || {
+            let t = std::time::Instant::now();
+            let found = if options.self_intersection {
+                checks::self_intersection::check(&ctx)
+            } else {
+                Vec::new()
+            };
+            (found, t.elapsed().as_secs_f64())
+        },
+        || {
+            let violations: Vec<Violation> =
+                soup_checks.iter().flat_map(|check| check(&ctx)).collect();
+            let (built, view) = rayon::join(
+                || match raw {
+                    Ok(solid) if ctx.is_clean() => Ok(solid),
+                    _ => solid_view::build(&ctx),
+                },
+                || solid_view::measure(&ctx),
+            );
+            (violations, built.map(|solid| (solid, view)))
+        },
+    );
+    let (solid, built) = match built {
+        Ok((solid, view)) => (Some(solid), Ok(view)),
+        Err(why) => (None, Err(why)),
+    };
+    let (shells, genus, volume, not_built) = match built {
+        Ok(view) => {
+            violations.extend(checks::shell_oriented_inward::check(
+                &view.geometry,
+                &view.shells,
+            ));
+            (view.shells, view.genus, view.volume, None)
+        }
+        Err(why) => (Vec::new(), None, None, Some(why)),
+    };
+    violations.extend(intersections);
+    violations.sort_by_key(|v| v.rule);
+    let area = (0..ctx.face_count())
+        .into_par_iter()
+        .map(|f| {
+            let points: smallvec::SmallVec<[glam::DVec3; 8]> =
+                ctx.corners(f).iter().map(|&v| ctx.position(v)).collect();
+            match points.first() {
+                Some(&o) => crate::geom::newell_vector_area(&points, o).length(),
+                None => 0.0,
+            }
+        })
+        .sum();
+    let shell_count = if not_built.is_none() {
+        shells.len()
+    } else {
+        soup_components(&ctx)
+    };
+    let validity = grade(&violations, not_built.is_some());
+    let total = start.elapsed().as_secs_f64();
+    let report = Report {
+        validity,
+        vertices: soup.positions.len(),
+        edges: ctx.edges.len(),
+        faces: ctx.face_count(),
+        shells: shell_count,
+        holes: holes(&ctx),
+        genus,
+        volume,
+        area,
+        not_built,
+        shell_details: shells,
+        violations,
+        stage_seconds: vec![
+            ("context ∥ solid build", prepared),
+            ("self-intersection (∥ checks + measures)", si_seconds),
+            ("all checks", total - prepared),
+        ],
+    };
+    (report, solid)
+}
+
+/// The grade the violations allow. A soup that could not be built into a
+/// winged-edge solid for a reason no violation explains (a face visiting a
+/// vertex twice) is not a surface either.
+fn grade(violations: &[Violation], not_built: bool) -> Validity {
+    let any = |f: fn(Rule) -> bool| violations.iter().any(|v| f(v.rule));
+    let grade = if any(Rule::breaks_surface) {
+        Validity::NotASurface
+    } else if any(|r| r == Rule::InconsistentOrientation) {
+        Validity::ManifoldSurface
+    } else if any(|r| r == Rule::EdgeInOneFace) {
+        Validity::OrientedSurface
+    } else if !violations.is_empty() {
+        Validity::ClosedOrientedSurface
+    } else {
+        Validity::ValidSolid
+    };
+    if not_built && grade > Validity::ManifoldSurface {
+        Validity::NotASurface
+    } else {
+        grade
+    }
+}
+
+/// Groups of edges with one face joined through shared vertices: the holes.
+fn holes(ctx: &context::Context) -> usize {
+    let boundary: Vec<usize> = (0..ctx.edges.len())
+        .filter(|&e| ctx.uses(e).len() == 1)
+        .collect();
+    let mut parent: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    fn root(parent: &mut std::collections::HashMap<usize, usize>, mut v: usize) -> usize {
+        loop {
+            let p = *parent.entry(v).or_insert(v);
+            if p == v {
+                return v;
+            }
+            let grand = *parent.entry(p).or_insert(p);
+            parent.insert(v, grand);
+            v = grand;
+        }
+    }
+    for &e in &boundary {
+        let (a, b) = (ctx.edges[e].low(), ctx.edges[e].high());
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        if ra != rb {
+            parent.insert(ra, rb);
+        }
+    }
+    let vertices: Vec<usize> = parent.keys().copied().collect();
+    vertices
+        .into_iter()
+        .filter(|&v| root(&mut parent, v) == v)
+        .count()
+}
+
+/// Connected components of the faces in the topology, joined through shared
+/// edges (used when the solid cannot be built).
+fn soup_components(ctx: &context::Context) -> usize {
+    let n = ctx.face_count();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for e in 0..ctx.edges.len() {
+        let uses = ctx.uses(e);
+        for u in &uses[1..] {
+            let (a, b) = (
+                root(&mut parent, uses[0].face()),
+                root(&mut parent, u.face()),
+            );
+            parent[a] = b;
+        }
+    }
+    (0..n)
+        .filter(|&f| ctx.in_topology[f])
+        .filter(|&f| root(&mut parent, f) == f)
+        .count()
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+
+    fn pyramid(base: [usize; 4]) -> PolygonSoup {
+        let positions = vec![
+            DVec3::new(0., 0., 0.),
+            DVec3::new(1., 0., 0.),
+            DVec3::new(1., 1., 0.),
+            DVec3::new(0., 1., 0.),
+            DVec3::new(0.5, 0.5, 1.),
+        ];
+        let mut polygons: Vec<Vec<usize>> = vec![base.to_vec()];
+        polygons.extend([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]].map(|t| t.to_vec()));
+        PolygonSoup::new(positions, polygons)
+    }
+
+    #[test]
+    fn a_valid_pyramid_and_a_bow_tie_base() {
+        let r = validate_soup(&pyramid([0, 3, 2, 1]), None, &Options::default()).unwrap();
+        assert!(r.is_valid(), "{:#?}", r.violations);
+        let r = validate_soup(&pyramid([0, 2, 3, 1]), None, &Options::default()).unwrap();
+        let degenerate: Vec<_> = r.of(Rule::DegenerateFace).collect();
+        assert_eq!(degenerate.len(), 1);
+        assert!(
+            degenerate[0].message.contains("not simple"),
+            "{degenerate:?}"
+        );
+        assert_eq!(degenerate[0].faces, [0]);
+    }
+
+    #[test]
+    fn a_face_of_one_repeated_vertex_has_a_loop_edge_per_corner() {
+        let mut soup = pyramid([0, 3, 2, 1]);
+        soup.polygons.push(crate::mesh::Polygon::new([4, 4, 4]));
+        let r = validate_soup(&soup, None, &Options::default()).unwrap();
+        assert_eq!(r.count(Rule::EdgeWithoutTwoDistinctVertices), 3);
+        assert_eq!(r.count(Rule::FaceWithFewerThanThreeVertices), 1);
+        assert_eq!(r.validity, Validity::NotASurface);
+    }
+
+    #[test]
+    fn bad_soups_are_errors_not_panics() {
+        let mut soup = pyramid([0, 3, 2, 1]);
+        soup.polygons[0].vertices[0] = 99;
+        assert!(matches!(
+            validate_soup(&soup, None, &Options::default()),
+            Err(ValidateError::IndexOutOfRange { index: 99, .. })
+        ));
+        let mut soup = pyramid([0, 3, 2, 1]);
+        soup.positions[4].z = f64::NAN;
+        assert!(matches!(
+            validate_soup(&soup, None, &Options::default()),
+            Err(ValidateError::NonFinite { vertex: 4 })
+        ));
+    }
+}
