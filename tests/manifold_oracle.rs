@@ -13,9 +13,10 @@ use std::sync::OnceLock;
 use serde_json::Value;
 use wingedge::geom::Ray;
 use wingedge::glam::DVec3;
-use wingedge::io::read_obj;
+use wingedge::io::{ObjOptions, import_obj, read_obj};
 use wingedge::mesh::Solid;
 use wingedge::query::{Accel, Containment};
+use wingedge::validate::{Options, validate_import};
 
 /// Runs the oracle once per test binary and returns its output folder.
 fn oracle() -> &'static (PathBuf, Value) {
@@ -228,4 +229,41 @@ fn ray_crossings_agree_with_manifold3d_ray_cast() {
          {differences} other differences, each settled by exact arithmetic"
     );
     assert!(total_rays >= 100_000);
+}
+
+#[test]
+fn valid_and_invalid_verdicts_agree_with_manifold3d_status() {
+    let (dir, report) = oracle();
+    let mut cases: Vec<(String, bool)> = report["meshes"]
+        .as_object()
+        .expect("meshes")
+        .iter()
+        .map(|(name, m)| (name.clone(), m["status"] == "NoError"))
+        .collect();
+    cases.extend(
+        report["broken"]
+            .as_object()
+            .expect("broken meshes")
+            .iter()
+            .map(|(name, m)| (name.clone(), m["status"] == "NoError")),
+    );
+    assert!(
+        cases.iter().any(|(_, ok)| !ok),
+        "the oracle includes meshes it refuses"
+    );
+    for (name, manifold_ok) in cases {
+        let import = import_obj(&dir.join(format!("{name}.obj")), &ObjOptions::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let verdict = validate_import(&import, &Options::default()).expect("validates");
+        println!(
+            "{name}: manifold3d ok = {manifold_ok}, wingedge: {:?}",
+            verdict.validity
+        );
+        assert_eq!(
+            verdict.is_valid(),
+            manifold_ok,
+            "{name}: {:?}",
+            verdict.violations.first()
+        );
+    }
 }
