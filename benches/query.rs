@@ -8,39 +8,8 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use glam::DVec3;
 use std::hint::black_box;
 use wingedge::geom::Ray;
-use wingedge::mesh::{PolygonSoup, Solid};
+use wingedge::mesh::builders;
 use wingedge::query::{Accel, Method};
-
-/// A closed triangulated UV sphere with about `4 n²` triangles.
-fn sphere(n: usize) -> Solid {
-    let rings = n;
-    let segments = 2 * n;
-    let mut positions = vec![DVec3::Z, -DVec3::Z];
-    for i in 1..rings {
-        let theta = std::f64::consts::PI * i as f64 / rings as f64;
-        for j in 0..segments {
-            let phi = std::f64::consts::TAU * j as f64 / segments as f64;
-            positions.push(DVec3::new(
-                theta.sin() * phi.cos(),
-                theta.sin() * phi.sin(),
-                theta.cos(),
-            ));
-        }
-    }
-    let at = |i: usize, j: usize| 2 + (i - 1) * segments + j % segments;
-    let mut polygons: Vec<Vec<usize>> = Vec::new();
-    for j in 0..segments {
-        polygons.push(vec![0, at(1, j), at(1, j + 1)]);
-        polygons.push(vec![1, at(rings - 1, j + 1), at(rings - 1, j)]);
-    }
-    for i in 1..rings - 1 {
-        for j in 0..segments {
-            polygons.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-            polygons.push(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-        }
-    }
-    Solid::try_from_soup(&PolygonSoup::new(positions, polygons)).expect("closed sphere")
-}
 
 /// Seeded uniform numbers in [0, 1).
 fn uniform(seed: u64) -> impl FnMut() -> f64 {
@@ -75,7 +44,7 @@ fn query(c: &mut Criterion) {
     let mut group = c.benchmark_group("query");
     group.sample_size(10);
     for n in [50, 200] {
-        let solid = sphere(n);
+        let solid = builders::sphere(n);
         let tris = solid.face_count();
         group.throughput(Throughput::Elements(tris as u64));
         group.bench_with_input(BenchmarkId::new("accel_build", tris), &solid, |b, s| {

@@ -3,38 +3,8 @@
 
 use glam::DVec3;
 use wingedge::geom::Ray;
-use wingedge::mesh::{PolygonSoup, Solid};
+use wingedge::mesh::builders;
 use wingedge::query::{Accel, Method};
-
-/// A closed triangulated UV sphere with `4 n (n − 1)` triangles.
-fn sphere(n: usize) -> Solid {
-    let (rings, segments) = (n, 2 * n);
-    let mut positions = vec![DVec3::Z, -DVec3::Z];
-    for i in 1..rings {
-        let theta = std::f64::consts::PI * i as f64 / rings as f64;
-        for j in 0..segments {
-            let phi = std::f64::consts::TAU * j as f64 / segments as f64;
-            positions.push(DVec3::new(
-                theta.sin() * phi.cos(),
-                theta.sin() * phi.sin(),
-                theta.cos(),
-            ));
-        }
-    }
-    let at = |i: usize, j: usize| 2 + (i - 1) * segments + j % segments;
-    let mut polygons: Vec<Vec<usize>> = Vec::new();
-    for j in 0..segments {
-        polygons.push(vec![0, at(1, j), at(1, j + 1)]);
-        polygons.push(vec![1, at(rings - 1, j + 1), at(rings - 1, j)]);
-    }
-    for i in 1..rings - 1 {
-        for j in 0..segments {
-            polygons.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-            polygons.push(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-        }
-    }
-    Solid::try_from_soup(&PolygonSoup::new(positions, polygons)).expect("closed sphere")
-}
 
 fn uniform(seed: u64) -> impl FnMut() -> f64 {
     let mut s = seed;
@@ -48,7 +18,7 @@ fn uniform(seed: u64) -> impl FnMut() -> f64 {
 
 #[test]
 fn batches_match_single_queries() {
-    let solid = sphere(70); // 19,320 triangles: above the coherent-order threshold
+    let solid = builders::sphere(70); // 19,320 triangles: above the coherent-order threshold
     let accel = Accel::new(&solid);
     assert!(accel.stats().triangles > 16 * 1024);
     let mut u = uniform(7);
