@@ -68,7 +68,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         DVec3::new(-0.8, -0.8, 0.8), // on the cut
         DVec3::new(-0.5, -0.5, 0.0),
     ] {
-        println!("point {p}: {}", csg.classify_point(p, &mut stats));
+        println!("point {p}: {}", csg.classify_point(p, &mut stats).as_word());
     }
 
     let volume = csg.try_volume(0.01)?;

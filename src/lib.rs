@@ -16,14 +16,16 @@
 //! ## Layers
 //!
 //! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out) →
-//! [`validate`] (named checks and a graded verdict) →
-//! [`csg`] (ray-cast CSG: primitives, trees, scenes) → [`render`] (images).
+//! [`validate`] (named checks and a graded verdict) → [`query`] (line–face,
+//! ray–solid, point-in-polyhedron) → [`csg`] (ray-cast CSG: primitives,
+//! trees, scenes) → [`render`] (images).
 #![warn(missing_docs)]
 
 pub mod csg;
 pub mod geom;
 pub mod io;
 pub mod mesh;
+pub mod query;
 pub mod render;
 pub mod validate;
 

@@ -272,3 +272,25 @@ fn builders_by_name() {
     }
     assert!(builders::by_name("klein bottle").is_none());
 }
+
+#[test]
+fn uv_sphere_is_closed_and_converges_to_the_ball() {
+    for rings in [2, 3, 16, 64] {
+        let sphere = builders::sphere(rings);
+        sphere.check_consistency().unwrap();
+        assert_eq!(sphere.face_count(), 4 * rings * (rings - 1));
+        assert_eq!(sphere.euler_characteristic(), 2);
+        assert!(sphere.is_closed());
+        assert!(sphere.volume() > 0.0 && sphere.volume() < 4.0 / 3.0 * std::f64::consts::PI);
+    }
+    let fine = builders::sphere(256).volume();
+    assert!(
+        (fine - 4.0 / 3.0 * std::f64::consts::PI).abs() < 1e-3,
+        "{fine}"
+    );
+    assert_eq!(
+        builders::sphere_soup(0).polygons.len(),
+        8,
+        "fewer than 2 rings means 2"
+    );
+}

@@ -17,7 +17,7 @@ fn wingedge(args: &[&str]) -> (i32, String, String) {
 
 #[test]
 fn info_on_the_bundled_dodecahedron() {
-    let (code, out, _) = wingedge(&["info", "fixtures/dodecahedron.obj"]);
+    let (code, out, _) = wingedge(&["info", "fixtures/valid/dodecahedron.obj"]);
     assert_eq!(code, 0);
     assert!(
         out.contains("vertices 20  edges 30  faces 12  euler characteristic 2"),

@@ -11,8 +11,12 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use serde_json::Value;
-use wingedge::io::read_obj;
+use wingedge::geom::Ray;
+use wingedge::glam::DVec3;
+use wingedge::io::{ObjOptions, import_obj, read_obj};
 use wingedge::mesh::Solid;
+use wingedge::query::{Accel, Containment};
+use wingedge::validate::{Options, validate_import};
 
 /// Runs the oracle once per test binary and returns its output folder.
 fn oracle() -> &'static (PathBuf, Value) {
@@ -83,6 +87,183 @@ fn counts_genus_and_volume_agree_with_manifold3d() {
             counts.2,
             shells[0].genus(),
             solid.volume()
+        );
+    }
+}
+
+/// What exact point classification says about a crossing list: the state
+/// implied between consecutive crossings must match the exact class of a
+/// sample point there. Returns the first contradiction, if any.
+fn contradiction(accel: &Accel, ray: &Ray, ts: &[f64], length: f64) -> Option<String> {
+    let mut bounds = vec![0.0];
+    bounds.extend(ts.iter().copied().filter(|&t| t < length));
+    bounds.push(length);
+    for (i, w) in bounds.windows(2).enumerate() {
+        // Skip gaps too narrow for a rounded sample point to fall inside.
+        if w[1] - w[0] <= 1e-9 * length {
+            continue;
+        }
+        let p = ray.at(0.5 * (w[0] + w[1]));
+        let implied = if i % 2 == 1 {
+            Containment::Inside
+        } else {
+            Containment::Outside
+        };
+        let exact = accel.classify(p).expect("finite sample");
+        if exact != implied && exact != Containment::OnBoundary {
+            return Some(format!(
+                "between t={} and t={}: implied {implied:?}, exact {exact:?}",
+                w[0], w[1]
+            ));
+        }
+    }
+    None
+}
+
+/// Equal within the comparison tolerance (1e-9 relative).
+fn same_t(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0)
+}
+
+/// The list without touches: pairs of consecutive crossings at the same `t`
+/// (the ray meets the boundary at a point or along a zero-length span and
+/// stays on the same side). Such a pair changes nothing about which points of
+/// the ray are inside.
+fn without_touches(ts: &[f64]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(ts.len());
+    let mut i = 0;
+    while i < ts.len() {
+        if i + 1 < ts.len() && same_t(ts[i], ts[i + 1]) {
+            i += 2;
+        } else {
+            out.push(ts[i]);
+            i += 1;
+        }
+    }
+    out
+}
+
+fn same_list(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(&x, &y)| same_t(x, y))
+}
+
+#[test]
+fn ray_crossings_agree_with_manifold3d_ray_cast() {
+    let (dir, report) = oracle();
+    let mut total_rays = 0;
+    let mut differences = 0;
+    let mut touches = 0;
+    for (name, expected) in report["meshes"].as_object().expect("meshes") {
+        let solid = load(dir, name);
+        let accel = Accel::new(&solid);
+        let length = expected["ray_length"].as_f64().expect("ray_length");
+        let rays = expected["rays"].as_array().expect("rays");
+        let hits = expected["hits"].as_array().expect("hits");
+        assert!(rays.len() >= 10_000, "{name}: {} rays", rays.len());
+        let mut mesh_touches = 0;
+        for (i, (r, h)) in rays.iter().zip(hits).enumerate() {
+            let r: Vec<f64> = r
+                .as_array()
+                .expect("ray")
+                .iter()
+                .map(|x| x.as_f64().expect("f64"))
+                .collect();
+            let ray = Ray::new(DVec3::new(r[0], r[1], r[2]), DVec3::new(r[3], r[4], r[5]));
+            let theirs: Vec<f64> = h
+                .as_array()
+                .expect("hits")
+                .iter()
+                .map(|x| x.as_f64().expect("t"))
+                .collect();
+            let ours = accel.ray_crossings(&ray).expect("valid ray");
+            assert_eq!(
+                ours.origin,
+                Containment::Outside,
+                "{name} ray {i}: origins lie outside"
+            );
+            let mine: Vec<f64> = ours
+                .hits
+                .iter()
+                .map(|c| c.t)
+                .filter(|&t| t <= length)
+                .collect();
+            total_rays += 1;
+            if same_list(&mine, &theirs) {
+                continue;
+            }
+            if same_list(&without_touches(&mine), &without_touches(&theirs)) {
+                // A grazing ray: one side lists a touch (0 or 2 crossings at
+                // one point), the other does not. Same inside set.
+                touches += 1;
+                mesh_touches += 1;
+                if mesh_touches <= 3 {
+                    println!(
+                        "{name} ray {i}: touch listed differently: wingedge {mine:?}, manifold3d {theirs:?}"
+                    );
+                }
+                continue;
+            }
+            differences += 1;
+            // Allowed only where exact arithmetic shows which side is right:
+            // ours must agree with exact point classification along the ray
+            // and manifold3d's list must contradict it.
+            let ours_wrong = contradiction(&accel, &ray, &mine, length);
+            let theirs_wrong = contradiction(&accel, &ray, &theirs, length);
+            println!(
+                "{name} ray {i} {ray:?}: wingedge {mine:?}, manifold3d {theirs:?}; exact check: wingedge {}, manifold3d {}",
+                ours_wrong.as_deref().unwrap_or("consistent"),
+                theirs_wrong.as_deref().unwrap_or("consistent"),
+            );
+            assert!(
+                ours_wrong.is_none(),
+                "{name} ray {i}: wingedge contradicts exact classification"
+            );
+            assert!(
+                theirs_wrong.is_some() || mine.len() != theirs.len() && theirs.len() % 2 == 1,
+                "{name} ray {i}: a difference that exact arithmetic does not settle"
+            );
+        }
+    }
+    println!(
+        "{total_rays} rays compared: {touches} grazing touches listed differently, \
+         {differences} other differences, each settled by exact arithmetic"
+    );
+    assert!(total_rays >= 100_000);
+}
+
+#[test]
+fn valid_and_invalid_verdicts_agree_with_manifold3d_status() {
+    let (dir, report) = oracle();
+    let mut cases: Vec<(String, bool)> = report["meshes"]
+        .as_object()
+        .expect("meshes")
+        .iter()
+        .map(|(name, m)| (name.clone(), m["status"] == "NoError"))
+        .collect();
+    cases.extend(
+        report["broken"]
+            .as_object()
+            .expect("broken meshes")
+            .iter()
+            .map(|(name, m)| (name.clone(), m["status"] == "NoError")),
+    );
+    assert!(
+        cases.iter().any(|(_, ok)| !ok),
+        "the oracle includes meshes it refuses"
+    );
+    for (name, manifold_ok) in cases {
+        let import = import_obj(&dir.join(format!("{name}.obj")), &ObjOptions::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let verdict = validate_import(&import, &Options::default()).expect("validates");
+        println!(
+            "{name}: manifold3d ok = {manifold_ok}, wingedge: {:?}",
+            verdict.validity
+        );
+        assert_eq!(
+            verdict.is_valid(),
+            manifold_ok,
+            "{name}: {:?}",
+            verdict.violations.first()
         );
     }
 }

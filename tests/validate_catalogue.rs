@@ -416,3 +416,55 @@ fn suzanne_is_open_with_non_planar_quads() {
     assert!(r.count(Rule::NonPlanarFace) > 0);
     assert!(r.count(Rule::EdgeInOneFace) > 0);
 }
+
+#[test]
+fn shell_measures_agree_with_the_winged_edge_solid() {
+    // Validation measures shells on the soup's topology (in parallel); the
+    // winged-edge solid's own traversal must give the same shells.
+    for file in [
+        "valid/hollow_ball.obj",
+        "valid/double_torus_genus2.obj",
+        "valid/prism.obj",
+        "real/suzanne.obj",
+        "broken/edge_in_one_face.obj",
+    ] {
+        let import = import_obj(&fixture(file), &ObjOptions::default()).unwrap();
+        let (report, solid) =
+            wingedge::validate::validate_and_build(&import, &Options::default()).unwrap();
+        let solid = solid.expect("buildable");
+        let mut ours: Vec<(usize, usize, usize, i64, Option<i64>)> = report
+            .shell_details
+            .iter()
+            .map(|s| {
+                (
+                    s.faces,
+                    s.edges,
+                    s.vertices,
+                    s.euler_characteristic,
+                    s.genus,
+                )
+            })
+            .collect();
+        let mut theirs: Vec<(usize, usize, usize, i64, Option<i64>)> = solid
+            .shells()
+            .iter()
+            .map(|s| {
+                (
+                    s.faces.len(),
+                    s.edge_count,
+                    s.vertex_count,
+                    s.euler_characteristic,
+                    s.genus(),
+                )
+            })
+            .collect();
+        ours.sort_unstable();
+        theirs.sort_unstable();
+        assert_eq!(ours, theirs, "{file}");
+        for (s, t) in report.shell_details.iter().zip(solid.shells()) {
+            if s.closed {
+                assert!((s.volume - t.signed_volume).abs() < 1e-9 * s.volume.abs().max(1.0));
+            }
+        }
+    }
+}

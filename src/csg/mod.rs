@@ -16,10 +16,10 @@
 
 mod axis_box;
 mod classify;
-mod containment;
 mod cylinder;
 mod halfspace;
 mod merge;
+mod polyhedron;
 mod primitive;
 mod scene;
 
@@ -30,12 +30,14 @@ mod transform;
 mod tree;
 mod volume;
 
+/// Where a point lies: the query layer's three-way answer.
+pub use crate::query::Containment;
 pub use axis_box::{AxisBox, AxisBoxError};
 pub use classify::Neighbourhood;
-pub use containment::Containment;
 pub use cylinder::{Cylinder, CylinderError};
 pub use halfspace::{HalfSpace, HalfSpaceError};
 pub use merge::{CsgOp, Hit, MergeState, merge, oriented_normal};
+pub use polyhedron::{Polyhedron, PolyhedronError};
 pub use primitive::{Crossing, Primitive, SurfaceId, normal_alignment, perturbed_side};
 pub use scene::{CameraSpec, DEFAULT_AMBIENT, LightSpec, Scene, SceneError};
 

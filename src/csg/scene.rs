@@ -25,7 +25,7 @@ use glam::{DAffine3, DQuat, DVec3, EulerRot};
 use serde_json::{Map, Value};
 use thiserror::Error;
 
-use super::{AxisBox, Csg, CsgError, CsgExpr, Cylinder, HalfSpace, Primitive, Sphere};
+use super::{AxisBox, Csg, CsgError, CsgExpr, Cylinder, HalfSpace, Polyhedron, Primitive, Sphere};
 
 /// Why a scene could not be loaded.
 #[derive(Debug, Error)]
@@ -337,10 +337,6 @@ const VIOLATIONS_SHOWN: usize = 5;
 /// Loads a mesh leaf: imports the OBJ file, validates it (the default
 /// options of the validation layer) and refuses it with the validator's
 /// verdict and first violations unless it is a valid closed solid.
-///
-/// A valid mesh still cannot become a leaf in this build: the polyhedral
-/// leaf needs the query layer's exact ray–solid crossings, which has not
-/// been merged yet.
 fn load_mesh(file: &Path) -> Result<Arc<dyn Primitive>, String> {
     let import = crate::io::import_obj(file, &crate::io::ObjOptions::default())
         .map_err(|e| e.to_string())?;
@@ -348,10 +344,9 @@ fn load_mesh(file: &Path) -> Result<Arc<dyn Primitive>, String> {
         crate::validate::validate_and_build(&import, &crate::validate::Options::default())
             .map_err(|e| e.to_string())?;
     match solid {
-        Some(_) if report.is_valid() => Err(
-            "a valid closed solid, but polyhedral leaves need the query layer's ray–solid crossings, not yet in this build"
-                .to_string(),
-        ),
+        Some(solid) if report.is_valid() => Polyhedron::try_new(solid)
+            .map(|p| Arc::new(p) as Arc<dyn Primitive>)
+            .map_err(|e| e.to_string()),
         _ => {
             let mut message = format!(
                 "not a valid closed solid ({}); {} violation(s)",

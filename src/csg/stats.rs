@@ -29,7 +29,9 @@ pub struct Stats {
     /// [`exact_fallbacks`](crate::geom::exact_fallbacks) around the query).
     pub exact_fallbacks: u64,
     /// Ties decided by symbolic perturbation (a ray lying exactly in a face
-    /// plane of a box or half-space).
+    /// plane of a box or half-space). The query layer's perturbations inside
+    /// polyhedral leaves (rays through edges and vertices) are not reported
+    /// by that layer and so are not counted here.
     pub tie_breaks: u64,
     /// Surface normals computed (only images need them).
     pub normals: u64,

@@ -6,6 +6,7 @@
 
 mod aabb;
 mod dot;
+pub mod exact;
 mod plane;
 pub mod polygon;
 mod predicates;
@@ -14,6 +15,7 @@ mod tolerance;
 
 pub use aabb::Aabb;
 pub use dot::{dot_sign, side_of_plane};
+pub use exact::{line_side, line_side_sos};
 pub use plane::{Plane, PlaneError, PlaneFit, newell_vector_area};
 pub use predicates::{Sign, exact_fallbacks, orient2d, orient3d, reset_exact_fallbacks};
 pub use ray::{Ray, Segment};

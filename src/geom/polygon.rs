@@ -116,6 +116,126 @@ pub fn segments_touch(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
     true
 }
 
+/// Where a point lies relative to a polygon.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PolygonLocation {
+    /// Strictly inside (non-zero winding number).
+    Inside,
+    /// Strictly outside.
+    Outside,
+    /// Exactly on the open edge from vertex `i` to vertex `i + 1` (mod n).
+    OnEdge(usize),
+    /// Exactly at vertex `i`.
+    OnVertex(usize),
+}
+
+/// Locates a point relative to a polygon of `n` vertices using only an
+/// orientation oracle, so that the point itself never has to be constructed.
+///
+/// `orient(i, j)` must return the exact sign of `orient2d(vᵢ, vⱼ, p)` up to
+/// one global sign factor (the same for every call); `collinear(i, j, k)`
+/// whether vertices `i`, `j`, `k` are exactly collinear. The polygon may be
+/// non-convex; it must not have all its vertices collinear (then the answer is
+/// [`PolygonLocation::Outside`] unless the point is a vertex).
+///
+/// Method: the point is at vertex `i` iff it is collinear with `vᵢ` and every
+/// other vertex; on the open edge `(i, i + 1)` iff it is on the edge's line and
+/// on the same side of `vᵢ₊₁ vₖ` and `vₖ vᵢ` for a vertex `vₖ` off that line;
+/// otherwise its winding number is the signed count of fan triangles
+/// `(v₀, vₖ, vₖ₊₁)` that contain it, a point exactly on a fan diagonal being
+/// assigned consistently to one side of it (the diagonal's sign is taken as
+/// positive when zero). Non-zero winding is [`PolygonLocation::Inside`].
+pub fn locate_with_oracle(
+    n: usize,
+    orient: impl Fn(usize, usize) -> Sign,
+    collinear: impl Fn(usize, usize, usize) -> bool,
+) -> PolygonLocation {
+    if n < 3 {
+        return PolygonLocation::Outside;
+    }
+    let signs: smallvec::SmallVec<[Sign; 8]> = (0..n).map(|i| orient(i, (i + 1) % n)).collect();
+    // At a vertex: collinear with it and all others.
+    for i in 0..n {
+        let prev = (i + n - 1) % n;
+        if signs[i] == Sign::Zero
+            && signs[prev] == Sign::Zero
+            && (0..n)
+                .filter(|&j| j != i)
+                .all(|j| orient(i, j) == Sign::Zero)
+        {
+            return PolygonLocation::OnVertex(i);
+        }
+    }
+    // On an open edge.
+    for i in 0..n {
+        if signs[i] != Sign::Zero {
+            continue;
+        }
+        let j = (i + 1) % n;
+        if let Some(k) = (0..n).find(|&k| k != i && k != j && !collinear(i, j, k)) {
+            let s1 = orient(j, k);
+            if s1 != Sign::Zero && s1 == orient(k, i) {
+                return PolygonLocation::OnEdge(i);
+            }
+        }
+    }
+    // Strictly inside or outside: signed count of fan triangles.
+    let diagonal = |k: usize| match orient(0, k) {
+        Sign::Zero => Sign::Positive,
+        s => s,
+    };
+    let mut winding = 0i32;
+    for k in 1..n - 1 {
+        let s1 = diagonal(k);
+        let s2 = signs[k];
+        let s3 = -diagonal(k + 1);
+        if s1 == s2 && s2 == s3 {
+            winding += s1.as_i32();
+        }
+    }
+    if winding != 0 {
+        PolygonLocation::Inside
+    } else {
+        PolygonLocation::Outside
+    }
+}
+
+/// Locates the point `q` relative to the 2-D polygon `points` (any simple
+/// polygon, convex or not, either winding), exactly; see
+/// [`locate_with_oracle`].
+#[must_use]
+pub fn locate_point_in_polygon(points: &[DVec2], q: DVec2) -> PolygonLocation {
+    locate_with_oracle(
+        points.len(),
+        |i, j| orient2d(points[i], points[j], q),
+        |i, j, k| orient2d(points[i], points[j], points[k]) == Sign::Zero,
+    )
+}
+
+/// Whether the point `q`, assumed exactly coplanar with the triangle
+/// `a, b, c`, lies in the closed triangle; decided exactly by projecting onto
+/// an axis plane in which the triangle has non-zero area. A triangle of zero
+/// area contains nothing.
+#[must_use]
+pub fn coplanar_point_in_closed_triangle(a: DVec3, b: DVec3, c: DVec3, q: DVec3) -> bool {
+    for axis in [Axis::X, Axis::Y, Axis::Z] {
+        let p = Projection {
+            axis,
+            flipped: false,
+        };
+        let (pa, pb, pc, pq) = (p.apply(a), p.apply(b), p.apply(c), p.apply(q));
+        let s = orient2d(pa, pb, pc);
+        if s == Sign::Zero {
+            continue;
+        }
+        let bad = -s;
+        return orient2d(pa, pb, pq) != bad
+            && orient2d(pb, pc, pq) != bad
+            && orient2d(pc, pa, pq) != bad;
+    }
+    false
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -169,5 +289,34 @@ mod tests {
         assert!(find_self_intersection(&folded).is_some());
         let touching = [v(0., 0.), v(2., 0.), v(2., 2.), v(1., 0.), v(0., 2.)];
         assert!(find_self_intersection(&touching).is_some());
+    }
+
+    #[test]
+    fn locate_point_in_non_convex_polygon() {
+        let l_shape = [
+            v(0., 0.),
+            v(2., 0.),
+            v(2., 1.),
+            v(1., 1.),
+            v(1., 2.),
+            v(0., 2.),
+        ];
+        use PolygonLocation::*;
+        assert_eq!(locate_point_in_polygon(&l_shape, v(0.5, 0.5)), Inside);
+        assert_eq!(locate_point_in_polygon(&l_shape, v(0.5, 1.5)), Inside);
+        assert_eq!(locate_point_in_polygon(&l_shape, v(1.5, 0.5)), Inside);
+        assert_eq!(locate_point_in_polygon(&l_shape, v(1.5, 1.5)), Outside);
+        assert_eq!(locate_point_in_polygon(&l_shape, v(1.0, 1.0)), OnVertex(3));
+        assert_eq!(locate_point_in_polygon(&l_shape, v(1.5, 1.0)), OnEdge(2));
+        assert_eq!(locate_point_in_polygon(&l_shape, v(3.0, 0.0)), Outside);
+        assert_eq!(locate_point_in_polygon(&l_shape, v(1.0, 0.0)), OnEdge(0));
+        // On a fan diagonal (0 -> 2, 0 -> 3 ...) inside the polygon.
+        assert_eq!(locate_point_in_polygon(&l_shape, v(0.5, 0.5)), Inside);
+        assert_eq!(locate_point_in_polygon(&l_shape, v(0.8, 0.8)), Inside);
+        // Clockwise copy gives the same answers.
+        let mut cw = l_shape;
+        cw.reverse();
+        assert_eq!(locate_point_in_polygon(&cw, v(0.8, 0.8)), Inside);
+        assert_eq!(locate_point_in_polygon(&cw, v(1.5, 1.5)), Outside);
     }
 }

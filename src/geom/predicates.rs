@@ -99,7 +99,7 @@ pub fn reset_exact_fallbacks() {
     FALLBACKS.with(|c| c.set(0));
 }
 
-pub(super) fn count_fallback() {
+pub(crate) fn count_fallback() {
     FALLBACKS.with(|c| c.set(c.get() + 1));
 }
 
@@ -126,6 +126,7 @@ const HALF_EPSILON: f64 = f64::EPSILON / 2.0;
 ///
 /// Non-finite input gives an unspecified sign (never a panic).
 #[must_use]
+#[inline]
 pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     let left = (a.x - c.x) * (b.y - c.y);
     let right = (a.y - c.y) * (b.x - c.x);
@@ -137,6 +138,8 @@ pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     exact_orient2d(a, b, c)
 }
 
+#[cold]
+#[inline(never)]
 fn exact_orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     count_fallback();
     let p = |v: DVec2| robust::Coord { x: v.x, y: v.y };
@@ -162,6 +165,7 @@ fn exact_orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
 ///
 /// Non-finite input gives an unspecified sign (never a panic).
 #[must_use]
+#[inline]
 pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     // Shewchuk's layout: differences against d, determinant sign negated.
     let ad = a - d;
@@ -185,6 +189,8 @@ pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     exact_orient3d(a, b, c, d)
 }
 
+#[cold]
+#[inline(never)]
 fn exact_orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     count_fallback();
     let p = |v: DVec3| robust::Coord3D {

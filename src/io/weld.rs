@@ -506,6 +506,42 @@ mod tests {
     }
 
     #[test]
+    fn a_weld_that_would_make_a_face_repeat_a_vertex_is_refused() {
+        // Quad 0 has corners 1 and 2 a hair apart. Triangle 1 glues to the
+        // quad along 0–1 and triangle 2 along 2–3; both triangles use vertex
+        // 5, so gluing both would merge corners 1 and 2 of the quad.
+        let positions = vec![
+            DVec3::new(0., 0., 0.),
+            DVec3::new(1., 0., 0.),
+            DVec3::new(1., 1e-7, 0.),
+            DVec3::new(0., 1., 0.),
+            DVec3::new(0., 0., 0.),
+            DVec3::new(1., 1e-7, 0.),
+            DVec3::new(0.5, -1., 0.),
+            DVec3::new(0., 1., 0.),
+            DVec3::new(0.5, 2., 0.),
+        ];
+        let soup = PolygonSoup::new(positions, [vec![0, 1, 2, 3], vec![5, 4, 6], vec![7, 5, 8]]);
+        let tolerance = Tolerance {
+            weld: 1e-6,
+            ..Tolerance::default()
+        };
+        let (welded, _, _, report) = weld(soup, (1..=9).collect(), WeldMode::Within(tolerance));
+        assert!(
+            report
+                .refused
+                .iter()
+                .any(|r| matches!(r, WeldRefusal::WouldRepeatVertex { face: 0, .. })),
+            "{report:?}"
+        );
+        let quad = &welded.polygons[0].vertices;
+        let mut distinct = quad.to_vec();
+        distinct.sort_unstable();
+        distinct.dedup();
+        assert_eq!(distinct.len(), 4, "{quad:?}");
+    }
+
+    #[test]
     fn coincident_corners_without_glued_edges_stay_apart() {
         // Two triangles touching at a corner through two separate vertices:
         // no pair of their open edges joins the same positions, so nothing

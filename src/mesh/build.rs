@@ -64,7 +64,7 @@ pub enum BuildError {
         position: DVec3,
     },
     /// An edge shared by three or more polygons.
-    #[error("edge {}–{} is used by {} polygons {polygons:?} (lines {lines:?}); a manifold edge has at most 2", .vertices[0], .vertices[1], .polygons.len())]
+    #[error("edge {}–{} is used by {} polygons {polygons:?}{}; a manifold edge has at most 2", .vertices[0], .vertices[1], .polygons.len(), at_lines(.lines))]
     NonManifoldEdge {
         /// The edge's end vertices.
         vertices: [usize; 2],
@@ -75,7 +75,7 @@ pub enum BuildError {
     },
     /// Two polygons run an edge in the same direction: their orientations
     /// disagree.
-    #[error("edge {}–{} is run in the same direction by polygons {} and {} (lines {lines:?}): their orientations disagree", .vertices[0], .vertices[1], .polygons[0], .polygons[1])]
+    #[error("edge {}–{} is run in the same direction by polygons {} and {}{}: their orientations disagree", .vertices[0], .vertices[1], .polygons[0], .polygons[1], at_lines(.lines))]
     InconsistentOrientation {
         /// The edge's vertices, in the direction both polygons use.
         vertices: [usize; 2],
@@ -110,6 +110,16 @@ pub enum BuildError {
 
 fn at_line(line: Option<usize>) -> String {
     line.map(|l| format!(" (line {l})")).unwrap_or_default()
+}
+
+/// " (lines 4, 9)" for the known lines of several polygons, or nothing.
+fn at_lines(lines: &[Option<usize>]) -> String {
+    let known: Vec<String> = lines.iter().flatten().map(ToString::to_string).collect();
+    if known.is_empty() {
+        String::new()
+    } else {
+        format!(" (lines {})", known.join(", "))
+    }
 }
 
 /// Half-edges in index space: corners of polygons, then holes' half-edges.

@@ -188,6 +188,47 @@ pub fn pyramid(base: &[DVec3], apex: DVec3) -> Result<Solid, BuildError> {
     Solid::try_from_soup(&PolygonSoup::new(positions, polygons))
 }
 
+/// A closed triangulated unit sphere (a UV sphere) as a soup: `rings`
+/// latitude bands (at least 2) and `2 · rings` longitude segments, giving
+/// `4 · rings · (rings − 1)` triangles wound outward, with poles at `±z`.
+/// Benchmarks and tests use it as a scalable curved mesh.
+#[must_use]
+pub fn sphere_soup(rings: usize) -> PolygonSoup {
+    let rings = rings.max(2);
+    let segments = 2 * rings;
+    let mut positions = vec![DVec3::Z, -DVec3::Z];
+    for i in 1..rings {
+        let theta = std::f64::consts::PI * i as f64 / rings as f64;
+        for j in 0..segments {
+            let phi = std::f64::consts::TAU * j as f64 / segments as f64;
+            positions.push(DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            ));
+        }
+    }
+    let at = |i: usize, j: usize| 2 + (i - 1) * segments + j % segments;
+    let mut polygons: Vec<[usize; 3]> = Vec::with_capacity(4 * rings * (rings - 1));
+    for j in 0..segments {
+        polygons.push([0, at(1, j), at(1, j + 1)]);
+        polygons.push([1, at(rings - 1, j + 1), at(rings - 1, j)]);
+    }
+    for i in 1..rings - 1 {
+        for j in 0..segments {
+            polygons.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            polygons.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    PolygonSoup::new(positions, polygons)
+}
+
+/// The solid of [`sphere_soup`].
+#[must_use]
+pub fn sphere(rings: usize) -> Solid {
+    Solid::try_from_soup(&sphere_soup(rings)).expect("a UV sphere is a closed manifold")
+}
+
 /// An L-shaped, non-convex prism of height 1 over the polygon
 /// `(0,0) (2,0) (2,1) (1,1) (1,2) (0,2)`: volume 3, 8 faces.
 #[must_use]

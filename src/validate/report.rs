@@ -56,8 +56,8 @@ pub enum Rule {
     /// with negative signed volume, or a cavity with positive.
     ShellOrientedInward,
     /// A face crosses or touches a face it shares no vertex with, or a
-    /// neighbour folds onto it (coplanar, same side of a shared edge) or
-    /// passes through it (sharing one vertex).
+    /// neighbour folds onto it (coplanar, same side of a shared edge) or,
+    /// sharing one vertex, passes through it or overlaps it in its plane.
     SelfIntersection,
 }
 

@@ -44,6 +44,30 @@ def write_obj(path, manifold):
     return verts
 
 
+def broken_meshes(manifold):
+    """Meshes manifold3d refuses, made by breaking one of its own: a removed
+    triangle (a hole) and a flipped triangle (inconsistent orientation)."""
+    mesh = manifold.to_mesh64()
+    verts = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
+    tris = np.asarray(mesh.tri_verts, dtype=np.int64)
+    holed = tris[1:]
+    flipped = tris.copy()
+    flipped[0] = flipped[0][::-1]
+    return {"b_hole": (verts, holed), "b_flipped": (verts, flipped)}
+
+
+def status_of(verts, tris):
+    built = M(m3d.Mesh64(vert_properties=np.array(verts, dtype=np.float64), tri_verts=np.array(tris, dtype=np.uint64)))
+    return str(built.status()).split(".")[-1]
+
+
+def write_raw_obj(path, verts, tris):
+    with open(path, "w") as f:
+        f.write("# broken on purpose (tests/oracle/manifold_oracle.py)\n")
+        f.write("".join("v %.17g %.17g %.17g\n" % tuple(v) for v in verts.tolist()))
+        f.write("".join("f %d %d %d\n" % tuple(t) for t in (tris + 1).tolist()))
+
+
 def named_meshes(rng):
     """Closed meshes from manifold3d primitives and booleans."""
     cube = M.cube((2.0, 2.0, 2.0), center=True)
@@ -177,6 +201,10 @@ def main():
             entry["hits"] = ray_hits(manifold, origins, dirs, length)
             entry["ray_length"] = length
         report["meshes"][name] = entry
+    report["broken"] = {}
+    for name, (verts, tris) in broken_meshes(M.sphere(1.0, 24)).items():
+        write_raw_obj(os.path.join(args.out_dir, name + ".obj"), verts, tris)
+        report["broken"][name] = {"status": status_of(verts, tris)}
     report["csg"] = csg_cases(rng, args.csg_cases, args.out_dir)
     with open(os.path.join(args.out_dir, "oracle.json"), "w") as f:
         json.dump(report, f)

@@ -1,36 +1,38 @@
-//! `wingedge classify TARGET POINTS`: inside, outside or boundary per point.
+//! `wingedge classify MESH.obj POINTS`: inside / outside / boundary per point.
 
-use std::io::Write;
+use std::fmt::Write as _;
 use std::path::Path;
 use std::process::ExitCode;
 
 use glam::DVec3;
-use wingedge::csg::Stats;
+use wingedge::query::Method;
 
-use crate::{lines, target};
+use crate::input::{load_mesh, parse_lines, read_source};
 
-pub fn run(target: &Path, points: &Path, show_stats: bool) -> ExitCode {
-    let scene = match target::load(target) {
-        Ok(s) => s,
-        Err(e) => return crate::fail(&e),
-    };
-    let rows = match lines::read_numbers(points, 3) {
-        Ok(r) => r,
-        Err(e) => return crate::fail(&e),
-    };
-    let mut stats = Stats::default();
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    for p in rows {
-        let class = scene
-            .csg
-            .classify_point(DVec3::new(p[0], p[1], p[2]), &mut stats);
-        if writeln!(out, "{class}").is_err() {
-            return ExitCode::from(2);
+pub fn run(mesh: &Path, points: &str, method: Method) -> ExitCode {
+    match classify(mesh, points, method) {
+        Ok(out) => {
+            print!("{out}");
+            ExitCode::SUCCESS
+        }
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
         }
     }
-    let _ = out.flush();
-    if show_stats {
-        eprintln!("{stats}");
+}
+
+fn classify(mesh: &Path, source: &str, method: Method) -> Result<String, String> {
+    let text = read_source(source)?;
+    let lines = parse_lines::<3>(source, &text)?;
+    let (_, accel) = load_mesh(mesh)?;
+    let points: Vec<DVec3> = lines.iter().map(|(_, p)| DVec3::from_array(*p)).collect();
+    let classes = accel
+        .classify_batch(&points, method)
+        .map_err(|e| format!("{}: {e}", mesh.display()))?;
+    let mut out = String::with_capacity(classes.len() * 8);
+    for c in classes {
+        let _ = writeln!(out, "{}", c.as_word());
     }
-    ExitCode::SUCCESS
+    Ok(out)
 }

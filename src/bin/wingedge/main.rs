@@ -7,10 +7,12 @@ use clap::{Parser, Subcommand};
 
 mod classify;
 mod info;
-mod lines;
+mod input;
 mod progress;
 mod raycast;
 mod render;
+mod scene_classify;
+mod scene_raycast;
 mod target;
 mod validate;
 mod volume;
@@ -38,6 +40,55 @@ enum Command {
         #[arg(long, value_name = "OUT.obj")]
         write: Option<PathBuf>,
     },
+    /// Classify points against a closed solid or a CSG scene: prints
+    /// `inside`, `outside` or `boundary`, one per input point, in input
+    /// order. Exact for polyhedra and half-spaces.
+    Classify {
+        /// The OBJ file of the solid, or a CSG scene (`.json`).
+        mesh: PathBuf,
+        /// A text file with one `x y z` per line (`-` for standard input);
+        /// blank lines and `#` comments are skipped.
+        points: String,
+        /// parity (+x ray, any closed solid), normals (convex solids only) or
+        /// winding (generalized winding number; open meshes too). Meshes
+        /// only: a scene classifies by its tree.
+        #[arg(long, value_enum, default_value_t = MethodArg::Parity)]
+        method: MethodArg,
+        /// Scenes: print the CSG work counters to standard error.
+        #[arg(long)]
+        stats: bool,
+    },
+    /// Cast rays at a closed solid: prints, per ray, `inside`, `outside` or
+    /// `boundary` for its origin, then the ascending parameters t > 0 of its
+    /// crossings with the boundary. For a CSG scene (`.json`): per ray,
+    /// `inside` or `outside` (just after the origin), then its spans inside
+    /// the solid as `[t0, t1]`.
+    Raycast {
+        /// The OBJ file of the solid, or a CSG scene (`.json`).
+        mesh: PathBuf,
+        /// A text file with one `ox oy oz dx dy dz` per line (`-` for standard
+        /// input); blank lines and `#` comments are skipped.
+        rays: String,
+        /// Scenes: print the CSG work counters to standard error.
+        #[arg(long)]
+        stats: bool,
+    },
+    /// Print the volume of a mesh or a scene: closed form for a single
+    /// solid, otherwise by integrating ray spans over a grid.
+    Volume {
+        /// The scene (.json) or mesh file.
+        target: PathBuf,
+        /// Grid spacing of the parallel rays (default: the longest side of
+        /// the bounds / 400).
+        #[arg(long, value_name = "H")]
+        spacing: Option<f64>,
+        /// Integrate ray spans even for a single solid with a closed form.
+        #[arg(long)]
+        integrate: bool,
+        /// Print the work counters to standard error.
+        #[arg(long)]
+        stats: bool,
+    },
     /// Validate OBJ files: a graded verdict per file and every defect with
     /// its OBJ line. Exit code 0 when every file is a valid closed solid, 1
     /// when any has defects, 2 when any cannot be read.
@@ -63,44 +114,6 @@ enum Command {
         #[arg(long, default_value_t = 3)]
         show: usize,
     },
-    /// Classify points against a scene (.json) or a mesh: one word per line,
-    /// inside, outside or boundary, in input order.
-    Classify {
-        /// The scene (.json) or mesh file.
-        target: PathBuf,
-        /// One `x y z` per line; `-` for standard input.
-        points: PathBuf,
-        /// Print the work counters to standard error.
-        #[arg(long)]
-        stats: bool,
-    },
-    /// Cast rays through a scene (.json) or a mesh: per ray, whether its
-    /// origin is inside, then its spans inside the solid as [t0, t1].
-    Raycast {
-        /// The scene (.json) or mesh file.
-        target: PathBuf,
-        /// One `ox oy oz dx dy dz` per line; `-` for standard input.
-        rays: PathBuf,
-        /// Print the work counters to standard error.
-        #[arg(long)]
-        stats: bool,
-    },
-    /// Print the volume of a mesh or a scene: closed form for a single
-    /// solid, otherwise by integrating ray spans over a grid.
-    Volume {
-        /// The scene (.json) or mesh file.
-        target: PathBuf,
-        /// Grid spacing of the parallel rays (default: the longest side of
-        /// the bounds / 400).
-        #[arg(long, value_name = "H")]
-        spacing: Option<f64>,
-        /// Integrate ray spans even for a single solid with a closed form.
-        #[arg(long)]
-        integrate: bool,
-        /// Print the work counters to standard error.
-        #[arg(long)]
-        stats: bool,
-    },
     /// Render a scene to a PNG: Lambert shading with the scene's light,
     /// shadows only if the scene asks.
     Render {
@@ -118,6 +131,27 @@ enum Command {
     },
 }
 
+/// The `--method` values of `classify`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum MethodArg {
+    /// Parity of a +x ray's crossings.
+    Parity,
+    /// Inner side of every face plane (convex solids only).
+    Normals,
+    /// Generalized winding number above one half.
+    Winding,
+}
+
+impl From<MethodArg> for wingedge::query::Method {
+    fn from(m: MethodArg) -> Self {
+        match m {
+            MethodArg::Parity => wingedge::query::Method::Parity,
+            MethodArg::Normals => wingedge::query::Method::Normals,
+            MethodArg::Winding => wingedge::query::Method::Winding,
+        }
+    }
+}
+
 /// Prints `error: message` and returns exit code 2.
 fn fail(message: &str) -> ExitCode {
     eprintln!("error: {message}");
@@ -133,15 +167,21 @@ fn main() -> ExitCode {
             write,
         } => info::run(file, builtin, write),
         Command::Classify {
-            target,
+            mesh,
             points,
             stats,
-        } => classify::run(&target, &points, stats),
-        Command::Raycast {
-            target,
-            rays,
-            stats,
-        } => raycast::run(&target, &rays, stats),
+            ..
+        } if target::is_scene(&mesh) => scene_classify::run(&mesh, &points, stats),
+        Command::Classify {
+            mesh,
+            points,
+            method,
+            ..
+        } => classify::run(&mesh, &points, method.into()),
+        Command::Raycast { mesh, rays, stats } if target::is_scene(&mesh) => {
+            scene_raycast::run(&mesh, &rays, stats)
+        }
+        Command::Raycast { mesh, rays, .. } => raycast::run(&mesh, &rays),
         Command::Volume {
             target,
             spacing,

@@ -1,52 +1,50 @@
-//! `wingedge raycast TARGET RAYS`: the in/out spans of each ray.
+//! `wingedge raycast MESH.obj RAYS`: per ray, where its origin is and the
+//! parameters of its crossings with the boundary.
 
 use std::fmt::Write as _;
-use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
 
 use glam::DVec3;
-use wingedge::csg::Stats;
 use wingedge::geom::Ray;
 
-use crate::{lines, target};
+use crate::input::{load_mesh, parse_lines, read_source};
 
-pub fn run(target: &Path, rays: &Path, show_stats: bool) -> ExitCode {
-    let scene = match target::load(target) {
-        Ok(s) => s,
-        Err(e) => return crate::fail(&e),
-    };
-    let rows = match lines::read_numbers(rays, 6) {
-        Ok(r) => r,
-        Err(e) => return crate::fail(&e),
-    };
-    let mut stats = Stats::default();
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    for (i, r) in rows.iter().enumerate() {
-        let ray = Ray::new(DVec3::new(r[0], r[1], r[2]), DVec3::new(r[3], r[4], r[5]));
+pub fn run(mesh: &Path, rays: &str) -> ExitCode {
+    match raycast(mesh, rays) {
+        Ok(out) => {
+            print!("{out}");
+            ExitCode::SUCCESS
+        }
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn raycast(mesh: &Path, source: &str) -> Result<String, String> {
+    let text = read_source(source)?;
+    let lines = parse_lines::<6>(source, &text)?;
+    let mut rays = Vec::with_capacity(lines.len());
+    for (line, v) in &lines {
+        let ray = Ray::new(DVec3::new(v[0], v[1], v[2]), DVec3::new(v[3], v[4], v[5]));
         if !ray.is_valid() {
-            return crate::fail(&format!(
-                "{}: ray {}: the direction is zero",
-                rays.display(),
-                i + 1
-            ));
+            return Err(format!("{source}:{line}: the direction is zero"));
         }
-        let spans = scene.csg.spans(&ray, &mut stats);
-        let mut line = String::from(if spans.origin_inside {
-            "inside"
-        } else {
-            "outside"
-        });
-        for (a, b) in spans.intervals() {
-            let _ = write!(line, " [{a}, {b}]");
-        }
-        if writeln!(out, "{line}").is_err() {
-            return ExitCode::from(2);
-        }
+        rays.push(ray);
     }
-    let _ = out.flush();
-    if show_stats {
-        eprintln!("{stats}");
+    let (_, accel) = load_mesh(mesh)?;
+    let answers = accel
+        .ray_crossings_batch(&rays)
+        .map_err(|e| format!("{}: {e}", mesh.display()))?;
+    let mut out = String::with_capacity(answers.len() * 24);
+    for a in answers {
+        out.push_str(a.origin.as_word());
+        for h in &a.hits {
+            let _ = write!(out, " {:?}", h.t);
+        }
+        out.push('\n');
     }
-    ExitCode::SUCCESS
+    Ok(out)
 }

@@ -4,12 +4,15 @@ use std::path::Path;
 
 use wingedge::csg::Scene;
 
+/// Whether TARGET names a scene file (`.json`) rather than a mesh.
+pub fn is_scene(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+}
+
 /// Loads TARGET as a scene (`.json`) or as a one-leaf scene of a mesh.
 pub fn load(path: &Path) -> Result<Scene, String> {
-    let is_json = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("json"));
-    if is_json {
+    if is_scene(path) {
         return Scene::from_file(path).map_err(|e| e.to_string());
     }
     // A mesh is the scene {"root": {"mesh": PATH}}.

@@ -16,10 +16,11 @@
 //! - one vertex `v`, triangles `(v, a, b)` and `(v, c, d)`: reported when
 //!   they cross, that is when segment `ab` passes strictly through the
 //!   interior of the second triangle or `cd` through the first (a fin
-//!   through a neighbour). Contacts only along boundaries beyond `v` (a
-//!   vertex on a neighbour's edge, as a zero-area sliver produces) and
-//!   coplanar overlaps around a shared vertex are not reported: the
-//!   degenerate face that causes the first is reported instead;
+//!   through a neighbour), or, when the two are coplanar, when their
+//!   corners at `v` overlap (a flat fan that wraps over itself). Contacts
+//!   only along boundaries beyond `v` (a vertex on a neighbour's edge, as a
+//!   zero-area sliver produces) are not reported: the degenerate face that
+//!   causes them is;
 //! - an edge `uw`, triangles `(u, w, a)` and `(u, w, b)`: when not coplanar
 //!   they meet only along `uw`; when coplanar they overlap (a fold) iff `a`
 //!   and `b` lie on the same side of `uw`.
@@ -301,7 +302,21 @@ fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Triangle) -> bo
         [(i, j)] => {
             let (a1, a2) = (pa[(i + 1) % 3], pa[(i + 2) % 3]);
             let (b1, b2) = (pb[(j + 1) % 3], pb[(j + 2) % 3]);
-            segment_crosses_interior(a1, a2, pb) || segment_crosses_interior(b1, b2, pa)
+            let v = pa[i];
+            let side_a = |p: DVec3| orient3d(pa[0], pa[1], pa[2], p);
+            let (s1, s2) = (side_a(b1), side_a(b2));
+            if s1 == Sign::Zero && s2 == Sign::Zero {
+                // Coplanar. Near v each triangle is its corner: interiors
+                // overlap iff the two corners do.
+                let projection = projection_of(pa);
+                let p = |x: DVec3| projection.apply(x);
+                return corners_overlap(p(v), [p(a1), p(a2)], [p(b1), p(b2)]);
+            }
+            let side_b = |p: DVec3| orient3d(pb[0], pb[1], pb[2], p);
+            (s1 != Sign::Zero && s2 == -s1 && crosses_inside(b1, b2, pa)) || {
+                let (t1, t2) = (side_b(a1), side_b(a2));
+                t1 != Sign::Zero && t2 == -t1 && crosses_inside(a1, a2, pb)
+            }
         }
         [(i0, _), (i1, _)] => {
             let (u, w) = (pa[i0], pa[i1]);
@@ -370,15 +385,38 @@ fn segment_meets_triangle(a: DVec3, b: DVec3, sa: Sign, sb: Sign, t: [DVec3; 3])
     !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
 }
 
-/// Whether segment `ab` passes through the open interior of triangle `t`:
-/// its ends strictly on opposite sides of `t`'s plane and the crossing
-/// point strictly inside `t`. Exact.
-fn segment_crosses_interior(a: DVec3, b: DVec3, t: [DVec3; 3]) -> bool {
-    let sa = orient3d(t[0], t[1], t[2], a);
-    let sb = orient3d(t[0], t[1], t[2], b);
-    if sa == Sign::Zero || sb != -sa {
-        return false;
-    }
+/// Whether the corners at `v` of two coplanar triangles `(v, a…)` and
+/// `(v, b…)` (each less than a half-turn) share an open set of directions:
+/// a side ray of one strictly inside the other, or the same two side rays.
+/// Exact (2-D orientations and coordinate comparisons).
+fn corners_overlap(v: DVec2, a: [DVec2; 2], b: [DVec2; 2]) -> bool {
+    let ccw = |[p, q]: [DVec2; 2]| {
+        if orient2d(v, p, q) == Sign::Negative {
+            [q, p]
+        } else {
+            [p, q]
+        }
+    };
+    let (a, b) = (ccw(a), ccw(b));
+    let strictly_inside = |[p, q]: [DVec2; 2], r: DVec2| {
+        orient2d(v, p, r) == Sign::Positive && orient2d(v, r, q) == Sign::Positive
+    };
+    // Same ray from v: collinear and every coordinate on the same side of v.
+    let same_ray = |p: DVec2, q: DVec2| {
+        let side = |x: f64, o: f64| Sign::of(x - o);
+        orient2d(v, p, q) == Sign::Zero
+            && side(p.x, v.x) == side(q.x, v.x)
+            && side(p.y, v.y) == side(q.y, v.y)
+    };
+    b.iter().any(|&r| strictly_inside(a, r))
+        || a.iter().any(|&r| strictly_inside(b, r))
+        || (same_ray(a[0], b[0]) && same_ray(a[1], b[1]))
+}
+
+/// For a segment `ab` whose ends lie strictly on opposite sides of the
+/// plane of triangle `t`: whether it crosses that plane strictly inside `t`
+/// (the line passes all three edges on the same side). Exact.
+fn crosses_inside(a: DVec3, b: DVec3, t: [DVec3; 3]) -> bool {
     let s = orient3d(a, b, t[0], t[1]);
     s != Sign::Zero && orient3d(a, b, t[1], t[2]) == s && orient3d(a, b, t[2], t[0]) == s
 }
@@ -479,6 +517,21 @@ mod tests {
             [vec![0, 1]]
         );
         assert!(report_for(q, vec![vec![0, 1, 2], vec![0, 5, 6]]).is_empty());
+        // Sharing vertex 0 in one plane: corners that overlap, and corners
+        // that only meet along a ray.
+        let r = vec![
+            v(0., 0., 0.),
+            v(2., 0., 0.),
+            v(0., 2., 0.),
+            v(1., 0.5, 0.),
+            v(0.5, 1., 0.),
+            v(-2., 0., 0.),
+        ];
+        assert_eq!(
+            report_for(r.clone(), vec![vec![0, 1, 2], vec![0, 3, 4]]),
+            [vec![0, 1]]
+        );
+        assert!(report_for(r, vec![vec![0, 1, 2], vec![0, 2, 5]]).is_empty());
     }
 
     #[test]

@@ -1,0 +1,72 @@
+//! Benchmarks of the query layer on a generated UV sphere (seeded inputs):
+//! accel build, point classification (parity, batch) and first-hit rays.
+//!
+//! The table against the peers on the shared meshes comes from
+//! `examples/query_table.rs` and `examples/peers_query.py`.
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use glam::DVec3;
+use std::hint::black_box;
+use wingedge::geom::Ray;
+use wingedge::mesh::builders;
+use wingedge::query::{Accel, Method};
+
+/// Seeded uniform numbers in [0, 1).
+fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut s = seed;
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+fn points(n: usize) -> Vec<DVec3> {
+    let mut u = uniform(0x9E37_79B9_7F4A_7C15);
+    (0..n)
+        .map(|_| DVec3::new(u(), u(), u()) * 2.0 - DVec3::ONE)
+        .collect()
+}
+
+fn rays(n: usize) -> Vec<Ray> {
+    let mut u = uniform(0xD1B5_4A32_D192_ED03);
+    (0..n)
+        .map(|_| {
+            let o = (DVec3::new(u(), u(), u()) * 2.0 - DVec3::ONE).normalize_or(DVec3::X) * 2.6;
+            let target = DVec3::new(u(), u(), u()) * 2.0 - DVec3::ONE;
+            Ray::new(o, (target - o).normalize())
+        })
+        .collect()
+}
+
+fn query(c: &mut Criterion) {
+    let mut group = c.benchmark_group("query");
+    group.sample_size(10);
+    for n in [50, 200] {
+        let solid = builders::sphere(n);
+        let tris = solid.face_count();
+        group.throughput(Throughput::Elements(tris as u64));
+        group.bench_with_input(BenchmarkId::new("accel_build", tris), &solid, |b, s| {
+            b.iter(|| Accel::new(black_box(s)))
+        });
+        let accel = Accel::new(&solid);
+        let pts = points(100_000);
+        group.throughput(Throughput::Elements(pts.len() as u64));
+        group.bench_with_input(BenchmarkId::new("classify_parity", tris), &pts, |b, p| {
+            b.iter(|| accel.classify_batch(black_box(p), Method::Parity))
+        });
+        let rs = rays(100_000);
+        group.throughput(Throughput::Elements(rs.len() as u64));
+        group.bench_with_input(BenchmarkId::new("first_hit", tris), &rs, |b, r| {
+            b.iter(|| accel.first_hit_batch(black_box(r)))
+        });
+        group.bench_with_input(BenchmarkId::new("ray_crossings", tris), &rs, |b, r| {
+            b.iter(|| accel.ray_crossings_batch(black_box(r)))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, query);
+criterion_main!(benches);

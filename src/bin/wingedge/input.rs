@@ -1,0 +1,66 @@
+//! Shared input handling for the query subcommands: loading a mesh and
+//! reading numeric lines from a file or standard input.
+
+use std::io::Read;
+use std::path::Path;
+
+use wingedge::io::read_obj;
+use wingedge::mesh::Solid;
+use wingedge::query::Accel;
+
+/// Reads an OBJ file and builds its solid and accel; the error is a message
+/// naming the file.
+pub fn load_mesh(path: &Path) -> Result<(Solid, Accel), String> {
+    let soup = read_obj(path).map_err(|e| e.to_string())?;
+    let solid = Solid::try_from_soup(&soup).map_err(|e| format!("{}: {e}", path.display()))?;
+    let accel = Accel::new(&solid);
+    Ok((solid, accel))
+}
+
+/// Reads all of `source` (`-` for standard input).
+pub fn read_source(source: &str) -> Result<String, String> {
+    if source == "-" {
+        let mut text = String::new();
+        std::io::stdin()
+            .read_to_string(&mut text)
+            .map_err(|e| format!("standard input: cannot read: {e}"))?;
+        Ok(text)
+    } else {
+        std::fs::read_to_string(source).map_err(|e| format!("{source}: cannot read: {e}"))
+    }
+}
+
+/// Parses lines of exactly `N` finite numbers separated by whitespace.
+/// Blank lines and lines starting with `#` are skipped. Returns the numbers
+/// with their 1-based line numbers, or a message naming the first bad line.
+pub fn parse_lines<const N: usize>(
+    source: &str,
+    text: &str,
+) -> Result<Vec<(usize, [f64; N])>, String> {
+    let mut out = Vec::new();
+    for (index, raw) in text.lines().enumerate() {
+        let line = index + 1;
+        let content = raw.trim();
+        if content.is_empty() || content.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<&str> = content.split_whitespace().collect();
+        if fields.len() != N {
+            return Err(format!(
+                "{source}:{line}: expected {N} numbers, found {} fields: '{content}'",
+                fields.len()
+            ));
+        }
+        let mut values = [0.0; N];
+        for (value, field) in values.iter_mut().zip(&fields) {
+            *value = field
+                .parse::<f64>()
+                .map_err(|_| format!("{source}:{line}: '{field}' is not a number"))?;
+            if !value.is_finite() {
+                return Err(format!("{source}:{line}: '{field}' is not finite"));
+            }
+        }
+        out.push((line, values));
+    }
+    Ok(out)
+}

@@ -1,0 +1,191 @@
+//! The main kind of leaf: a validated closed polyhedral solid.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+use slotmap::SecondaryMap;
+use thiserror::Error;
+
+use super::{Containment, Crossing, Primitive, Stats, SurfaceId};
+use crate::geom::polygon::{PolygonLocation, Projection, locate_point_in_polygon};
+use crate::geom::{Aabb, Ray, Sign};
+use crate::mesh::{FaceId, Solid};
+use crate::query::{Accel, Transition};
+
+/// Why a solid cannot be a CSG leaf.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum PolyhedronError {
+    /// Rays need a closed surface: these edges have one face.
+    #[error("the solid is not closed: {boundary_edges} edge(s) have only one face")]
+    NotClosed {
+        /// How many boundary edges.
+        boundary_edges: usize,
+    },
+    /// A solid without faces bounds nothing.
+    #[error("the solid has no faces")]
+    Empty,
+}
+
+/// A closed polyhedral solid as a CSG leaf, answered by the query layer's
+/// exact ray–solid crossings and point classification.
+///
+/// # Exactness
+///
+/// Whether and where (in order) a ray crosses the boundary, whether its
+/// origin is inside, and the class of a point are decided exactly on the
+/// input coordinates ([`Accel::ray_crossings`], [`Accel::classify`]); rays
+/// through edges and vertices or lying in a face's plane are resolved by the
+/// query layer's symbolic perturbation (0 or 2 crossings at a silhouette,
+/// never 1). The `t` values are rounded constructions. The normal of a face
+/// for shading and for coincident-face decisions is the face's Newell plane
+/// normal (rounded; axis-aligned faces get exact axis normals).
+///
+/// # Invariants
+///
+/// The solid is closed and has faces; `faces[surface]` is the face of a
+/// crossing's surface id.
+#[derive(Clone, Debug)]
+pub struct Polyhedron {
+    solid: Arc<Solid>,
+    accel: Arc<Accel>,
+    faces: Vec<FaceId>,
+    face_index: SecondaryMap<FaceId, SurfaceId>,
+}
+
+impl Polyhedron {
+    /// A leaf of a closed solid (validate imported meshes first: see
+    /// [`Scene`](super::Scene), which refuses a defective mesh with the
+    /// validator's report). Builds the query acceleration once.
+    ///
+    /// # Errors
+    ///
+    /// [`PolyhedronError`] for an open or empty solid.
+    pub fn try_new(solid: Solid) -> Result<Polyhedron, PolyhedronError> {
+        if solid.face_count() == 0 {
+            return Err(PolyhedronError::Empty);
+        }
+        let boundary_edges = solid.boundary_edges().count();
+        if boundary_edges > 0 {
+            return Err(PolyhedronError::NotClosed { boundary_edges });
+        }
+        let accel = Accel::new(&solid);
+        let faces: Vec<FaceId> = solid.faces().map(|(id, _)| id).collect();
+        let mut face_index = SecondaryMap::new();
+        for (i, &f) in faces.iter().enumerate() {
+            face_index.insert(f, i as SurfaceId);
+        }
+        Ok(Polyhedron {
+            solid: Arc::new(solid),
+            accel: Arc::new(accel),
+            faces,
+            face_index,
+        })
+    }
+
+    /// The solid.
+    #[must_use]
+    pub fn solid(&self) -> &Solid {
+        &self.solid
+    }
+
+    /// The face a crossing's surface id names.
+    #[must_use]
+    pub fn face(&self, surface: SurfaceId) -> Option<FaceId> {
+        self.faces.get(surface as usize).copied()
+    }
+
+    fn face_normal(&self, face: FaceId) -> DVec3 {
+        self.solid
+            .face(face)
+            .plane
+            .map_or(DVec3::ZERO, |plane| plane.normal)
+    }
+
+    /// Whether `p` (exactly in the face's plane) lies strictly inside the
+    /// face polygon, and not on one of its edges or vertices.
+    fn strictly_inside_face(&self, face: FaceId, p: DVec3) -> bool {
+        let normal = self.face_normal(face);
+        if normal == DVec3::ZERO {
+            return false;
+        }
+        let projection = Projection::along(normal);
+        let points: smallvec::SmallVec<[_; 8]> = self
+            .solid
+            .face_vertices(face)
+            .map(|v| projection.apply(self.solid.position(v)))
+            .collect();
+        locate_point_in_polygon(&points, projection.apply(p)) == PolygonLocation::Inside
+    }
+}
+
+impl Primitive for Polyhedron {
+    fn intersect_ray(&self, ray: &Ray, crossings: &mut Vec<Crossing>, _stats: &mut Stats) -> bool {
+        let Ok(answer) = self.accel.ray_crossings(ray) else {
+            // Only invalid rays (checked by the tree) or open solids
+            // (refused by `try_new`) fail.
+            debug_assert!(
+                false,
+                "ray_crossings failed on a checked ray and closed solid"
+            );
+            return false;
+        };
+        let inside = match answer.origin {
+            Containment::Inside => true,
+            Containment::Outside => false,
+            // On the boundary: the first transition tells which way the
+            // ray leaves the origin.
+            Containment::OnBoundary => answer
+                .hits
+                .first()
+                .is_some_and(|h| h.transition == Transition::Exit),
+        };
+        crossings.extend(answer.hits.iter().map(|h| Crossing {
+            t: h.t,
+            surface: self.face_index.get(h.face).copied().unwrap_or(0),
+        }));
+        inside
+    }
+
+    fn classify_point(&self, p: DVec3) -> Containment {
+        self.accel.classify(p).unwrap_or(Containment::Outside)
+    }
+
+    fn boundary_normal(&self, p: DVec3) -> Option<DVec3> {
+        if !self.solid.bounding_box().contains(p) {
+            return None;
+        }
+        let mut found = None;
+        for &face in &self.faces {
+            if self.solid.face_side(face, p) != Sign::Zero {
+                continue;
+            }
+            if !self.strictly_inside_face(face, p) {
+                // In the plane but on the face's rim or outside it.
+                continue;
+            }
+            if found.is_some() {
+                return None;
+            }
+            found = Some(face);
+        }
+        // A point on an edge or vertex is in no face strictly: `None`.
+        found.map(|f| self.face_normal(f))
+    }
+
+    fn normal(&self, _p: DVec3, surface: SurfaceId) -> DVec3 {
+        self.face(surface)
+            .map_or(DVec3::ZERO, |f| self.face_normal(f))
+    }
+
+    fn bounds(&self) -> Aabb {
+        self.solid.bounding_box()
+    }
+
+    fn exact_volume(&self) -> Option<f64> {
+        Some(self.solid.volume())
+    }
+
+    fn kind(&self) -> &'static str {
+        "mesh"
+    }
+}

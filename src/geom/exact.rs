@@ -1,0 +1,470 @@
+//! Exact signs of small determinants whose entries are differences of input
+//! numbers, and the line predicates built on them.
+//!
+//! [`orient3d`](super::orient3d) covers determinants of the form
+//! `det[b − a, c − a, d − a]`. Rays given as an origin and a *direction*
+//! need `det[d, a − o, b − o]`, where `d` is not a difference of two points
+//! that could be handed to `orient3d` without rounding `o + d`. This module
+//! evaluates such determinants exactly: a floating-point filter with
+//! Shewchuk's error bounds first, then, only when the filter cannot decide,
+//! exact expansion arithmetic (Shewchuk 1997: `two_sum`, `two_product` via
+//! FMA, `grow_expansion`). Fallbacks are counted in the same per-thread
+//! counter as the other predicates ([`exact_fallbacks`](super::exact_fallbacks)).
+//!
+//! Exactness assumes that no intermediate product overflows or underflows
+//! into the subnormal range (coordinates roughly within `1e-90 ..= 1e90` in
+//! magnitude), the same assumption the `robust` crate makes.
+
+use glam::{DVec2, DVec3};
+
+use super::predicates::count_fallback;
+use super::{Sign, orient2d};
+
+/// Half a unit in the last place of 1.0.
+const HALF_EPSILON: f64 = f64::EPSILON / 2.0;
+/// Shewchuk's `ccwerrboundA`.
+const DET2_BOUND: f64 = (3.0 + 16.0 * HALF_EPSILON) * HALF_EPSILON;
+/// Shewchuk's `o3derrboundA`.
+const DET3_BOUND: f64 = (7.0 + 56.0 * HALF_EPSILON) * HALF_EPSILON;
+
+/// One matrix entry: the exact difference `plus − minus` of two input numbers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Diff {
+    /// The minuend.
+    pub plus: f64,
+    /// The subtrahend (0 for a plain input number).
+    pub minus: f64,
+}
+
+impl Diff {
+    /// The entry `plus − minus`.
+    #[must_use]
+    pub const fn new(plus: f64, minus: f64) -> Diff {
+        Diff { plus, minus }
+    }
+
+    /// The entry `value` (no subtraction).
+    #[must_use]
+    pub const fn value(value: f64) -> Diff {
+        Diff {
+            plus: value,
+            minus: 0.0,
+        }
+    }
+
+    fn rounded(self) -> f64 {
+        self.plus - self.minus
+    }
+
+    fn expansion(self) -> Expansion {
+        let (x, y) = two_sum(self.plus, -self.minus);
+        let mut e = Expansion::default();
+        e.push(y);
+        e.push(x);
+        e
+    }
+}
+
+/// The rows of `p − q` for 3-vectors: `[p.x − q.x, p.y − q.y, p.z − q.z]`.
+#[must_use]
+pub fn diff_row(p: DVec3, q: DVec3) -> [Diff; 3] {
+    [
+        Diff::new(p.x, q.x),
+        Diff::new(p.y, q.y),
+        Diff::new(p.z, q.z),
+    ]
+}
+
+/// The row of a plain vector `v`.
+#[must_use]
+pub fn value_row(v: DVec3) -> [Diff; 3] {
+    [Diff::value(v.x), Diff::value(v.y), Diff::value(v.z)]
+}
+
+/// The exact sign of the 3×3 determinant whose rows are `rows` (each entry
+/// the exact difference of two input numbers).
+#[must_use]
+pub fn det3_sign(rows: [[Diff; 3]; 3]) -> Sign {
+    let m = rows.map(|r| r.map(Diff::rounded));
+    let m12 = m[1][1] * m[2][2];
+    let m21 = m[1][2] * m[2][1];
+    let n12 = m[1][2] * m[2][0];
+    let n21 = m[1][0] * m[2][2];
+    let o12 = m[1][0] * m[2][1];
+    let o21 = m[1][1] * m[2][0];
+    let det = m[0][0] * (m12 - m21) + m[0][1] * (n12 - n21) + m[0][2] * (o12 - o21);
+    let permanent = m[0][0].abs() * (m12.abs() + m21.abs())
+        + m[0][1].abs() * (n12.abs() + n21.abs())
+        + m[0][2].abs() * (o12.abs() + o21.abs());
+    let bound = DET3_BOUND * permanent;
+    if det > bound || -det > bound {
+        return Sign::of(det);
+    }
+    if !det.is_finite() || !permanent.is_finite() {
+        return Sign::of(det);
+    }
+    count_fallback();
+    const PERMS: [([usize; 3], bool); 6] = [
+        ([0, 1, 2], false),
+        ([1, 2, 0], false),
+        ([2, 0, 1], false),
+        ([0, 2, 1], true),
+        ([1, 0, 2], true),
+        ([2, 1, 0], true),
+    ];
+    let mut total = Expansion::default();
+    for (p, negative) in PERMS {
+        let prod = rows[0][p[0]]
+            .expansion()
+            .mul(&rows[1][p[1]].expansion())
+            .mul(&rows[2][p[2]].expansion());
+        for &c in prod.as_slice() {
+            total.grow(if negative { -c } else { c });
+        }
+    }
+    total.sign()
+}
+
+/// The exact sign of the 2×2 determinant `r0[0]·r1[1] − r0[1]·r1[0]`.
+#[must_use]
+pub fn det2_sign(r0: [Diff; 2], r1: [Diff; 2]) -> Sign {
+    let left = r0[0].rounded() * r1[1].rounded();
+    let right = r0[1].rounded() * r1[0].rounded();
+    let det = left - right;
+    let bound = DET2_BOUND * (left.abs() + right.abs());
+    if det > bound || -det > bound || !det.is_finite() {
+        return Sign::of(det);
+    }
+    count_fallback();
+    let mut total = Expansion::default();
+    for &c in r0[0].expansion().mul(&r1[1].expansion()).as_slice() {
+        total.grow(c);
+    }
+    for &c in r0[1].expansion().mul(&r1[0].expansion()).as_slice() {
+        total.grow(-c);
+    }
+    total.sign()
+}
+
+/// The floating-point filter of [`line_side`] alone: the sign of
+/// `det[d, u, v]` where `u = a − o` and `v = b − o` are the *rounded*
+/// differences, when Shewchuk's error bound proves it equal to the exact
+/// [`line_side`]; `None` when it cannot (then call [`line_side_sos`]).
+#[must_use]
+#[inline]
+pub fn line_side_filter(d: DVec3, u: DVec3, v: DVec3) -> Option<Sign> {
+    let m12 = u.y * v.z;
+    let m21 = u.z * v.y;
+    let n12 = u.z * v.x;
+    let n21 = u.x * v.z;
+    let o12 = u.x * v.y;
+    let o21 = u.y * v.x;
+    let det = d.x * (m12 - m21) + d.y * (n12 - n21) + d.z * (o12 - o21);
+    let permanent = d.x.abs() * (m12.abs() + m21.abs())
+        + d.y.abs() * (n12.abs() + n21.abs())
+        + d.z.abs() * (o12.abs() + o21.abs());
+    let bound = DET3_BOUND * permanent;
+    if det > bound {
+        Some(Sign::Positive)
+    } else if -det > bound {
+        Some(Sign::Negative)
+    } else {
+        None
+    }
+}
+
+/// [`line_side_filter`] on scalar coordinates: `d = (dx, dy, dz)`,
+/// `u = a − o`, `v = b − o` (rounded). Written on plain `f64`s so that hot
+/// loops keep everything in registers.
+#[must_use]
+#[inline(always)]
+pub fn line_side_filter_scalar(d: [f64; 3], u: [f64; 3], v: [f64; 3]) -> Option<Sign> {
+    let m12 = u[1] * v[2];
+    let m21 = u[2] * v[1];
+    let n12 = u[2] * v[0];
+    let n21 = u[0] * v[2];
+    let o12 = u[0] * v[1];
+    let o21 = u[1] * v[0];
+    let det = d[0] * (m12 - m21) + d[1] * (n12 - n21) + d[2] * (o12 - o21);
+    let permanent = d[0].abs() * (m12.abs() + m21.abs())
+        + d[1].abs() * (n12.abs() + n21.abs())
+        + d[2].abs() * (o12.abs() + o21.abs());
+    let bound = DET3_BOUND * permanent;
+    if det > bound {
+        Some(Sign::Positive)
+    } else if -det > bound {
+        Some(Sign::Negative)
+    } else {
+        None
+    }
+}
+
+/// Which side of the line through `origin` with direction `direction` the
+/// directed segment `a → b` passes: the exact sign of
+/// `det[direction, a − origin, b − origin]` (the permuted inner product of
+/// the two lines' Plücker coordinates).
+///
+/// Positive when, looking along `direction`, the segment passes the line
+/// counter-clockwise (the line sees `a → b` turning left around it); zero
+/// when the two lines are coplanar (they meet or are parallel). With
+/// `direction = q − origin` it equals [`orient3d`](super::orient3d)`(origin,
+/// q, a, b)`. Antisymmetric in `a`, `b`.
+#[must_use]
+pub fn line_side(origin: DVec3, direction: DVec3, a: DVec3, b: DVec3) -> Sign {
+    det3_sign([
+        value_row(direction),
+        diff_row(a, origin),
+        diff_row(b, origin),
+    ])
+}
+
+/// [`line_side`] with ties broken by Simulation of Simplicity: never
+/// [`Sign::Zero`] unless `a == b`.
+///
+/// The line is perturbed symbolically: its direction by `(ε, ε², ε³)` and,
+/// infinitely less, its origin by `(η, η², η³)` with `η ≪ ε³`. The sign
+/// returned is that of the determinant for that perturbed line, read off the
+/// first non-zero coefficient of its expansion in `ε` and `η`:
+///
+/// 1. `det[d, a − o, b − o]` itself;
+/// 2. the components of `(a − o) × (b − o)` (`orient2d` of the projections of
+///    `o`, `a`, `b` onto the `yz`, `zx` and `xy` planes) — the rotated
+///    direction decides when the line meets the segment's line or is
+///    parallel to it;
+/// 3. the components of `d × (b − a)` and of `b − a` — the shifted origin
+///    decides when `o` itself lies on the segment's line.
+///
+/// Because every answer is the sign for one and the same (infinitesimally)
+/// moved line, answers for different segments are mutually consistent: the
+/// moved line passes through no vertex and along no edge, so a ray through an
+/// edge or a vertex is counted in exactly the faces a generic nearby ray
+/// crosses. The perturbation depends on coordinates only, never on ids or
+/// order. Antisymmetric in `a`, `b`.
+#[must_use]
+pub fn line_side_sos(origin: DVec3, direction: DVec3, a: DVec3, b: DVec3) -> Sign {
+    let s = line_side(origin, direction, a, b);
+    if s != Sign::Zero {
+        return s;
+    }
+    line_side_tie(origin, direction, a, b)
+}
+
+/// The perturbation steps of [`line_side_sos`] (the unperturbed sign is 0).
+fn line_side_tie(o: DVec3, d: DVec3, a: DVec3, b: DVec3) -> Sign {
+    let yz = |p: DVec3| DVec2::new(p.y, p.z);
+    let zx = |p: DVec3| DVec2::new(p.z, p.x);
+    let xy = |p: DVec3| DVec2::new(p.x, p.y);
+    // ε, ε², ε³: δ · ((a − o) × (b − o)).
+    for s in [
+        orient2d(yz(o), yz(a), yz(b)),
+        orient2d(zx(o), zx(a), zx(b)),
+        orient2d(xy(o), xy(a), xy(b)),
+    ] {
+        if s != Sign::Zero {
+            return s;
+        }
+    }
+    // The origin lies on the line through a and b. With w = b − a the
+    // remaining terms are δ'·(d × w) − det[δ, δ', w], in the order
+    // η, ηε², ηε³, η², η²ε, η²ε³, η³, η³ε, η³ε².
+    let wx = || Sign::of(b.x - a.x);
+    let wy = || Sign::of(b.y - a.y);
+    let wz = || Sign::of(b.z - a.z);
+    let dxw_x = || {
+        det2_sign(
+            [Diff::value(d.y), Diff::value(d.z)],
+            [Diff::new(b.y, a.y), Diff::new(b.z, a.z)],
+        )
+    };
+    let dxw_y = || {
+        det2_sign(
+            [Diff::value(d.z), Diff::value(d.x)],
+            [Diff::new(b.z, a.z), Diff::new(b.x, a.x)],
+        )
+    };
+    let dxw_z = || {
+        det2_sign(
+            [Diff::value(d.x), Diff::value(d.y)],
+            [Diff::new(b.x, a.x), Diff::new(b.y, a.y)],
+        )
+    };
+    let steps: [&dyn Fn() -> Sign; 9] = [
+        &dxw_x,
+        &wz,
+        &|| -wy(),
+        &dxw_y,
+        &|| -wz(),
+        &wx,
+        &dxw_z,
+        &wy,
+        &|| -wx(),
+    ];
+    for step in steps {
+        let s = step();
+        if s != Sign::Zero {
+            return s;
+        }
+    }
+    Sign::Zero
+}
+
+// ---------------------------------------------------------------------------
+// Expansion arithmetic (Shewchuk 1997). An expansion is a sum of
+// non-overlapping doubles in increasing order of magnitude; its sign is the
+// sign of its last non-zero component.
+
+#[derive(Clone, Debug, Default)]
+struct Expansion {
+    parts: smallvec::SmallVec<[f64; 16]>,
+}
+
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let x = a + b;
+    let bv = x - a;
+    let av = x - bv;
+    (x, (a - av) + (b - bv))
+}
+
+fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let x = a * b;
+    (x, a.mul_add(b, -x))
+}
+
+impl Expansion {
+    fn push(&mut self, c: f64) {
+        if c != 0.0 {
+            self.parts.push(c);
+        }
+    }
+
+    fn as_slice(&self) -> &[f64] {
+        &self.parts
+    }
+
+    /// Adds `b` exactly (GROW-EXPANSION with zero elimination).
+    fn grow(&mut self, b: f64) {
+        if b == 0.0 {
+            return;
+        }
+        let mut q = b;
+        let mut out = smallvec::SmallVec::<[f64; 16]>::new();
+        for &e in &self.parts {
+            let (sum, err) = two_sum(q, e);
+            q = sum;
+            if err != 0.0 {
+                out.push(err);
+            }
+        }
+        if q != 0.0 {
+            out.push(q);
+        }
+        self.parts = out;
+    }
+
+    /// The exact product of two expansions.
+    fn mul(&self, other: &Expansion) -> Expansion {
+        let mut out = Expansion::default();
+        for &x in &self.parts {
+            for &y in &other.parts {
+                let (hi, lo) = two_product(x, y);
+                out.grow(lo);
+                out.grow(hi);
+            }
+        }
+        out
+    }
+
+    fn sign(&self) -> Sign {
+        self.parts.last().map_or(Sign::Zero, |&c| Sign::of(c))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::orient3d;
+
+    #[test]
+    fn line_side_matches_orient3d_when_the_direction_is_exact() {
+        let o = DVec3::new(0.5, 0.25, -1.0);
+        let q = DVec3::new(1.5, 0.75, 2.0);
+        let pts = [
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.5),
+            DVec3::new(-1.0, -1.0, 3.0),
+            DVec3::new(1.0, 0.5, 0.5),
+        ];
+        for &a in &pts {
+            for &b in &pts {
+                assert_eq!(line_side(o, q - o, a, b), orient3d(o, q, a, b));
+            }
+        }
+    }
+
+    #[test]
+    fn exact_fallback_decides_tiny_determinants() {
+        // A line exactly through a point a: with b chosen so that the segment
+        // is coplanar with the line, the sign is zero; one ulp off is not.
+        let o = DVec3::new(0.1, 0.2, 0.3);
+        let d = DVec3::new(0.7, 0.11, 0.13);
+        let a = DVec3::new(1e-3, 5.0, -2.0);
+        let b = a + DVec3::new(0.0, 0.0, 1.0);
+        let s = line_side(o, d, a, b);
+        let b2 = DVec3::new(b.x, b.y, f64::from_bits(b.z.to_bits() + 1));
+        let s2 = line_side(o, d, a, b2);
+        // Same side or zero, never contradicting a direct exact evaluation.
+        assert_eq!(s, -line_side(o, d, b, a));
+        assert_eq!(s2, -line_side(o, d, b2, a));
+        // Coplanar by construction: the segment lies on a line through o
+        // parallel to d.
+        let p = o + d * 2.0;
+        assert_eq!(line_side(o, d, o, o), Sign::Zero);
+        assert_eq!(
+            det2_sign(
+                [Diff::value(3.0), Diff::value(6.0)],
+                [Diff::value(1.0), Diff::value(2.0)]
+            ),
+            Sign::Zero
+        );
+        let _ = p;
+    }
+
+    #[test]
+    fn det3_of_differences_is_exact() {
+        // det[(1+u) - 1, ...] with u tiny: the rounded difference is exact
+        // here, but the product terms cancel only exactly.
+        let u = f64::EPSILON;
+        let rows = [
+            [Diff::new(1.0 + u, 1.0), Diff::value(1.0), Diff::value(0.0)],
+            [Diff::value(1.0), Diff::value(1.0), Diff::value(0.0)],
+            [Diff::value(0.0), Diff::value(0.0), Diff::value(1.0)],
+        ];
+        // det = (1+u-1)*1 - 1*1 = u - 1 < 0.
+        assert_eq!(det3_sign(rows), Sign::Negative);
+        let rows = [
+            [Diff::new(3.0, 1.0), Diff::value(1.0), Diff::value(0.0)],
+            [Diff::value(4.0), Diff::value(2.0), Diff::value(0.0)],
+            [Diff::value(0.0), Diff::value(0.0), Diff::value(1.0)],
+        ];
+        assert_eq!(det3_sign(rows), Sign::Zero);
+    }
+
+    #[test]
+    fn sos_is_antisymmetric_and_never_zero_for_distinct_points() {
+        let o = DVec3::ZERO;
+        let d = DVec3::X;
+        // Segments the x-axis meets or runs along.
+        let cases = [
+            (DVec3::new(1.0, -1.0, 0.0), DVec3::new(1.0, 1.0, 0.0)),
+            (DVec3::new(1.0, 0.0, 0.0), DVec3::new(2.0, 0.0, 0.0)),
+            (DVec3::new(0.0, 0.0, 0.0), DVec3::new(0.0, 1.0, 0.0)),
+            (DVec3::new(-1.0, 0.0, 0.0), DVec3::new(3.0, 0.0, 0.0)),
+            (DVec3::new(1.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 1.0)),
+        ];
+        for (a, b) in cases {
+            let s = line_side_sos(o, d, a, b);
+            assert_ne!(s, Sign::Zero, "{a} {b}");
+            assert_eq!(s, -line_side_sos(o, d, b, a));
+        }
+    }
+}

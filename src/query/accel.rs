@@ -1,0 +1,914 @@
+//! The acceleration structure shared by every query on one solid.
+
+use std::time::{Duration, Instant};
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+use thiserror::Error;
+
+use crate::geom::polygon::{Axis, Projection};
+use crate::geom::{Aabb, Sign, orient2d, orient3d};
+use crate::mesh::{FaceId, Solid};
+
+/// Why a solid is not convex (the normals method refuses it).
+///
+/// Decided exactly on the fan triangles: every edge of the triangulation
+/// (face edges and fan diagonals) must be shared with one triangle running it
+/// the other way, whose third corner is not strictly above the first
+/// triangle's plane and, when exactly in it, lies across the edge (no fold).
+/// A closed connected surface that is convex at every edge bounds a convex
+/// body.
+#[derive(Clone, Copy, Debug, Error, PartialEq)]
+pub enum NotConvex {
+    /// The surface has holes (an edge of a triangle has no partner running it
+    /// the other way).
+    #[error("the surface is not closed")]
+    NotClosed,
+    /// The surface has more than one connected shell.
+    #[error("the surface has {count} shells")]
+    Shells {
+        /// How many shells.
+        count: usize,
+    },
+    /// Across an edge of face `face`, the neighbouring corner `point` lies
+    /// strictly outside the face's plane: a reflex edge (or a face whose
+    /// corners are not exactly coplanar, bent outward).
+    #[error("the corner {point} lies strictly outside the plane of face {face:?}")]
+    ReflexEdge {
+        /// The face.
+        face: FaceId,
+        /// The offending corner.
+        point: DVec3,
+    },
+    /// Two coplanar triangles of face `face` fold over each other across an
+    /// edge: the face has a reflex corner.
+    #[error("face {face:?} folds over itself near {point} (a reflex corner)")]
+    ReflexCorner {
+        /// The face.
+        face: FaceId,
+        /// The offending corner.
+        point: DVec3,
+    },
+}
+
+/// How the accel was built: its size and the time it took.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AccelStats {
+    /// Fan triangles (one per face corner beyond the second).
+    pub triangles: usize,
+    /// BVH nodes.
+    pub bvh_nodes: usize,
+    /// Grid cells (`ny × nz`).
+    pub grid_cells: usize,
+    /// Triangle references held by the grid's cells.
+    pub grid_entries: usize,
+    /// Heap bytes held by the accel.
+    pub memory_bytes: usize,
+    /// Wall time of [`Accel::new`].
+    pub build_time: Duration,
+}
+
+/// One fan triangle as the queries need it: its exact corners split by
+/// coordinate and the sign of its `yz` projection (80 bytes). Stored in BVH
+/// leaf order; the grid and the BVH both index this one array.
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C)]
+pub(super) struct YzTri {
+    /// `x` of the three corners.
+    pub x: [f64; 3],
+    /// `y` of the three corners.
+    pub y: [f64; 3],
+    /// `z` of the three corners.
+    pub z: [f64; 3],
+    /// `orient2d` of the projected corners: the sign of the normal's `x`.
+    pub sigma: i8,
+}
+
+impl YzTri {
+    /// The corners as points.
+    #[inline]
+    pub fn corners(&self) -> [DVec3; 3] {
+        [0, 1, 2].map(|k| DVec3::new(self.x[k], self.y[k], self.z[k]))
+    }
+
+    fn max_x(&self) -> f64 {
+        self.x[0].max(self.x[1]).max(self.x[2])
+    }
+}
+
+/// A uniform grid over the `yz` projection of the solid's bounding box; each
+/// cell lists the triangles whose projected bounding box overlaps it.
+#[derive(Clone, Debug)]
+pub(super) struct YzGrid {
+    pub y0: f64,
+    pub z0: f64,
+    pub y1: f64,
+    pub z1: f64,
+    pub inv_hy: f64,
+    pub inv_hz: f64,
+    pub ny: usize,
+    pub nz: usize,
+    pub cell_start: Vec<u32>,
+    pub entries: Vec<GridEntry>,
+}
+
+/// One triangle listed in a grid cell: its `yz` record and its largest `x`
+/// rounded up to `f32`, so that triangles behind a query point are skipped
+/// without touching their record (8 bytes).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct GridEntry {
+    /// An upper bound on the triangle's largest `x`.
+    pub max_x: f32,
+    /// Index into the accel's triangles.
+    pub record: u32,
+}
+
+impl YzGrid {
+    /// The cell column of `y` (monotone in `y`, clamped).
+    #[inline]
+    pub fn col(&self, y: f64) -> usize {
+        (((y - self.y0) * self.inv_hy) as usize).min(self.ny - 1)
+    }
+
+    /// The cell row of `z` (monotone in `z`, clamped).
+    #[inline]
+    pub fn row(&self, z: f64) -> usize {
+        (((z - self.z0) * self.inv_hz) as usize).min(self.nz - 1)
+    }
+
+    /// The index of the cell holding `(y, z)`.
+    #[inline]
+    pub fn cell_index(&self, y: f64, z: f64) -> usize {
+        self.row(z) * self.ny + self.col(y)
+    }
+
+    /// The triangles listed in the cell holding `(y, z)`.
+    #[inline]
+    pub fn cell(&self, y: f64, z: f64) -> &[GridEntry] {
+        let c = self.cell_index(y, z);
+        &self.entries[self.cell_start[c] as usize..self.cell_start[c + 1] as usize]
+    }
+}
+
+/// A BVH node with conservatively rounded `f32` bounds (32 bytes).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Node {
+    pub min: [f32; 3],
+    pub max: [f32; 3],
+    /// Leaf: first triangle; inner node: index of the second child (the
+    /// first child follows the node).
+    pub first: u32,
+    /// Leaf: number of triangles (> 0); inner node: 0.
+    pub count: u32,
+}
+
+/// A BVH node as traversed: the boxes of both children in one cache line,
+/// so that deciding where to descend touches only the parent.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+pub(super) struct Node2 {
+    /// Lower corners of the two children's boxes (rounded down).
+    pub min: [[f32; 3]; 2],
+    /// Upper corners of the two children's boxes (rounded up); an empty
+    /// child has `min = +∞`, `max = −∞`.
+    pub max: [[f32; 3]; 2],
+    /// Per child: the first triangle of a leaf, or the index of an inner
+    /// node.
+    pub child: [u32; 2],
+    /// Per child: the number of triangles of a leaf; 0 for an inner node.
+    pub count: [u32; 2],
+}
+
+/// Turns the binary BVH (one box per node) into [`Node2`]s: one per inner
+/// node, plus a root holding the whole tree as its first child.
+fn to_node2(nodes: &[Node]) -> Vec<Node2> {
+    let inner: Vec<usize> = (0..nodes.len()).filter(|&i| nodes[i].count == 0).collect();
+    let mut index = vec![u32::MAX; nodes.len()];
+    for (k, &i) in inner.iter().enumerate() {
+        index[i] = k as u32 + 1;
+    }
+    let empty = Node {
+        min: [f32::INFINITY; 3],
+        max: [f32::NEG_INFINITY; 3],
+        first: 0,
+        count: 0,
+    };
+    let make = |a: &Node, ai: usize, b: &Node, bi: usize| {
+        let link = |n: &Node, i: usize| {
+            if n.count > 0 {
+                (n.first, n.count)
+            } else {
+                (index[i], 0)
+            }
+        };
+        let (ca, na) = link(a, ai);
+        let (cb, nb) = link(b, bi);
+        Node2 {
+            min: [a.min, b.min],
+            max: [a.max, b.max],
+            child: [ca, cb],
+            count: [na, nb],
+        }
+    };
+    let mut out = Vec::with_capacity(inner.len() + 1);
+    // The root holds the whole tree as child 0 and an empty child 1 (never
+    // entered: its box is empty). Without triangles both children are empty.
+    let has_triangles = nodes
+        .first()
+        .is_some_and(|n| n.count > 0 || nodes.len() > 1);
+    if !has_triangles {
+        let mut root = make(&empty, 0, &empty, 0);
+        root.child = [u32::MAX; 2];
+        out.push(root);
+        return out;
+    }
+    let mut root = make(&nodes[0], 0, &empty, 0);
+    root.child[1] = u32::MAX;
+    out.push(root);
+    for &i in &inner {
+        let (l, r) = (i + 1, nodes[i].first as usize);
+        out.push(make(&nodes[l], l, &nodes[r], r));
+    }
+    out
+}
+
+/// The acceleration structure of one solid, built once and shared by every
+/// query (it is `Send + Sync`; batch queries split work over rayon's pool).
+///
+/// # Invariants
+///
+/// - `tris` (in BVH leaf order) is the fan triangulation of every face with at least three
+///   vertices, `(v₀, vₖ, vₖ₊₁)` for `k = 1 .. n − 2` in the face's winding,
+///   with `v₀` the face's lexicographically smallest corner `(x, y, z)`,
+///   holding the exact input coordinates; `tri_face[i]` is its face.
+/// - The BVH's `f32` node boxes contain their triangles' `f64` boxes (bounds
+///   rounded outward), so culling never loses a triangle a ray touches.
+/// - Every triangle whose projected `yz` box contains a point `(y, z)` is
+///   listed in the grid cell of `(y, z)` (cell indices are monotone in the
+///   coordinates).
+#[derive(Clone, Debug)]
+pub struct Accel {
+    pub(super) tris: Vec<YzTri>,
+    pub(super) tri_face: Vec<FaceId>,
+    pub(super) nodes: Vec<Node2>,
+    pub(super) grid: YzGrid,
+    pub(super) bounds: Aabb,
+    pub(super) boundary_edges: usize,
+    pub(super) convexity: std::sync::OnceLock<Result<(), NotConvex>>,
+    pub(super) stats: AccelStats,
+}
+
+/// Grid cells per triangle.
+const CELLS_PER_TRIANGLE: f64 = 1.0;
+/// Largest number of triangles in a BVH leaf.
+const LEAF_SIZE: usize = 4;
+/// SAH bins per split.
+const BINS: usize = 16;
+
+impl Accel {
+    /// Builds the accel of `solid`: fan triangles, BVH and `yz` grid (the
+    /// convexity verdict of the normals method is computed on first use).
+    ///
+    /// Never fails: an open solid gets an accel too (the winding number is
+    /// defined for it; parity and crossings then return
+    /// [`QueryError::NotClosed`](super::QueryError::NotClosed)). A solid with
+    /// no faces gives an empty accel for which every point is outside.
+    #[must_use]
+    pub fn new(solid: &Solid) -> Accel {
+        let start = Instant::now();
+        let boundary_edges = solid.boundary_edges().count();
+        let (tris, tri_face) = fan_triangles(solid);
+        let (binary, order) = build_bvh(&tris);
+        let nodes = to_node2(&binary);
+        drop(binary);
+        let tris: Vec<YzTri> = order
+            .par_iter()
+            .map(|&i| yz_tri(&tris[i as usize]))
+            .collect();
+        let tri_face: Vec<FaceId> = order.par_iter().map(|&i| tri_face[i as usize]).collect();
+        let bounds = tris
+            .iter()
+            .flat_map(YzTri::corners)
+            .fold(Aabb::EMPTY, Aabb::grow);
+        let grid = build_grid(&tris, bounds);
+        let memory_bytes = tris.capacity() * std::mem::size_of::<YzTri>()
+            + tri_face.capacity() * std::mem::size_of::<FaceId>()
+            + nodes.capacity() * std::mem::size_of::<Node2>()
+            + grid.cell_start.capacity() * 4
+            + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
+        let stats = AccelStats {
+            triangles: tris.len(),
+            bvh_nodes: nodes.len(),
+            grid_cells: grid.ny * grid.nz,
+            grid_entries: grid.entries.len(),
+            memory_bytes,
+            build_time: Duration::ZERO,
+        };
+        let mut accel = Accel {
+            tris,
+            tri_face,
+            nodes,
+            grid,
+            bounds,
+            boundary_edges,
+            convexity: std::sync::OnceLock::new(),
+            stats,
+        };
+        accel.stats.build_time = start.elapsed();
+        accel
+    }
+
+    /// Size and build time.
+    #[must_use]
+    pub fn stats(&self) -> AccelStats {
+        self.stats
+    }
+
+    /// The bounding box of the solid's vertices.
+    #[must_use]
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// Whether the surface is closed (every edge has two faces).
+    #[must_use]
+    pub fn is_closed(&self) -> bool {
+        self.boundary_edges == 0
+    }
+
+    /// `Ok` when the solid is convex (decided exactly, see [`NotConvex`]),
+    /// else why not. Computed on first use (`O(n log n)` in the triangles)
+    /// and cached.
+    ///
+    /// # Errors
+    ///
+    /// The first reason found in triangle order; see [`NotConvex`].
+    pub fn convexity(&self) -> Result<(), NotConvex> {
+        *self
+            .convexity
+            .get_or_init(|| check_convexity(&self.tris, &self.tri_face, self.boundary_edges))
+    }
+
+    pub(super) fn require_closed(&self) -> Result<(), super::QueryError> {
+        if self.boundary_edges == 0 {
+            Ok(())
+        } else {
+            Err(super::QueryError::NotClosed {
+                boundary_edges: self.boundary_edges,
+            })
+        }
+    }
+}
+
+/// The fan triangles of every face (apex at [`fan_apex`]) and their faces,
+/// in face order.
+fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
+    let ids: Vec<FaceId> = solid.faces().map(|(id, _)| id).collect();
+    let per_face: Vec<smallvec::SmallVec<[[DVec3; 3]; 2]>> = ids
+        .par_iter()
+        .with_min_len(1024)
+        .map(|&id| {
+            let mut corners: smallvec::SmallVec<[DVec3; 8]> =
+                solid.face_vertices(id).map(|v| solid.position(v)).collect();
+            // Canonical fan apex: the triangulation of a face whose corners
+            // are not exactly coplanar must not depend on where its vertex
+            // list starts.
+            let apex = fan_apex(&corners);
+            corners.rotate_left(apex);
+            (1..corners.len().saturating_sub(1))
+                .map(|k| [corners[0], corners[k], corners[k + 1]])
+                .collect()
+        })
+        .collect();
+    let count: usize = per_face.iter().map(|f| f.len()).sum();
+    let mut tris = Vec::with_capacity(count);
+    let mut tri_face = Vec::with_capacity(count);
+    for (&id, fan) in ids.iter().zip(&per_face) {
+        tris.extend_from_slice(fan);
+        tri_face.extend(std::iter::repeat_n(id, fan.len()));
+    }
+    (tris, tri_face)
+}
+
+/// The index of the lexicographically smallest point `(x, y, z)`: the apex
+/// of a face's fan triangulation. Preserved by translations and positive
+/// scalings, independent of where the vertex list starts.
+fn fan_apex(corners: &[DVec3]) -> usize {
+    (0..corners.len())
+        .min_by(|&i, &j| {
+            let (p, q) = (corners[i], corners[j]);
+            p.x.total_cmp(&q.x)
+                .then(p.y.total_cmp(&q.y))
+                .then(p.z.total_cmp(&q.z))
+        })
+        .unwrap_or(0)
+}
+
+fn yz_tri(t: &[DVec3; 3]) -> YzTri {
+    let p = |v: DVec3| DVec2::new(v.y, v.z);
+    YzTri {
+        x: [t[0].x, t[1].x, t[2].x],
+        y: [t[0].y, t[1].y, t[2].y],
+        z: [t[0].z, t[1].z, t[2].z],
+        sigma: orient2d(p(t[0]), p(t[1]), p(t[2])).as_i32() as i8,
+    }
+}
+
+fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
+    let (y0, z0, y1, z1) = if bounds.is_empty() {
+        (0.0, 0.0, 1.0, 1.0)
+    } else {
+        (bounds.min.y, bounds.min.z, bounds.max.y, bounds.max.z)
+    };
+    let (wy, wz) = (
+        (y1 - y0).max(f64::MIN_POSITIVE),
+        (z1 - z0).max(f64::MIN_POSITIVE),
+    );
+    let cells = (yz.len() as f64 * CELLS_PER_TRIANGLE).clamp(1.0, 64.0e6);
+    let aspect = (wy / wz).clamp(1e-6, 1e6);
+    let ny = ((cells * aspect).sqrt().round() as usize).clamp(1, 1 << 14);
+    let nz = ((cells / ny as f64).round() as usize).clamp(1, 1 << 14);
+    let mut grid = YzGrid {
+        y0,
+        z0,
+        y1,
+        z1,
+        inv_hy: ny as f64 / wy,
+        inv_hz: nz as f64 / wz,
+        ny,
+        nz,
+        cell_start: vec![0; ny * nz + 1],
+        entries: Vec::new(),
+    };
+    let range = |g: &YzGrid, t: &YzTri| {
+        let ymin = t.y[0].min(t.y[1]).min(t.y[2]);
+        let ymax = t.y[0].max(t.y[1]).max(t.y[2]);
+        let zmin = t.z[0].min(t.z[1]).min(t.z[2]);
+        let zmax = t.z[0].max(t.z[1]).max(t.z[2]);
+        (g.col(ymin), g.col(ymax), g.row(zmin), g.row(zmax))
+    };
+    for t in yz {
+        let (c0, c1, r0, r1) = range(&grid, t);
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                grid.cell_start[r * ny + c + 1] += 1;
+            }
+        }
+    }
+    for i in 0..ny * nz {
+        grid.cell_start[i + 1] += grid.cell_start[i];
+    }
+    let mut fill: Vec<u32> = grid.cell_start[..ny * nz].to_vec();
+    grid.entries = vec![GridEntry::default(); grid.cell_start[ny * nz] as usize];
+    for (i, t) in yz.iter().enumerate() {
+        let (c0, c1, r0, r1) = range(&grid, t);
+        let entry = GridEntry {
+            max_x: f32_up(t.max_x()),
+            record: i as u32,
+        };
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                let cell = r * ny + c;
+                grid.entries[fill[cell] as usize] = entry;
+                fill[cell] += 1;
+            }
+        }
+    }
+    grid
+}
+
+// ---------------------------------------------------------------------------
+// BVH: binned SAH over triangle boxes.
+
+fn f32_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x {
+        next_down_f32(f)
+    } else {
+        f
+    }
+}
+
+fn f32_up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x {
+        -next_down_f32(-f)
+    } else {
+        f
+    }
+}
+
+fn next_down_f32(f: f32) -> f32 {
+    if f.is_nan() || f == f32::NEG_INFINITY {
+        return f;
+    }
+    if f == 0.0 {
+        return -f32::from_bits(1);
+    }
+    let bits = f.to_bits();
+    if f > 0.0 {
+        f32::from_bits(bits - 1)
+    } else {
+        f32::from_bits(bits + 1)
+    }
+}
+
+#[derive(Clone, Copy)]
+struct Bin {
+    bounds: Aabb,
+    centres: Aabb,
+    count: usize,
+}
+
+fn half_area(b: &Aabb) -> f64 {
+    if b.is_empty() {
+        return 0.0;
+    }
+    let s = b.size();
+    s.x * s.y + s.y * s.z + s.z * s.x
+}
+
+/// Builds the BVH; returns the nodes and the triangle order of the leaves.
+fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>) {
+    let boxes: Vec<Aabb> = tris.par_iter().map(|t| Aabb::from_points(*t)).collect();
+    let centres: Vec<DVec3> = boxes.par_iter().map(Aabb::center).collect();
+    let mut order: Vec<u32> = (0..tris.len() as u32).collect();
+    let mut nodes = Vec::with_capacity(2 * tris.len() / LEAF_SIZE + 1);
+    if tris.is_empty() {
+        nodes.push(Node {
+            min: [f32::INFINITY; 3],
+            max: [f32::NEG_INFINITY; 3],
+            first: 0,
+            count: 0,
+        });
+        return (nodes, order);
+    }
+    let _ = nodes;
+    let ext = Extent {
+        bounds: boxes.iter().fold(Aabb::EMPTY, |b, x| b.union(*x)),
+        centres: centres.iter().fold(Aabb::EMPTY, |b, &c| b.grow(c)),
+    };
+    let nodes = build_node_parallel(&boxes, &centres, &mut order, 0, &ext);
+    (nodes, order)
+}
+
+fn node_of(bounds: &Aabb, order: &[u32], offset: usize) -> Node {
+    Node {
+        min: [
+            f32_down(bounds.min.x),
+            f32_down(bounds.min.y),
+            f32_down(bounds.min.z),
+        ],
+        max: [
+            f32_up(bounds.max.x),
+            f32_up(bounds.max.y),
+            f32_up(bounds.max.z),
+        ],
+        first: offset as u32,
+        count: order.len() as u32,
+    }
+}
+
+/// The boxes of a subtree: of its triangles and of their centroids.
+#[derive(Clone, Copy)]
+struct Extent {
+    bounds: Aabb,
+    centres: Aabb,
+}
+
+impl Extent {
+    fn of(boxes: &[Aabb], centres: &[DVec3], order: &[u32]) -> Extent {
+        order.iter().fold(
+            Extent {
+                bounds: Aabb::EMPTY,
+                centres: Aabb::EMPTY,
+            },
+            |e, &i| Extent {
+                bounds: e.bounds.union(boxes[i as usize]),
+                centres: e.centres.grow(centres[i as usize]),
+            },
+        )
+    }
+}
+
+/// Splits `order` (more than [`LEAF_SIZE`] triangles, centroids in
+/// `ext.centres`) by binned SAH on the longest axis of the centroids' box;
+/// returns the size of the first part and the extents of both parts.
+fn partition(
+    centres: &[DVec3],
+    boxes: &[Aabb],
+    order: &mut [u32],
+    ext: &Extent,
+) -> (usize, Extent, Extent) {
+    let n = order.len();
+    let size = ext.centres.size();
+    let axis = if size.x >= size.y && size.x >= size.z {
+        0
+    } else if size.y >= size.z {
+        1
+    } else {
+        2
+    };
+    let lo = ext.centres.min[axis];
+    let width = size[axis];
+    if width > 0.0 {
+        let scale = BINS as f64 / width;
+        let bin_of = |i: u32| (((centres[i as usize][axis] - lo) * scale) as usize).min(BINS - 1);
+        let mut bins = [Bin {
+            bounds: Aabb::EMPTY,
+            centres: Aabb::EMPTY,
+            count: 0,
+        }; BINS];
+        for &i in order.iter() {
+            let b = &mut bins[bin_of(i)];
+            b.bounds = b.bounds.union(boxes[i as usize]);
+            b.centres = b.centres.grow(centres[i as usize]);
+            b.count += 1;
+        }
+        // Sweep from the right for suffix areas.
+        let mut right_area = [0.0; BINS];
+        let mut acc = Aabb::EMPTY;
+        let mut right_count = [0usize; BINS];
+        let mut cnt = 0;
+        for k in (1..BINS).rev() {
+            acc = acc.union(bins[k].bounds);
+            cnt += bins[k].count;
+            right_area[k] = half_area(&acc);
+            right_count[k] = cnt;
+        }
+        let mut best = (f64::INFINITY, 0usize);
+        let mut acc = Aabb::EMPTY;
+        let mut cnt = 0;
+        for k in 0..BINS - 1 {
+            acc = acc.union(bins[k].bounds);
+            cnt += bins[k].count;
+            if cnt == 0 || right_count[k + 1] == 0 {
+                continue;
+            }
+            let cost = half_area(&acc) * cnt as f64 + right_area[k + 1] * right_count[k + 1] as f64;
+            if cost < best.0 {
+                best = (cost, k);
+            }
+        }
+        if best.0.is_finite() {
+            let split = best.1;
+            let mut left = 0;
+            for j in 0..n {
+                if bin_of(order[j]) <= split {
+                    order.swap(left, j);
+                    left += 1;
+                }
+            }
+            let merge = |range: std::ops::Range<usize>| {
+                bins[range].iter().fold(
+                    Extent {
+                        bounds: Aabb::EMPTY,
+                        centres: Aabb::EMPTY,
+                    },
+                    |e, b| Extent {
+                        bounds: e.bounds.union(b.bounds),
+                        centres: e.centres.union(b.centres),
+                    },
+                )
+            };
+            if left > 0 && left < n {
+                return (left, merge(0..split + 1), merge(split + 1..BINS));
+            }
+        }
+    }
+    // No useful split (all centroids equal): halve by count.
+    let mid = n / 2;
+    let (l, r) = order.split_at(mid);
+    (
+        mid,
+        Extent::of(boxes, centres, l),
+        Extent::of(boxes, centres, r),
+    )
+}
+
+fn build_node(
+    boxes: &[Aabb],
+    centres: &[DVec3],
+    order: &mut [u32],
+    offset: usize,
+    ext: &Extent,
+    nodes: &mut Vec<Node>,
+) {
+    let me = nodes.len();
+    nodes.push(node_of(&ext.bounds, order, offset));
+    if order.len() <= LEAF_SIZE {
+        return;
+    }
+    let (mid, le, re) = partition(centres, boxes, order, ext);
+    let (left, right) = order.split_at_mut(mid);
+    build_node(boxes, centres, left, offset, &le, nodes);
+    let second = nodes.len() as u32;
+    build_node(boxes, centres, right, offset + mid, &re, nodes);
+    nodes[me].first = second;
+    nodes[me].count = 0;
+}
+
+/// Subtrees at least this large are built on two threads.
+const PARALLEL_BUILD: usize = 16 * 1024;
+
+/// [`build_node`] with the two halves of large subtrees built in parallel;
+/// returns the subtree's nodes with indices local to it.
+fn build_node_parallel(
+    boxes: &[Aabb],
+    centres: &[DVec3],
+    order: &mut [u32],
+    offset: usize,
+    ext: &Extent,
+) -> Vec<Node> {
+    let mut nodes = Vec::new();
+    if order.len() < PARALLEL_BUILD {
+        build_node(boxes, centres, order, offset, ext, &mut nodes);
+        return nodes;
+    }
+    nodes.push(node_of(&ext.bounds, order, offset));
+    let (mid, le, re) = partition(centres, boxes, order, ext);
+    let (left, right) = order.split_at_mut(mid);
+    let (l, r) = rayon::join(
+        || build_node_parallel(boxes, centres, left, offset, &le),
+        || build_node_parallel(boxes, centres, right, offset + mid, &re),
+    );
+    let shift = |n: &Node, base: u32| {
+        let mut n = *n;
+        if n.count == 0 {
+            n.first += base;
+        }
+        n
+    };
+    nodes.reserve(l.len() + r.len());
+    nodes.extend(l.iter().map(|n| shift(n, 1)));
+    let second = nodes.len() as u32;
+    nodes.extend(r.iter().map(|n| shift(n, second)));
+    nodes[0].first = second;
+    nodes[0].count = 0;
+    nodes
+}
+
+// ---------------------------------------------------------------------------
+// Convexity, decided exactly on the fan triangles.
+
+/// The exact convexity test on the fan triangles; see [`NotConvex`].
+fn check_convexity(
+    tris: &[YzTri],
+    tri_face: &[FaceId],
+    boundary_edges: usize,
+) -> Result<(), NotConvex> {
+    if boundary_edges > 0 {
+        return Err(NotConvex::NotClosed);
+    }
+    let key = |p: DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+    // Every directed edge (by exact corner coordinates) with its triangle and
+    // the triangle's third corner; sorted so that partners can be found.
+    let mut edges: Vec<([u64; 3], [u64; 3], u32, u8)> = tris
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(i, t)| {
+            let c = t.corners();
+            (0..3).map(move |k| {
+                (
+                    key(c[k]),
+                    key(c[(k + 1) % 3]),
+                    i as u32,
+                    ((k + 2) % 3) as u8,
+                )
+            })
+        })
+        .collect();
+    edges.par_sort_unstable();
+    let partner = |from: [u64; 3], to: [u64; 3]| {
+        edges
+            .binary_search_by(|e| (e.0, e.1).cmp(&(from, to)))
+            .ok()
+            .map(|j| edges[j])
+    };
+    // Local test at every edge, in parallel; the first failure in edge order
+    // is reported.
+    let local = edges.par_iter().find_map_first(|&(from, to, t, _)| {
+        let Some((_, _, u, opposite)) = partner(to, from) else {
+            return Some(NotConvex::NotClosed);
+        };
+        let [a, b, c] = tris[t as usize].corners();
+        let d = tris[u as usize].corners()[opposite as usize];
+        let face = tri_face[t as usize];
+        match orient3d(a, b, c, d) {
+            Sign::Positive => Some(NotConvex::ReflexEdge { face, point: d }),
+            Sign::Negative => None,
+            Sign::Zero => {
+                // Coplanar neighbours must lie across the shared edge.
+                let (p, q) = (from, to);
+                let [pp, qq] = [p, q].map(|k| {
+                    DVec3::new(
+                        f64::from_bits(k[0]),
+                        f64::from_bits(k[1]),
+                        f64::from_bits(k[2]),
+                    )
+                });
+                let r = [a, b, c]
+                    .into_iter()
+                    .find(|&v| key(v) != p && key(v) != q)
+                    .unwrap_or(a);
+                folded(pp, qq, r, d).then_some(NotConvex::ReflexCorner { face, point: d })
+            }
+        }
+    });
+    if let Some(reason) = local {
+        return Err(reason);
+    }
+    let shells = count_shells(tris.len(), &edges);
+    if shells != 1 {
+        return Err(NotConvex::Shells { count: shells });
+    }
+    Ok(())
+}
+
+/// Whether `r` and `s`, coplanar with the edge `p q`, lie strictly on the
+/// same side of it (decided in an axis plane where `p, q, r` do not
+/// collapse). Degenerate triangles never fold.
+fn folded(p: DVec3, q: DVec3, r: DVec3, s: DVec3) -> bool {
+    for axis in [Axis::X, Axis::Y, Axis::Z] {
+        let proj = Projection {
+            axis,
+            flipped: false,
+        };
+        let [pp, qq, rr, ss] = [p, q, r, s].map(|v| proj.apply(v));
+        let side_r = orient2d(pp, qq, rr);
+        if side_r != Sign::Zero {
+            return orient2d(pp, qq, ss) == side_r;
+        }
+    }
+    false
+}
+
+/// The number of edge-connected components of the triangles, from the
+/// sorted directed edges (union–find).
+fn count_shells(n: usize, edges: &[([u64; 3], [u64; 3], u32, u8)]) -> usize {
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn root(parent: &mut [u32], mut i: u32) -> u32 {
+        while parent[i as usize] != i {
+            let grand = parent[parent[i as usize] as usize];
+            parent[i as usize] = grand;
+            i = grand;
+        }
+        i
+    }
+    for &(from, to, t, _) in edges {
+        if let Ok(j) = edges.binary_search_by(|e| (e.0, e.1).cmp(&(to, from))) {
+            let (a, b) = (root(&mut parent, t), root(&mut parent, edges[j].2));
+            if a != b {
+                parent[a as usize] = b;
+            }
+        }
+    }
+    (0..n as u32).filter(|&i| root(&mut parent, i) == i).count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::builders;
+
+    #[test]
+    fn f32_bounds_round_outward() {
+        for x in [0.1, -0.1, 1e12 + 0.3, -1e-12, 1e-50, -1e-50, 0.0, 3.0] {
+            assert!(f64::from(f32_down(x)) <= x, "{x}");
+            assert!(f64::from(f32_up(x)) >= x, "{x}");
+        }
+    }
+
+    #[test]
+    fn accel_of_platonic_solids() {
+        for solid in [
+            builders::tetrahedron(),
+            builders::cube(),
+            builders::octahedron(),
+            builders::icosahedron(),
+        ] {
+            let accel = Accel::new(&solid);
+            assert!(accel.is_closed());
+            assert_eq!(accel.convexity(), Ok(()));
+            let s = accel.stats();
+            assert!(s.triangles >= solid.face_count());
+            assert!(s.grid_entries >= s.triangles);
+        }
+        let l = Accel::new(&builders::l_prism());
+        assert!(l.convexity().is_err());
+    }
+
+    #[test]
+    fn an_empty_solid_has_an_empty_accel() {
+        let accel = Accel::new(&Solid::default());
+        assert_eq!(accel.stats().triangles, 0);
+        assert_eq!(
+            accel.classify(DVec3::new(0.5, 0.5, 0.5)),
+            Ok(super::super::Containment::Outside)
+        );
+        let ray = crate::geom::Ray::new(DVec3::ZERO, DVec3::X);
+        assert_eq!(accel.first_hit(&ray), Ok(None));
+        assert!(accel.ray_crossings(&ray).unwrap().hits.is_empty());
+        assert_eq!(accel.winding_number(DVec3::ZERO), Ok(0.0));
+    }
+}

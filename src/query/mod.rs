@@ -1,0 +1,98 @@
+//! Queries: line–face intersection, ray–solid crossings and point-in-polyhedron.
+//!
+//! Every query runs against an [`Accel`], built once per solid
+//! ([`Accel::new`]) and shared (it is `Sync`) by any number of queries and
+//! threads. The accel holds a fan triangulation of every face (exact input
+//! coordinates, each triangle remembering its [`FaceId`](crate::mesh::FaceId)),
+//! a bounding-volume hierarchy for rays in any direction, and a uniform grid
+//! over the `yz` projection for the `+x` parity rays of point classification.
+//!
+//! # What "exact" means here
+//!
+//! - Every sign is decided by exact predicates on input coordinates
+//!   ([`orient2d`](crate::geom::orient2d), [`orient3d`](crate::geom::orient3d),
+//!   [`line_side`](crate::geom::line_side)): a point exactly on a face, edge or
+//!   vertex is [`Containment::OnBoundary`]; a point one ulp away is not.
+//! - Rays through edges and vertices, and rays lying in a face's plane, are
+//!   resolved by Simulation of Simplicity: the ray is moved symbolically (see
+//!   [`line_side_sos`](crate::geom::line_side_sos) and [`Accel::classify`]),
+//!   deterministically and independently of face order. A ray through an edge
+//!   or a vertex therefore crosses once, a ray grazing a silhouette crosses 0
+//!   or 2 times, never 1.
+//! - Crossing parameters `t` and the generalized winding number are rounded
+//!   constructions; no decision depends on them, except that crossings are
+//!   *listed* in order of their rounded `t`.
+
+mod accel;
+mod line_face;
+mod point_in_convex;
+mod point_in_solid;
+mod ray_solid;
+mod winding;
+
+pub use accel::{Accel, AccelStats, NotConvex};
+pub use line_face::{LineFaceHit, LineKind, intersect_line_face};
+pub use point_in_solid::Method;
+pub use ray_solid::{Crossing, RayCrossings, Transition};
+
+use thiserror::Error;
+
+/// Where a point is relative to a solid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Containment {
+    /// Strictly inside.
+    Inside,
+    /// Strictly outside.
+    Outside,
+    /// Exactly on a face, edge or vertex.
+    OnBoundary,
+}
+
+impl Containment {
+    /// The word used by the command line: `inside`, `outside` or `boundary`.
+    #[must_use]
+    pub fn as_word(self) -> &'static str {
+        match self {
+            Containment::Inside => "inside",
+            Containment::Outside => "outside",
+            Containment::OnBoundary => "boundary",
+        }
+    }
+}
+
+/// Why a query could not be answered.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum QueryError {
+    /// A query point has a NaN or infinite coordinate.
+    #[error("point {index} ({point}) has a non-finite coordinate")]
+    NonFinitePoint {
+        /// The point's index in the batch (0 for a single query).
+        index: usize,
+        /// The point.
+        point: glam::DVec3,
+    },
+    /// A ray has a non-finite origin or direction, or a zero direction.
+    #[error(
+        "ray {index} (origin {origin}, direction {direction}) is not valid: origin and direction must be finite and the direction non-zero"
+    )]
+    InvalidRay {
+        /// The ray's index in the batch (0 for a single query).
+        index: usize,
+        /// Its origin.
+        origin: glam::DVec3,
+        /// Its direction.
+        direction: glam::DVec3,
+    },
+    /// Parity and ray crossings need a closed surface (every edge with two
+    /// faces); use the winding number for open input.
+    #[error(
+        "the solid is not closed ({boundary_edges} edges have only one face); inside/outside by parity is undefined, use the winding number"
+    )]
+    NotClosed {
+        /// How many boundary edges the solid has.
+        boundary_edges: usize,
+    },
+    /// The normals method was asked of a solid that is not convex.
+    #[error("the normals method needs a convex solid: {0}")]
+    NotConvex(NotConvex),
+}

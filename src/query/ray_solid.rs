@@ -1,0 +1,468 @@
+//! Ray–solid crossings: what a CSG primitive answers for a ray.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::geom::exact::line_side_filter_scalar;
+use crate::geom::polygon::coplanar_point_in_closed_triangle;
+use crate::geom::{Ray, Sign, line_side_sos, orient3d};
+use crate::mesh::FaceId;
+
+use super::accel::Node2;
+use super::{Accel, Containment, QueryError};
+
+/// Whether the ray enters or leaves the solid at a crossing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Transition {
+    /// The ray goes from outside to inside (against the face's outward
+    /// normal).
+    Enter,
+    /// The ray goes from inside to outside (along the outward normal).
+    Exit,
+}
+
+/// One crossing of a ray with a solid's boundary.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing {
+    /// The ray parameter, `origin + t · direction`; a rounded construction,
+    /// always `> 0`.
+    pub t: f64,
+    /// The face crossed (for a ray through an edge or a vertex: the one face
+    /// the perturbed ray crosses).
+    pub face: FaceId,
+    /// Entering or leaving, decided exactly (from the face's orientation).
+    pub transition: Transition,
+}
+
+/// A ray's answer from one solid: whether its origin is inside, and where it
+/// crosses the boundary.
+///
+/// # Invariants
+///
+/// `hits` is sorted by ascending `t`, every `t > 0`; crossings with equal
+/// rounded `t` (a ray grazing a vertex or an edge) are listed in the order the
+/// perturbed ray meets them. On a valid closed solid
+/// the transitions alternate, starting with `Exit` when `origin` is
+/// `Inside` and `Enter` when it is `Outside`; the list ends with an `Exit`
+/// (the ray ends outside). When `origin` is `OnBoundary`, crossings at the
+/// origin itself are not listed, and the first transition tells whether the
+/// ray runs inside (`Exit` first) or outside (`Enter` first) just after
+/// leaving the origin.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RayCrossings {
+    /// Where the ray's origin is.
+    pub origin: Containment,
+    /// The crossings with `t > 0`, ascending.
+    pub hits: Vec<Crossing>,
+}
+
+/// Per-ray constants for box tests.
+struct RayBox {
+    origin: [f64; 3],
+    inv: [f64; 3],
+    neg: [bool; 3],
+}
+
+/// `1 + 2γ₃` with `γₙ = n u / (1 − n u)`: Ize's factor making the slab test
+/// conservative under rounding ("Robust BVH Ray Traversal", JCGT 2013).
+const SLAB_GROW: f64 = 1.0 + 2.0 * (3.0 * HALF_EPS / (1.0 - 3.0 * HALF_EPS));
+const HALF_EPS: f64 = f64::EPSILON / 2.0;
+
+impl RayBox {
+    fn new(ray: &Ray) -> RayBox {
+        let inv = DVec3::ONE / ray.direction;
+        RayBox {
+            origin: ray.origin.to_array(),
+            inv: inv.to_array(),
+            neg: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
+        }
+    }
+
+    /// The entry parameter of child `k`'s box if the ray (`t ≥ 0`) may touch
+    /// it before `t_max`; conservative.
+    #[inline(always)]
+    fn enter(&self, n: &Node2, k: usize, t_max: f64) -> Option<f64> {
+        let mut t0 = 0.0f64;
+        let mut t1 = t_max;
+        for a in 0..3 {
+            let (lo, hi) = (f64::from(n.min[k][a]), f64::from(n.max[k][a]));
+            let (near, far) = if self.neg[a] { (hi, lo) } else { (lo, hi) };
+            let tn = (near - self.origin[a]) * self.inv[a];
+            let tf = (far - self.origin[a]) * self.inv[a] * SLAB_GROW;
+            // NaN (0 · ∞: origin on the slab plane of a parallel ray) leaves
+            // the bound unchanged.
+            if tn > t0 {
+                t0 = tn;
+            }
+            if tf < t1 {
+                t1 = tf;
+            }
+        }
+        (t0 <= t1).then_some(t0)
+    }
+}
+
+/// How a ray meets one triangle.
+enum TriHit {
+    Miss,
+    /// The origin lies on the triangle.
+    Origin,
+    /// A crossing in front of the origin; the sign is `+` for an exit.
+    Cross(Sign),
+}
+
+impl Accel {
+    /// The crossings of `ray` with the solid's boundary, and whether its
+    /// origin is inside.
+    ///
+    /// Each triangle is tested with three exact [`line_side_sos`] signs on
+    /// the ray's origin and direction (the ray crosses the triangle iff the
+    /// three agree; their common sign says `Enter`/`Exit`) and one exact
+    /// `orient3d` for "in front of the origin". Ties (the ray through an
+    /// edge or vertex, or lying in a face's plane) are broken by the symbolic
+    /// perturbation of [`line_side_sos`]: the ray is rotated by an
+    /// infinitesimal angle and moved by an infinitely smaller distance, the
+    /// same for every triangle, so each crossing counts exactly once and
+    /// grazing gives 0 or 2 crossings. The exactness is with respect to the
+    /// line `origin + t · direction` for real `t` with the given `f64`
+    /// origin and direction. Triangles whose plane contains the origin are
+    /// crossed at `t = 0` (or not at all) and are never listed.
+    ///
+    /// The origin's containment is parity of the listed crossings, or
+    /// [`Containment::OnBoundary`] when it lies exactly on a triangle.
+    ///
+    /// # Errors
+    ///
+    /// [`QueryError::InvalidRay`] for a non-finite or zero-direction ray,
+    /// [`QueryError::NotClosed`] for an open surface.
+    pub fn ray_crossings(&self, ray: &Ray) -> Result<RayCrossings, QueryError> {
+        self.check_ray(ray, 0)?;
+        self.require_closed()?;
+        let mut on_boundary = false;
+        let mut hits: Vec<(f64, u32, Sign)> = Vec::new();
+        self.traverse(ray, f64::INFINITY, |i, _| {
+            match self.hit_triangle(ray, i) {
+                TriHit::Miss => {}
+                TriHit::Origin => on_boundary = true,
+                TriHit::Cross(s) => hits.push((self.t_of(ray, i), i, s)),
+            }
+            f64::INFINITY
+        });
+        hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let winding: i32 = hits.iter().map(|h| h.2.as_i32()).sum();
+        let origin = if on_boundary {
+            Containment::OnBoundary
+        } else if winding % 2 != 0 {
+            Containment::Inside
+        } else {
+            Containment::Outside
+        };
+        let inside = match origin {
+            Containment::Inside => true,
+            Containment::Outside => false,
+            Containment::OnBoundary => winding > 0,
+        };
+        alternate(&mut hits, inside);
+        let hits = hits
+            .into_iter()
+            .map(|(t, i, s)| self.crossing(t, i, s))
+            .collect();
+        Ok(RayCrossings { origin, hits })
+    }
+
+    /// The first crossing of `ray` with the boundary (`t > 0`), or `None`.
+    /// Decided as in [`Accel::ray_crossings`]; the nearest is chosen by the
+    /// rounded `t` (ties by triangle order). Works on open surfaces too.
+    ///
+    /// # Errors
+    ///
+    /// [`QueryError::InvalidRay`] for a non-finite or zero-direction ray.
+    pub fn first_hit(&self, ray: &Ray) -> Result<Option<Crossing>, QueryError> {
+        self.check_ray(ray, 0)?;
+        Ok(self.first_hit_unchecked(ray))
+    }
+
+    /// [`Accel::first_hit`] for every ray, in order, on all cores.
+    ///
+    /// # Errors
+    ///
+    /// The first invalid ray, by index.
+    pub fn first_hit_batch(&self, rays: &[Ray]) -> Result<Vec<Option<Crossing>>, QueryError> {
+        for (index, ray) in rays.iter().enumerate() {
+            self.check_ray(ray, index)?;
+        }
+        // Small meshes fit in cache: sorting would cost more than it saves.
+        if rays.len() < SORTED_BATCH || self.tris.len() < COHERENT_MIN_TRIANGLES {
+            return Ok(rays
+                .par_iter()
+                .with_min_len(512)
+                .map(|r| self.first_hit_unchecked(r))
+                .collect());
+        }
+        // Large batches: cast the rays in the order of a 6-D Morton code of
+        // (origin, direction), so that rays cast one after the other walk
+        // mostly the same BVH nodes and triangles, which are then still in
+        // cache; answers are written back in input order.
+        let order = coherent_order(rays);
+        let sorted: Vec<Ray> = order.par_iter().map(|&i| rays[i as usize]).collect();
+        let answers: Vec<Option<Crossing>> = sorted
+            .par_iter()
+            .with_min_len(1024)
+            .map(|r| self.first_hit_unchecked(r))
+            .collect();
+        let mut out = vec![None; rays.len()];
+        for (&i, a) in order.iter().zip(answers) {
+            out[i as usize] = a;
+        }
+        Ok(out)
+    }
+
+    /// [`Accel::ray_crossings`] for every ray, in order, on all cores.
+    ///
+    /// # Errors
+    ///
+    /// The first invalid ray by index, or [`QueryError::NotClosed`].
+    pub fn ray_crossings_batch(&self, rays: &[Ray]) -> Result<Vec<RayCrossings>, QueryError> {
+        for (index, ray) in rays.iter().enumerate() {
+            self.check_ray(ray, index)?;
+        }
+        self.require_closed()?;
+        rays.par_iter()
+            .with_min_len(256)
+            .map(|r| self.ray_crossings(r))
+            .collect()
+    }
+
+    fn first_hit_unchecked(&self, ray: &Ray) -> Option<Crossing> {
+        let mut best: Option<(f64, u32, Sign)> = None;
+        self.traverse(ray, f64::INFINITY, |i, t_max| {
+            if let TriHit::Cross(s) = self.hit_triangle(ray, i) {
+                let t = self.t_of(ray, i);
+                let better = match best {
+                    None => true,
+                    Some((bt, bi, _)) => t < bt || (t == bt && i < bi),
+                };
+                if better {
+                    best = Some((t, i, s));
+                    return t;
+                }
+            }
+            t_max
+        });
+        best.map(|(t, i, s)| self.crossing(t, i, s))
+    }
+
+    fn check_ray(&self, ray: &Ray, index: usize) -> Result<(), QueryError> {
+        if ray.is_valid() {
+            Ok(())
+        } else {
+            Err(QueryError::InvalidRay {
+                index,
+                origin: ray.origin,
+                direction: ray.direction,
+            })
+        }
+    }
+
+    fn crossing(&self, t: f64, i: u32, s: Sign) -> Crossing {
+        Crossing {
+            t,
+            face: self.tri_face[i as usize],
+            transition: if s == Sign::Positive {
+                Transition::Exit
+            } else {
+                Transition::Enter
+            },
+        }
+    }
+
+    /// The rounded parameter of the crossing with triangle `i`'s plane,
+    /// clamped to the smallest positive `f64` (the crossing is known exactly
+    /// to be in front of the origin).
+    fn t_of(&self, ray: &Ray, i: u32) -> f64 {
+        let [a, b, c] = self.tris[i as usize].corners();
+        let n = (b - a).cross(c - a);
+        let t = n.dot(a - ray.origin) / n.dot(ray.direction);
+        if t > 0.0 { t } else { f64::MIN_POSITIVE }
+    }
+
+    #[inline]
+    fn hit_triangle(&self, ray: &Ray, i: u32) -> TriHit {
+        let [a, b, c] = &self.tris[i as usize].corners();
+        let (o, d) = (&ray.origin, &ray.direction);
+        let dd = [d.x, d.y, d.z];
+        let u = [a.x - o.x, a.y - o.y, a.z - o.z];
+        let v = [b.x - o.x, b.y - o.y, b.z - o.z];
+        let s0 = line_side_filter_scalar(dd, u, v).unwrap_or_else(|| line_side_sos(*o, *d, *a, *b));
+        let w = [c.x - o.x, c.y - o.y, c.z - o.z];
+        let s1 = line_side_filter_scalar(dd, v, w).unwrap_or_else(|| line_side_sos(*o, *d, *b, *c));
+        if s0 != s1 || s0 == Sign::Zero {
+            return self.origin_check(*a, *b, *c, *o);
+        }
+        let s2 = line_side_filter_scalar(dd, w, u).unwrap_or_else(|| line_side_sos(*o, *d, *c, *a));
+        if s2 != s0 {
+            return self.origin_check(*a, *b, *c, *o);
+        }
+        match orient3d(*a, *b, *c, *o) {
+            Sign::Zero => self.origin_check(*a, *b, *c, *o),
+            side if side == -s0 => TriHit::Cross(s0),
+            _ => TriHit::Miss,
+        }
+    }
+
+    /// Whether the origin lies on the triangle (cheap rejections first).
+    #[inline]
+    fn origin_check(&self, a: DVec3, b: DVec3, c: DVec3, o: DVec3) -> TriHit {
+        let lo = a.min(b).min(c);
+        let hi = a.max(b).max(c);
+        if o.cmplt(lo).any() || o.cmpgt(hi).any() {
+            return TriHit::Miss;
+        }
+        if orient3d(a, b, c, o) == Sign::Zero && coplanar_point_in_closed_triangle(a, b, c, o) {
+            TriHit::Origin
+        } else {
+            TriHit::Miss
+        }
+    }
+
+    /// Visits the triangles of every leaf whose box the ray may touch before
+    /// the current limit, near child first. `visit(i, t_max)` returns the new
+    /// limit. Deferred subtrees are kept with their entry parameter, so that
+    /// a subtree beyond the limit is dropped without touching its node.
+    fn traverse(&self, ray: &Ray, t_max: f64, mut visit: impl FnMut(u32, f64) -> f64) {
+        let rb = RayBox::new(ray);
+        let mut limit = t_max;
+        let mut stack: smallvec::SmallVec<[(u32, f64); 64]> = smallvec::SmallVec::new();
+        let nodes = &self.nodes;
+        let mut current = 0u32;
+        loop {
+            let node = &nodes[current as usize];
+            let e0 = rb.enter(node, 0, limit);
+            let e1 = rb.enter(node, 1, limit);
+            // Leaves are tested at once, nearer first; inner children are
+            // descended into, nearer first.
+            let order = match (e0, e1) {
+                (Some(a), Some(b)) if b < a => [(1, b), (0, a)],
+                (Some(a), Some(b)) => [(0, a), (1, b)],
+                (Some(a), None) => [(0, a), (2, 0.0)],
+                (None, Some(b)) => [(1, b), (2, 0.0)],
+                (None, None) => [(2, 0.0), (2, 0.0)],
+            };
+            let mut next: Option<u32> = None;
+            for (k, t) in order {
+                if k == 2 || t > limit {
+                    continue;
+                }
+                let (child, count) = (node.child[k], node.count[k]);
+                if count > 0 {
+                    for i in child..child + count {
+                        limit = visit(i, limit);
+                    }
+                } else if next.is_none() {
+                    next = Some(child);
+                } else {
+                    stack.push((child, t));
+                }
+            }
+            if let Some(n) = next {
+                current = n;
+                continue;
+            }
+            loop {
+                let Some((n, t)) = stack.pop() else {
+                    return;
+                };
+                if t <= limit {
+                    current = n;
+                    break;
+                }
+            }
+        }
+    }
+}
+
+/// Batches at least this large are cast in a coherent order...
+const SORTED_BATCH: usize = 8192;
+/// ...on meshes with at least this many triangles.
+const COHERENT_MIN_TRIANGLES: usize = 16 * 1024;
+
+/// Ray indices sorted by a 6-D Morton code of the ray's origin (within the
+/// origins' bounding box) and its normalized direction, 10 bits per
+/// coordinate.
+fn coherent_order(rays: &[Ray]) -> Vec<u32> {
+    let bounds = rays
+        .iter()
+        .fold(crate::geom::Aabb::EMPTY, |b, r| b.grow(r.origin));
+    let size = bounds.size().max(DVec3::splat(f64::MIN_POSITIVE));
+    let quantize = |x: f64| (x.clamp(0.0, 1.0) * 1023.0) as u64;
+    let mut keyed: Vec<(u64, u32)> = rays
+        .par_iter()
+        .with_min_len(4096)
+        .enumerate()
+        .map(|(i, r)| {
+            let o = (r.origin - bounds.min) / size;
+            let d = r.direction.normalize_or_zero() * 0.5 + DVec3::splat(0.5);
+            let q = [o.x, o.y, o.z, d.x, d.y, d.z].map(quantize);
+            let mut key = 0u64;
+            for bit in (0..10).rev() {
+                for &c in &q {
+                    key = (key << 1) | ((c >> bit) & 1);
+                }
+            }
+            (key, i as u32)
+        })
+        .collect();
+    keyed.par_sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// Orders crossings whose rounded `t` coincide (or are inverted by
+/// rounding) so that transitions alternate, starting from `inside`: the
+/// perturbed ray crosses them in such an order, infinitesimally apart. The
+/// `t` values stay ascending; a transition is only moved forward past
+/// crossings of the wrong kind, which on a valid closed solid can only be
+/// crossings at (nearly) the same `t`.
+fn alternate(hits: &mut [(f64, u32, Sign)], mut inside: bool) {
+    let ts: Vec<f64> = hits.iter().map(|h| h.0).collect();
+    for i in 0..hits.len() {
+        let want = if inside {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        };
+        if hits[i].2 != want {
+            if let Some(j) = (i + 1..hits.len()).find(|&j| hits[j].2 == want) {
+                hits[i..=j].rotate_right(1);
+            }
+        }
+        inside = hits[i].2 == Sign::Negative;
+    }
+    for (h, t) in hits.iter_mut().zip(ts) {
+        h.0 = t;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::builders;
+
+    #[test]
+    fn ray_through_a_cube() {
+        let accel = Accel::new(&builders::cube());
+        let r = accel
+            .ray_crossings(&Ray::new(DVec3::new(-3.0, 0.1, 0.2), DVec3::X))
+            .unwrap();
+        assert_eq!(r.origin, Containment::Outside);
+        assert_eq!(r.hits.len(), 2);
+        assert_eq!(r.hits[0].t, 2.0);
+        assert_eq!(r.hits[0].transition, Transition::Enter);
+        assert_eq!(r.hits[1].t, 4.0);
+        let r = accel
+            .ray_crossings(&Ray::new(DVec3::ZERO, DVec3::new(1.0, 1.0, 1.0)))
+            .unwrap();
+        assert_eq!(r.origin, Containment::Inside);
+        assert_eq!(r.hits.len(), 1);
+        assert_eq!(r.hits[0].t, 1.0);
+    }
+}

@@ -1,0 +1,57 @@
+//! The batch forms (which reorder work internally for locality) give the
+//! same answers, in input order, as the single queries.
+
+use glam::DVec3;
+use wingedge::geom::Ray;
+use wingedge::mesh::builders;
+use wingedge::query::{Accel, Method};
+
+fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut s = seed;
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[test]
+fn batches_match_single_queries() {
+    let solid = builders::sphere(70); // 19,320 triangles: above the coherent-order threshold
+    let accel = Accel::new(&solid);
+    assert!(accel.stats().triangles > 16 * 1024);
+    let mut u = uniform(7);
+    // Random points plus mesh vertices (boundary) and points on the +x rays
+    // through vertices (ties).
+    let mut points: Vec<DVec3> = (0..12_000)
+        .map(|_| DVec3::new(u(), u(), u()) * 2.4 - DVec3::splat(1.2))
+        .collect();
+    for (_, v) in solid.vertices().take(2000) {
+        points.push(v.position);
+        points.push(v.position - DVec3::new(3.0, 0.0, 0.0));
+    }
+    let batch = accel.classify_batch(&points, Method::Parity).unwrap();
+    for (p, b) in points.iter().zip(&batch) {
+        assert_eq!(accel.classify(*p).unwrap(), *b, "{p}");
+    }
+    let rays: Vec<Ray> = (0..10_000)
+        .map(|_| {
+            let o = (DVec3::new(u(), u(), u()) * 2.0 - DVec3::ONE).normalize_or(DVec3::X) * 3.0;
+            let target = DVec3::new(u(), u(), u()) * 2.0 - DVec3::ONE;
+            Ray::new(o, target - o)
+        })
+        .collect();
+    let hits = accel.first_hit_batch(&rays).unwrap();
+    for (r, h) in rays.iter().zip(&hits) {
+        assert_eq!(accel.first_hit(r).unwrap(), *h);
+    }
+    let crossings = accel.ray_crossings_batch(&rays[..2000]).unwrap();
+    for (r, c) in rays.iter().zip(&crossings) {
+        assert_eq!(accel.ray_crossings(r).unwrap(), *c);
+        assert_eq!(
+            c.hits.first().map(|h| h.t),
+            accel.first_hit(r).unwrap().map(|h| h.t)
+        );
+    }
+}
