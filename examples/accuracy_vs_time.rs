@@ -989,6 +989,10 @@ fn svg(rows: &[Row]) -> String {
         s,
         r#"<text x="{x_time}" y="20" font-size="13" font-weight="bold">time per query (ns, log scale, 1 thread)</text>"#
     );
+    let _ = writeln!(
+        s,
+        r##"<text x="{x_wrong}" y="38" fill="#555">level 4 is the reference (0 wrong by definition; on-boundary points checked against their construction)</text>"##
+    );
     // Grid lines and axis labels.
     let axis_y = top + rows.len() as f64 * group_h;
     for k in 0..=4 {
