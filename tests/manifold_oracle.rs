@@ -11,6 +11,7 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use serde_json::Value;
+use wingedge::csg::{Scene, Stats};
 use wingedge::geom::Ray;
 use wingedge::glam::DVec3;
 use wingedge::io::{ObjOptions, import_obj, read_obj};
@@ -265,5 +266,132 @@ fn valid_and_invalid_verdicts_agree_with_manifold3d_status() {
             "{name}: {:?}",
             verdict.violations.first()
         );
+    }
+}
+
+/// The distance from `p` to the nearest triangle of a (triangulated) solid,
+/// by brute force: only asked for the few points where answers differ.
+fn distance_to_surface(solid: &Solid, p: DVec3) -> f64 {
+    solid
+        .faces()
+        .flat_map(|(f, _)| {
+            let corners: Vec<DVec3> = solid.face_vertices(f).map(|v| solid.position(v)).collect();
+            (1..corners.len() - 1)
+                .map(move |i| point_triangle_distance(p, corners[0], corners[i], corners[i + 1]))
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Euclidean distance from `p` to the closed triangle `abc` (Ericson's
+/// closest-point regions).
+fn point_triangle_distance(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return p.distance(a);
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return p.distance(b);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return p.distance(a + ab * (d1 / (d1 - d3)));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return p.distance(c);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return p.distance(a + ac * (d2 / (d2 - d6)));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        return p.distance(b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    p.distance(a + ab * (vb * denom) + ac * (vc * denom))
+}
+
+#[test]
+fn csg_trees_agree_with_manifold3d_booleans() {
+    let (dir, report) = oracle();
+    let cases = report["csg"].as_array().expect("csg cases");
+    assert!(cases.len() >= 3, "{} CSG cases", cases.len());
+    let mut rng = 0x5DEE_CE66_D1CE_4E5B_u64;
+    let mut uniform = move || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for case in cases {
+        let scene_name = case["scene"].as_str().expect("scene");
+        let scene =
+            Scene::from_file(&dir.join(scene_name)).unwrap_or_else(|e| panic!("{scene_name}: {e}"));
+        let result_name = case["result"]
+            .as_str()
+            .expect("result")
+            .trim_end_matches(".obj");
+        let result = load(dir, result_name);
+        let accel = Accel::new(&result);
+        let expected = case["volume"].as_f64().expect("volume");
+        let bounds = scene.csg.bounds();
+        let diagonal = bounds.diagonal();
+
+        // (a) The ray-integrated volume converges to manifold3d's.
+        let mut errors = Vec::new();
+        for cells in [20.0, 40.0, 80.0, 160.0] {
+            let estimate = scene
+                .csg
+                .try_volume(diagonal / cells)
+                .expect("bounded tree");
+            errors.push((
+                estimate.spacing,
+                (estimate.volume - expected).abs() / expected,
+            ));
+        }
+        println!(
+            "{scene_name}: manifold3d volume {expected}; relative errors by spacing {errors:?}"
+        );
+        let finest = errors.last().expect("four spacings").1;
+        assert!(
+            finest < 5e-3,
+            "{scene_name}: volume off by {finest:e} at the finest spacing"
+        );
+        assert!(
+            finest < errors[0].1.max(1e-4),
+            "{scene_name}: no convergence {errors:?}"
+        );
+
+        // (b) CSG point classification equals point-in-polyhedron on
+        // manifold3d's result mesh, except within a tiny distance of it.
+        let tiny = 1e-9 * diagonal;
+        let (mut differing, mut near) = (0, 0);
+        let mut stats = Stats::default();
+        for _ in 0..100_000 {
+            let p = bounds.min + bounds.size() * DVec3::new(uniform(), uniform(), uniform());
+            let ours = scene.csg.classify_point(p, &mut stats);
+            let theirs = accel.classify(p).expect("finite point");
+            if ours == theirs {
+                continue;
+            }
+            differing += 1;
+            let d = distance_to_surface(&result, p);
+            if d <= tiny {
+                near += 1;
+            } else {
+                panic!(
+                    "{scene_name}: point {p} is {ours:?} in the tree, {theirs:?} in manifold3d's result, {d:e} from its surface"
+                );
+            }
+        }
+        println!(
+            "{scene_name}: 100000 points, {differing} differ, all {near} within {tiny:e} of the result surface"
+        );
+        assert!(differing <= 10, "{scene_name}: {differing} points differ");
     }
 }
