@@ -14,6 +14,7 @@
 use glam::DVec3;
 
 use super::Sign;
+use super::expansion::Expansion;
 use super::predicates::count_fallback;
 
 /// Unit round-off of `f64` (half an ulp of 1.0).
@@ -61,63 +62,17 @@ pub fn side_of_plane(p: DVec3, q: DVec3, n: DVec3) -> Sign {
 
 fn exact_side_of_plane(p: DVec3, q: DVec3, n: DVec3) -> Sign {
     count_fallback();
-    let mut expansion: smallvec::SmallVec<[f64; 16]> = smallvec::SmallVec::new();
+    let mut total = Expansion::default();
     for i in 0..3 {
-        let (dh, dl) = two_diff(p[i], q[i]);
-        for factor in [dh, dl] {
-            let (hi, lo) = two_product(factor, n[i]);
-            grow(&mut expansion, lo);
-            grow(&mut expansion, hi);
-        }
+        total.grow_expansion(&Expansion::difference(p[i], q[i]).scale(n[i]), false);
     }
-    expansion
-        .iter()
-        .rev()
-        .find(|&&c| c != 0.0)
-        .map_or(Sign::Zero, |&c| Sign::of(c))
-}
-
-/// Adds `x` to a non-overlapping expansion (Shewchuk's Grow-Expansion with
-/// zero elimination); the result stays ordered by increasing magnitude.
-fn grow(expansion: &mut smallvec::SmallVec<[f64; 16]>, x: f64) {
-    let mut carry = x;
-    let mut kept = 0;
-    for j in 0..expansion.len() {
-        let (sum, err) = two_sum(carry, expansion[j]);
-        carry = sum;
-        if err != 0.0 {
-            expansion[kept] = err;
-            kept += 1;
-        }
-    }
-    expansion.truncate(kept);
-    if carry != 0.0 {
-        expansion.push(carry);
-    }
-}
-
-/// `a + b = sum + err` exactly (Knuth's TwoSum).
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let sum = a + b;
-    let bv = sum - a;
-    let av = sum - bv;
-    (sum, (a - av) + (b - bv))
-}
-
-/// `a − b = diff + err` exactly.
-fn two_diff(a: f64, b: f64) -> (f64, f64) {
-    two_sum(a, -b)
-}
-
-/// `a · b = product + err` exactly (a fused multiply-add gives the error).
-fn two_product(a: f64, b: f64) -> (f64, f64) {
-    let product = a * b;
-    (product, a.mul_add(b, -product))
+    total.sign()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::expansion::two_sum;
     use crate::geom::{exact_fallbacks, reset_exact_fallbacks};
 
     #[test]

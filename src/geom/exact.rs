@@ -17,6 +17,7 @@
 
 use glam::{DVec2, DVec3};
 
+use super::expansion::Expansion;
 use super::predicates::count_fallback;
 use super::{Sign, orient2d};
 
@@ -57,11 +58,7 @@ impl Diff {
     }
 
     fn expansion(self) -> Expansion {
-        let (x, y) = two_sum(self.plus, -self.minus);
-        let mut e = Expansion::default();
-        e.push(y);
-        e.push(x);
-        e
+        Expansion::difference(self.plus, self.minus)
     }
 }
 
@@ -118,9 +115,7 @@ pub fn det3_sign(rows: [[Diff; 3]; 3]) -> Sign {
             .expansion()
             .mul(&rows[1][p[1]].expansion())
             .mul(&rows[2][p[2]].expansion());
-        for &c in prod.as_slice() {
-            total.grow(if negative { -c } else { c });
-        }
+        total.grow_expansion(&prod, negative);
     }
     total.sign()
 }
@@ -137,12 +132,8 @@ pub fn det2_sign(r0: [Diff; 2], r1: [Diff; 2]) -> Sign {
     }
     count_fallback();
     let mut total = Expansion::default();
-    for &c in r0[0].expansion().mul(&r1[1].expansion()).as_slice() {
-        total.grow(c);
-    }
-    for &c in r0[1].expansion().mul(&r1[0].expansion()).as_slice() {
-        total.grow(-c);
-    }
+    total.grow_expansion(&r0[0].expansion().mul(&r1[1].expansion()), false);
+    total.grow_expansion(&r0[1].expansion().mul(&r1[0].expansion()), true);
     total.sign()
 }
 
@@ -306,77 +297,6 @@ fn line_side_tie(o: DVec3, d: DVec3, a: DVec3, b: DVec3) -> Sign {
         }
     }
     Sign::Zero
-}
-
-// ---------------------------------------------------------------------------
-// Expansion arithmetic (Shewchuk 1997). An expansion is a sum of
-// non-overlapping doubles in increasing order of magnitude; its sign is the
-// sign of its last non-zero component.
-
-#[derive(Clone, Debug, Default)]
-struct Expansion {
-    parts: smallvec::SmallVec<[f64; 16]>,
-}
-
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let x = a + b;
-    let bv = x - a;
-    let av = x - bv;
-    (x, (a - av) + (b - bv))
-}
-
-fn two_product(a: f64, b: f64) -> (f64, f64) {
-    let x = a * b;
-    (x, a.mul_add(b, -x))
-}
-
-impl Expansion {
-    fn push(&mut self, c: f64) {
-        if c != 0.0 {
-            self.parts.push(c);
-        }
-    }
-
-    fn as_slice(&self) -> &[f64] {
-        &self.parts
-    }
-
-    /// Adds `b` exactly (GROW-EXPANSION with zero elimination).
-    fn grow(&mut self, b: f64) {
-        if b == 0.0 {
-            return;
-        }
-        let mut q = b;
-        let mut out = smallvec::SmallVec::<[f64; 16]>::new();
-        for &e in &self.parts {
-            let (sum, err) = two_sum(q, e);
-            q = sum;
-            if err != 0.0 {
-                out.push(err);
-            }
-        }
-        if q != 0.0 {
-            out.push(q);
-        }
-        self.parts = out;
-    }
-
-    /// The exact product of two expansions.
-    fn mul(&self, other: &Expansion) -> Expansion {
-        let mut out = Expansion::default();
-        for &x in &self.parts {
-            for &y in &other.parts {
-                let (hi, lo) = two_product(x, y);
-                out.grow(lo);
-                out.grow(hi);
-            }
-        }
-        out
-    }
-
-    fn sign(&self) -> Sign {
-        self.parts.last().map_or(Sign::Zero, |&c| Sign::of(c))
-    }
 }
 
 #[cfg(test)]

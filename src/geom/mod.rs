@@ -7,6 +7,7 @@
 mod aabb;
 mod dot;
 pub mod exact;
+pub(crate) mod expansion;
 mod plane;
 pub mod polygon;
 mod predicates;

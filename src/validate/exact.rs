@@ -8,56 +8,14 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::geom::expansion::{Expansion, two_product};
 use crate::geom::{Sign, orient2d, orient3d};
 
-/// A non-overlapping expansion: an exact sum of `f64` components, smallest
-/// magnitude first.
-#[derive(Clone, Debug, Default)]
-struct Expansion(Vec<f64>);
-
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bv = s - a;
-    let av = s - bv;
-    (s, (a - av) + (b - bv))
-}
-
-fn two_product(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
-}
-
-impl Expansion {
-    /// Adds `x` exactly (Shewchuk's grow-expansion with zero elimination).
-    fn add(&mut self, x: f64) {
-        let mut q = x;
-        let mut out = Vec::with_capacity(self.0.len() + 1);
-        for &e in &self.0 {
-            let (s, err) = two_sum(q, e);
-            if err != 0.0 {
-                out.push(err);
-            }
-            q = s;
-        }
-        if q != 0.0 {
-            out.push(q);
-        }
-        self.0 = out;
-    }
-
-    /// Adds `sign · a · b · c` exactly.
-    fn add_product(&mut self, sign: f64, a: f64, b: f64, c: f64) {
-        let (p, e) = two_product(a, b);
-        let (p1, e1) = two_product(p, c);
-        let (p2, e2) = two_product(e, c);
-        for term in [e2, p2, e1, p1] {
-            self.add(sign * term);
-        }
-    }
-
-    fn sign(&self) -> Sign {
-        self.0.last().map_or(Sign::Zero, |&x| Sign::of(x))
-    }
+/// Adds `sign · a · b · c` to `sum` exactly.
+fn grow_triple_product(sum: &mut Expansion, sign: f64, a: f64, b: f64, c: f64) {
+    let (p, e) = two_product(a, b);
+    sum.grow_product(sign * p, c);
+    sum.grow_product(sign * e, c);
 }
 
 /// The filter for [`volume_sign`]: `Σ a·(b × c)` in rounded arithmetic with
@@ -117,12 +75,12 @@ pub(crate) fn volume_sign(triangles: &[[DVec3; 3]]) -> Sign {
     }
     let mut exact = Expansion::default();
     for [a, b, c] in triangles {
-        exact.add_product(1.0, a.x, b.y, c.z);
-        exact.add_product(-1.0, a.x, b.z, c.y);
-        exact.add_product(-1.0, a.y, b.x, c.z);
-        exact.add_product(1.0, a.y, b.z, c.x);
-        exact.add_product(1.0, a.z, b.x, c.y);
-        exact.add_product(-1.0, a.z, b.y, c.x);
+        grow_triple_product(&mut exact, 1.0, a.x, b.y, c.z);
+        grow_triple_product(&mut exact, -1.0, a.x, b.z, c.y);
+        grow_triple_product(&mut exact, -1.0, a.y, b.x, c.z);
+        grow_triple_product(&mut exact, 1.0, a.y, b.z, c.x);
+        grow_triple_product(&mut exact, 1.0, a.z, b.x, c.y);
+        grow_triple_product(&mut exact, -1.0, a.z, b.y, c.x);
     }
     exact.sign()
 }
@@ -244,9 +202,9 @@ mod tests {
         let flat = vec![t, [t[0], t[2], t[1]]];
         assert_eq!(volume_sign(&flat), Sign::Zero);
         let mut e = Expansion::default();
-        e.add(1e100);
-        e.add(1.0);
-        e.add(-1e100);
+        e.grow(1e100);
+        e.grow(1.0);
+        e.grow(-1e100);
         assert_eq!(e.sign(), Sign::Positive);
     }
 }
