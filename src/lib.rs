@@ -22,6 +22,7 @@
 #![warn(missing_docs)]
 
 pub mod csg;
+mod disjoint_sets;
 pub mod geom;
 pub mod io;
 pub mod mesh;

@@ -10,6 +10,7 @@ use glam::DVec3;
 use slotmap::Key;
 use thiserror::Error;
 
+use crate::disjoint_sets::DisjointSets;
 use crate::geom::Plane;
 
 use super::{Edge, EdgeId, Face, FaceId, PolygonSoup, Solid, Vertex, VertexId};
@@ -376,26 +377,16 @@ fn pinch(h: &HalfEdges, out: &Outgoing, vertex: usize) -> BuildError {
     let polygons: Vec<usize> = out.of(vertex).iter().map(|&g| h.polygon[g]).collect();
     // Count fans by grouping the polygons at the vertex through shared edges.
     let corners = out.of(vertex);
-    let mut group: Vec<usize> = (0..corners.len()).collect();
-    fn root(group: &mut [usize], mut i: usize) -> usize {
-        while group[i] != i {
-            group[i] = group[group[i]];
-            i = group[i];
-        }
-        i
-    }
+    let mut fans = DisjointSets::new(corners.len());
     for (i, &g) in corners.iter().enumerate() {
         // The corner's incoming half-edge, seen from its other side, is
         // outgoing in the neighbouring polygon of the same fan.
         let across = h.twin.get(h.prev[g]).copied().unwrap_or(usize::MAX);
         if let Some(j) = corners.iter().position(|&c| c == across) {
-            let (ri, rj) = (root(&mut group, i), root(&mut group, j));
-            group[ri] = rj;
+            fans.union(i, j);
         }
     }
-    let fans = (0..corners.len())
-        .filter(|&i| root(&mut group, i) == i)
-        .count();
+    let fans = (0..corners.len()).filter(|&i| fans.is_root(i)).count();
     let mut polygons = polygons;
     polygons.sort_unstable();
     BuildError::NonManifoldVertex {

@@ -281,60 +281,31 @@ fn grade(violations: &[Violation], not_built: bool) -> Validity {
 
 /// Groups of edges with one face joined through shared vertices: the holes.
 fn holes(ctx: &context::Context) -> usize {
-    let boundary: Vec<usize> = (0..ctx.edges.len())
-        .filter(|&e| ctx.uses(e).len() == 1)
-        .collect();
-    let mut parent: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
-    fn root(parent: &mut std::collections::HashMap<usize, usize>, mut v: usize) -> usize {
-        loop {
-            let p = *parent.entry(v).or_insert(v);
-            if p == v {
-                return v;
-            }
-            let grand = *parent.entry(p).or_insert(p);
-            parent.insert(v, grand);
-            v = grand;
-        }
-    }
-    for &e in &boundary {
+    let mut rims = crate::disjoint_sets::DisjointSets::new(ctx.soup.positions.len());
+    let mut on_rim = vec![false; ctx.soup.positions.len()];
+    for e in (0..ctx.edges.len()).filter(|&e| ctx.uses(e).len() == 1) {
         let (a, b) = (ctx.edges[e].low(), ctx.edges[e].high());
-        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-        if ra != rb {
-            parent.insert(ra, rb);
-        }
+        rims.union(a, b);
+        on_rim[a] = true;
+        on_rim[b] = true;
     }
-    let vertices: Vec<usize> = parent.keys().copied().collect();
-    vertices
-        .into_iter()
-        .filter(|&v| root(&mut parent, v) == v)
+    (0..on_rim.len())
+        .filter(|&v| on_rim[v] && rims.is_root(v))
         .count()
 }
 
 /// Connected components of the faces in the topology, joined through shared
 /// edges (used when the solid cannot be built).
 fn soup_components(ctx: &context::Context) -> usize {
-    let n = ctx.face_count();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    let mut shells = crate::disjoint_sets::DisjointSets::new(ctx.face_count());
     for e in 0..ctx.edges.len() {
         let uses = ctx.uses(e);
         for u in &uses[1..] {
-            let (a, b) = (
-                root(&mut parent, uses[0].face()),
-                root(&mut parent, u.face()),
-            );
-            parent[a] = b;
+            shells.union(uses[0].face(), u.face());
         }
     }
-    (0..n)
-        .filter(|&f| ctx.in_topology[f])
-        .filter(|&f| root(&mut parent, f) == f)
+    (0..ctx.face_count())
+        .filter(|&f| ctx.in_topology[f] && shells.is_root(f))
         .count()
 }
 

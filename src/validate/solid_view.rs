@@ -62,31 +62,18 @@ pub(crate) fn build(ctx: &Context) -> Result<Solid, String> {
 /// this is several times faster than [`Solid::shells`].
 pub(crate) fn measure(ctx: &Context) -> SolidView {
     let faces = ctx.face_count();
-    let mut parent: Vec<usize> = (0..faces).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    let mut sets = crate::disjoint_sets::DisjointSets::new(faces);
     for e in 0..ctx.edges.len() {
         let uses = ctx.uses(e);
         for u in &uses[1..] {
-            let (a, b) = (
-                root(&mut parent, uses[0].face()),
-                root(&mut parent, u.face()),
-            );
-            if a != b {
-                parent[a.max(b)] = a.min(b);
-            }
+            sets.union(uses[0].face(), u.face());
         }
     }
     // Shells numbered in order of their first face.
     let mut shell_of = vec![usize::MAX; faces];
     let mut first_faces = Vec::new();
     for f in (0..faces).filter(|&f| ctx.in_topology[f]) {
-        let r = root(&mut parent, f);
+        let r = sets.find(f);
         if shell_of[r] == usize::MAX {
             shell_of[r] = first_faces.len();
             first_faces.push(f);
