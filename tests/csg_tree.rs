@@ -471,3 +471,23 @@ proptest! {
         prop_assert_eq!(first.map(|h| h.t), s.hits.first().map(|h| h.t));
     }
 }
+
+#[test]
+fn perturbation_tie_breaks_inside_polyhedra_are_counted() {
+    let cube = wingedge::csg::Polyhedron::try_new(wingedge::mesh::builders::cube()).unwrap();
+    let tree = Csg::from_primitive(cube);
+    // A generic ray: no tie to break.
+    let mut generic = Stats::default();
+    let s = tree.spans(
+        &Ray::new(DVec3::new(-3., 0.1, 0.2), DVec3::new(1., 0.01, 0.02)),
+        &mut generic,
+    );
+    assert_eq!(ts(&s).len(), 2);
+    assert_eq!(generic.tie_breaks, 0);
+    // A ray through two opposite vertices of the cube: ties at both, broken
+    // by symbolic perturbation, and still one span.
+    let mut corner = Stats::default();
+    let s = tree.spans(&Ray::new(DVec3::splat(-2.0), DVec3::ONE), &mut corner);
+    assert_eq!(ts(&s), vec![1.0, 3.0]);
+    assert!(corner.tie_breaks >= 2, "{corner:?}");
+}

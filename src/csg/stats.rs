@@ -28,10 +28,11 @@ pub struct Stats {
     /// Exact-arithmetic fallbacks of the predicates (the difference of
     /// [`exact_fallbacks`](crate::geom::exact_fallbacks) around the query).
     pub exact_fallbacks: u64,
-    /// Ties decided by symbolic perturbation (a ray lying exactly in a face
-    /// plane of a box or half-space). The query layer's perturbations inside
-    /// polyhedral leaves (rays through edges and vertices) are not reported
-    /// by that layer and so are not counted here.
+    /// Ties decided by symbolic perturbation: a ray lying exactly in a face
+    /// plane of a box or half-space, and inside polyhedral leaves a ray
+    /// through an edge or a vertex or a point whose parity ray grazes one
+    /// (the difference of [`tie_breaks`](crate::geom::tie_breaks) around the
+    /// query).
     pub tie_breaks: u64,
     /// Surface normals computed (only images need them).
     pub normals: u64,
@@ -75,11 +76,14 @@ impl std::fmt::Display for Stats {
     }
 }
 
-/// Adds the exact-arithmetic fallbacks taken on this thread while `work`
-/// runs to `stats.exact_fallbacks`.
+/// Adds the exact-arithmetic fallbacks and the symbolic-perturbation
+/// tie-breaks taken on this thread while `work` runs (inside polyhedra, by
+/// the predicates) to `stats.exact_fallbacks` and `stats.tie_breaks`.
 pub(crate) fn counting_fallbacks<T>(stats: &mut Stats, work: impl FnOnce(&mut Stats) -> T) -> T {
-    let before = crate::geom::exact_fallbacks();
+    let fallbacks = crate::geom::exact_fallbacks();
+    let ties = crate::geom::tie_breaks();
     let out = work(stats);
-    stats.exact_fallbacks += crate::geom::exact_fallbacks().saturating_sub(before);
+    stats.exact_fallbacks += crate::geom::exact_fallbacks().saturating_sub(fallbacks);
+    stats.tie_breaks += crate::geom::tie_breaks().saturating_sub(ties);
     out
 }

@@ -242,6 +242,7 @@ pub fn line_side_sos(origin: DVec3, direction: DVec3, a: DVec3, b: DVec3) -> Sig
 
 /// The perturbation steps of [`line_side_sos`] (the unperturbed sign is 0).
 fn line_side_tie(o: DVec3, d: DVec3, a: DVec3, b: DVec3) -> Sign {
+    super::predicates::count_tie_break();
     let yz = |p: DVec3| DVec2::new(p.y, p.z);
     let zx = |p: DVec3| DVec2::new(p.z, p.x);
     let xy = |p: DVec3| DVec2::new(p.x, p.y);

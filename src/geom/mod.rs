@@ -18,7 +18,10 @@ pub use aabb::Aabb;
 pub use dot::{dot_sign, side_of_plane};
 pub use exact::{line_side, line_side_sos};
 pub use plane::{Plane, PlaneError, PlaneFit, newell_vector_area};
-pub use predicates::{Sign, exact_fallbacks, orient2d, orient3d, reset_exact_fallbacks};
+pub(crate) use predicates::count_tie_break;
+pub use predicates::{
+    Sign, exact_fallbacks, orient2d, orient3d, reset_exact_fallbacks, tie_breaks,
+};
 pub use ray::{Ray, Segment};
 pub use tolerance::Tolerance;
 

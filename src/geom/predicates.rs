@@ -85,6 +85,22 @@ impl std::ops::Mul for Sign {
 
 thread_local! {
     static FALLBACKS: Cell<u64> = const { Cell::new(0) };
+    static TIE_BREAKS: Cell<u64> = const { Cell::new(0) };
+}
+
+/// How many times the current thread has broken an exact tie by symbolic
+/// perturbation (a ray through an edge or a vertex, a query point whose
+/// projection lies on a projected edge) since the thread started. The
+/// generic case never pays for perturbation, so this counts exactly the
+/// degenerate configurations met.
+#[must_use]
+pub fn tie_breaks() -> u64 {
+    TIE_BREAKS.with(Cell::get)
+}
+
+/// Counts one symbolic-perturbation tie-break on the current thread.
+pub(crate) fn count_tie_break() {
+    TIE_BREAKS.with(|c| c.set(c.get() + 1));
 }
 
 /// How many times predicates on the current thread have fallen back to exact

@@ -267,6 +267,7 @@ fn cross_x(t: &YzTri, q: DVec2) -> Cross {
 /// `x` is the 3-D `y`, `y` the 3-D `z`).
 #[inline]
 fn perturbed_orient(u: DVec2, v: DVec2) -> Sign {
+    crate::geom::count_tie_break();
     match Sign::of(u.y - v.y) {
         Sign::Zero => Sign::of(v.x - u.x),
         s => s,
