@@ -162,74 +162,96 @@ pub(super) struct Node {
     pub count: u32,
 }
 
-/// A BVH node as traversed: the boxes of both children in one cache line,
-/// so that deciding where to descend touches only the parent.
+/// Slots of a [`Node4`].
+pub(super) const WIDTH: usize = 4;
+
+/// A BVH node as traversed: the boxes of up to four children in two cache
+/// lines, so that deciding where to descend touches only the parent. Made by
+/// collapsing the binary SAH tree: the tree is half as deep, so a ray waits
+/// for half as many dependent node loads.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-pub(super) struct Node2 {
-    /// Lower corners of the two children's boxes (rounded down).
-    pub min: [[f32; 3]; 2],
-    /// Upper corners of the two children's boxes (rounded up); an empty
-    /// child has `min = +∞`, `max = −∞`.
-    pub max: [[f32; 3]; 2],
+pub(super) struct Node4 {
+    /// Lower bounds of the children's boxes (rounded down), by axis then
+    /// child, so that all children are tested in one pass.
+    pub min: [[f32; WIDTH]; 3],
+    /// Upper bounds of the children's boxes (rounded up), by axis then
+    /// child; an empty slot has `min = +∞`, `max = −∞` (never entered).
+    pub max: [[f32; WIDTH]; 3],
     /// Per child: the first triangle of a leaf, or the index of an inner
     /// node.
-    pub child: [u32; 2],
-    /// Per child: the number of triangles of a leaf; 0 for an inner node.
-    pub count: [u32; 2],
+    pub child: [u32; WIDTH],
+    /// Per child: the number of triangles of a leaf; 0 for an inner node
+    /// (and for an empty slot).
+    pub count: [u32; WIDTH],
 }
 
-/// Turns the binary BVH (one box per node) into [`Node2`]s: one per inner
-/// node, plus a root holding the whole tree as its first child.
-fn to_node2(nodes: &[Node]) -> Vec<Node2> {
-    let inner: Vec<usize> = (0..nodes.len()).filter(|&i| nodes[i].count == 0).collect();
-    let mut index = vec![u32::MAX; nodes.len()];
-    for (k, &i) in inner.iter().enumerate() {
-        index[i] = k as u32 + 1;
-    }
-    let empty = Node {
-        min: [f32::INFINITY; 3],
-        max: [f32::NEG_INFINITY; 3],
-        first: 0,
-        count: 0,
+impl Node4 {
+    const EMPTY: Node4 = Node4 {
+        min: [[f32::INFINITY; WIDTH]; 3],
+        max: [[f32::NEG_INFINITY; WIDTH]; 3],
+        child: [u32::MAX; WIDTH],
+        count: [0; WIDTH],
     };
-    let make = |a: &Node, ai: usize, b: &Node, bi: usize| {
-        let link = |n: &Node, i: usize| {
-            if n.count > 0 {
-                (n.first, n.count)
-            } else {
-                (index[i], 0)
-            }
-        };
-        let (ca, na) = link(a, ai);
-        let (cb, nb) = link(b, bi);
-        Node2 {
-            min: [a.min, b.min],
-            max: [a.max, b.max],
-            child: [ca, cb],
-            count: [na, nb],
+
+    fn set(&mut self, k: usize, n: &Node, link: (u32, u32)) {
+        for a in 0..3 {
+            self.min[a][k] = n.min[a];
+            self.max[a][k] = n.max[a];
         }
-    };
-    let mut out = Vec::with_capacity(inner.len() + 1);
-    // The root holds the whole tree as child 0 and an empty child 1 (never
-    // entered: its box is empty). Without triangles both children are empty.
+        self.child[k] = link.0;
+        self.count[k] = link.1;
+    }
+}
+
+/// Turns the binary BVH (one box per node) into [`Node4`]s, root first:
+/// each binary inner node becomes a node whose slots hold up to four of its
+/// descendants (the inner descendant with the largest box opened first).
+fn to_node4(nodes: &[Node]) -> Vec<Node4> {
+    let mut out = vec![Node4::EMPTY];
     let has_triangles = nodes
         .first()
         .is_some_and(|n| n.count > 0 || nodes.len() > 1);
     if !has_triangles {
-        let mut root = make(&empty, 0, &empty, 0);
-        root.child = [u32::MAX; 2];
-        out.push(root);
         return out;
     }
-    let mut root = make(&nodes[0], 0, &empty, 0);
-    root.child[1] = u32::MAX;
-    out.push(root);
-    for &i in &inner {
-        let (l, r) = (i + 1, nodes[i].first as usize);
-        out.push(make(&nodes[l], l, &nodes[r], r));
+    if nodes[0].count > 0 {
+        out[0].set(0, &nodes[0], (nodes[0].first, nodes[0].count));
+        return out;
     }
+    fill_node4(nodes, 0, 0, &mut out);
     out
+}
+
+/// Fills `out[at]` from the binary inner node `i`, appending the nodes of
+/// its inner descendants.
+fn fill_node4(nodes: &[Node], i: usize, at: usize, out: &mut Vec<Node4>) {
+    let area = |n: &Node| {
+        let s = [0, 1, 2].map(|a| f64::from(n.max[a]) - f64::from(n.min[a]));
+        s[0] * s[1] + s[1] * s[2] + s[2] * s[0]
+    };
+    let mut slots: smallvec::SmallVec<[usize; WIDTH]> =
+        smallvec::smallvec![i + 1, nodes[i].first as usize];
+    while slots.len() < WIDTH {
+        let open = (0..slots.len())
+            .filter(|&k| nodes[slots[k]].count == 0)
+            .max_by(|&p, &q| area(&nodes[slots[p]]).total_cmp(&area(&nodes[slots[q]])));
+        let Some(k) = open else { break };
+        let j = slots[k];
+        slots[k] = j + 1;
+        slots.insert(k + 1, nodes[j].first as usize);
+    }
+    for (k, &j) in slots.iter().enumerate() {
+        let n = &nodes[j];
+        if n.count > 0 {
+            out[at].set(k, n, (n.first, n.count));
+        } else {
+            let child = out.len();
+            out.push(Node4::EMPTY);
+            out[at].set(k, n, (child as u32, 0));
+            fill_node4(nodes, j, child, out);
+        }
+    }
 }
 
 /// The acceleration structure of one solid, built once and shared by every
@@ -250,7 +272,7 @@ fn to_node2(nodes: &[Node]) -> Vec<Node2> {
 pub struct Accel {
     pub(super) tris: Vec<YzTri>,
     pub(super) tri_face: Vec<FaceId>,
-    pub(super) nodes: Vec<Node2>,
+    pub(super) nodes: Vec<Node4>,
     pub(super) grid: YzGrid,
     pub(super) bounds: Aabb,
     pub(super) boundary_edges: usize,
@@ -279,7 +301,7 @@ impl Accel {
         let boundary_edges = solid.boundary_edges().count();
         let (tris, tri_face) = fan_triangles(solid);
         let (binary, order) = build_bvh(&tris);
-        let nodes = to_node2(&binary);
+        let nodes = to_node4(&binary);
         drop(binary);
         let tris: Vec<YzTri> = order
             .par_iter()
@@ -293,7 +315,7 @@ impl Accel {
         let grid = build_grid(&tris, bounds);
         let memory_bytes = tris.capacity() * std::mem::size_of::<YzTri>()
             + tri_face.capacity() * std::mem::size_of::<FaceId>()
-            + nodes.capacity() * std::mem::size_of::<Node2>()
+            + nodes.capacity() * std::mem::size_of::<Node4>()
             + grid.cell_start.capacity() * 4
             + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
         let stats = AccelStats {

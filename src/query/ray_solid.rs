@@ -8,7 +8,7 @@ use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
 
-use super::accel::Node2;
+use super::accel::{Node4, WIDTH};
 use super::{Accel, Containment, QueryError};
 
 /// Whether the ray enters or leaves the solid at a crossing.
@@ -78,27 +78,30 @@ impl RayBox {
         }
     }
 
-    /// The entry parameter of child `k`'s box if the ray (`t ≥ 0`) may touch
-    /// it before `t_max`; conservative.
+    /// The entry parameters of a node's children's boxes, each `Some` if
+    /// the ray (`t ≥ 0`) may touch that box before `t_max`; conservative.
+    /// The children are computed side by side (the same operations per
+    /// child, so the compiler can pair them in vector registers).
     #[inline(always)]
-    fn enter(&self, n: &Node2, k: usize, t_max: f64) -> Option<f64> {
-        let mut t0 = 0.0f64;
-        let mut t1 = t_max;
+    fn enter4(&self, n: &Node4, t_max: f64) -> [Option<f64>; WIDTH] {
+        let mut t0 = [0.0f64; WIDTH];
+        let mut t1 = [t_max; WIDTH];
         for a in 0..3 {
-            let (lo, hi) = (f64::from(n.min[k][a]), f64::from(n.max[k][a]));
-            let (near, far) = if self.neg[a] { (hi, lo) } else { (lo, hi) };
-            let tn = (near - self.origin[a]) * self.inv[a];
-            let tf = (far - self.origin[a]) * self.inv[a] * SLAB_GROW;
-            // NaN (0 · ∞: origin on the slab plane of a parallel ray) leaves
-            // the bound unchanged.
-            if tn > t0 {
-                t0 = tn;
-            }
-            if tf < t1 {
-                t1 = tf;
+            let (near, far) = if self.neg[a] {
+                (&n.max[a], &n.min[a])
+            } else {
+                (&n.min[a], &n.max[a])
+            };
+            for k in 0..WIDTH {
+                let tn = (f64::from(near[k]) - self.origin[a]) * self.inv[a];
+                let tf = (f64::from(far[k]) - self.origin[a]) * self.inv[a] * SLAB_GROW;
+                // NaN (0 · ∞: origin on the slab plane of a parallel ray)
+                // leaves the bound unchanged.
+                t0[k] = if tn > t0[k] { tn } else { t0[k] };
+                t1[k] = if tf < t1[k] { tf } else { t1[k] };
             }
         }
-        (t0 <= t1).then_some(t0)
+        std::array::from_fn(|k| (t0[k] <= t1[k]).then_some(t0[k]))
     }
 }
 
@@ -236,8 +239,20 @@ impl Accel {
     fn first_hit_unchecked(&self, ray: &Ray) -> Option<Crossing> {
         let mut best: Option<(f64, u32, Sign)> = None;
         self.traverse(ray, f64::INFINITY, |i, t_max| {
+            // Once a crossing is known, a triangle whose rounded `t` is
+            // larger cannot be the answer (the nearest is chosen by the
+            // rounded `t`), whether or not the ray crosses it: skip the exact
+            // decision. `t_of` clamps only values `≤ 0` (and NaN) up to the
+            // smallest positive `f64`, which never exceeds `bt`, so the skip
+            // is exactly "would not be better".
+            let raw = self.plane_t(ray, i);
+            if let Some((bt, _, _)) = best {
+                if raw > bt {
+                    return t_max;
+                }
+            }
             if let TriHit::Cross(s) = self.hit_triangle(ray, i) {
-                let t = self.t_of(ray, i);
+                let t = if raw > 0.0 { raw } else { f64::MIN_POSITIVE };
                 let better = match best {
                     None => true,
                     Some((bt, bi, _)) => t < bt || (t == bt && i < bi),
@@ -280,10 +295,17 @@ impl Accel {
     /// clamped to the smallest positive `f64` (the crossing is known exactly
     /// to be in front of the origin).
     fn t_of(&self, ray: &Ray, i: u32) -> f64 {
+        let t = self.plane_t(ray, i);
+        if t > 0.0 { t } else { f64::MIN_POSITIVE }
+    }
+
+    /// The rounded parameter of the ray's crossing with triangle `i`'s
+    /// plane, unclamped (any sign, `±∞` or NaN for a parallel ray).
+    #[inline(always)]
+    fn plane_t(&self, ray: &Ray, i: u32) -> f64 {
         let [a, b, c] = self.tris[i as usize].corners();
         let n = (b - a).cross(c - a);
-        let t = n.dot(a - ray.origin) / n.dot(ray.direction);
-        if t > 0.0 { t } else { f64::MIN_POSITIVE }
+        n.dot(a - ray.origin) / n.dot(ray.direction)
     }
 
     #[inline]
@@ -337,20 +359,29 @@ impl Accel {
         let mut current = 0u32;
         loop {
             let node = &nodes[current as usize];
-            let e0 = rb.enter(node, 0, limit);
-            let e1 = rb.enter(node, 1, limit);
-            // Leaves are tested at once, nearer first; inner children are
-            // descended into, nearer first.
-            let order = match (e0, e1) {
-                (Some(a), Some(b)) if b < a => [(1, b), (0, a)],
-                (Some(a), Some(b)) => [(0, a), (1, b)],
-                (Some(a), None) => [(0, a), (2, 0.0)],
-                (None, Some(b)) => [(1, b), (2, 0.0)],
-                (None, None) => [(2, 0.0), (2, 0.0)],
-            };
+            let entry = rb.enter4(node, limit);
+            // The children the ray may touch, nearer first (ties by slot).
+            let mut order: [(f64, usize); WIDTH] = [(0.0, 0); WIDTH];
+            let mut len = 0;
+            for (k, e) in entry.into_iter().enumerate() {
+                if let Some(t) = e {
+                    let mut j = len;
+                    while j > 0 && order[j - 1].0 > t {
+                        order[j] = order[j - 1];
+                        j -= 1;
+                    }
+                    order[j] = (t, k);
+                    len += 1;
+                }
+            }
+            // Leaves are tested at once, nearer first; the nearest inner
+            // child is descended into, the others deferred (nearer popped
+            // first).
             let mut next: Option<u32> = None;
-            for (k, t) in order {
-                if k == 2 || t > limit {
+            let mut deferred: [(u32, f64); WIDTH] = [(0, 0.0); WIDTH];
+            let mut n_deferred = 0;
+            for &(t, k) in &order[..len] {
+                if t > limit {
                     continue;
                 }
                 let (child, count) = (node.child[k], node.count[k]);
@@ -361,8 +392,12 @@ impl Accel {
                 } else if next.is_none() {
                     next = Some(child);
                 } else {
-                    stack.push((child, t));
+                    deferred[n_deferred] = (child, t);
+                    n_deferred += 1;
                 }
+            }
+            for &d in deferred[..n_deferred].iter().rev() {
+                stack.push(d);
             }
             if let Some(n) = next {
                 current = n;
