@@ -25,9 +25,12 @@ fn oracle() -> &'static (PathBuf, Value) {
     ORACLE.get_or_init(|| {
         let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/oracle/manifold_oracle.py");
         let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("manifold-oracle");
+        let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/valid");
         let run = Command::new("python3")
             .arg(&script)
             .arg(&out)
+            .arg("--fixtures")
+            .arg(&fixtures)
             .output()
             .unwrap_or_else(|e| panic!("cannot run python3 for the manifold3d oracle: {e}"));
         assert!(
@@ -393,5 +396,44 @@ fn csg_trees_agree_with_manifold3d_booleans() {
             "{scene_name}: 100000 points, {differing} differ, all {near} within {tiny:e} of the result surface"
         );
         assert!(differing <= 10, "{scene_name}: {differing} points differ");
+    }
+}
+
+#[test]
+fn bundled_closed_fixtures_agree_with_manifold3d() {
+    let (_, report) = oracle();
+    let fixtures = report["fixtures"].as_object().expect("fixture answers");
+    assert!(fixtures.len() >= 10, "{} fixtures judged", fixtures.len());
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/valid");
+    for (name, expected) in fixtures {
+        let import = import_obj(&dir.join(name), &ObjOptions::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let ours = validate_import(&import, &Options::default()).expect("validates");
+        assert_eq!(
+            ours.is_valid(),
+            expected["status"] == "NoError",
+            "{name}: {:?}",
+            ours.validity
+        );
+        // Triangulating polygons adds as many edges as faces: χ is kept.
+        let euler = ours.vertices as i64 - ours.edges as i64 + ours.faces as i64;
+        assert_eq!(
+            Some(euler),
+            expected["euler"].as_i64(),
+            "{name}: Euler characteristic"
+        );
+        if ours.shells == 1 {
+            assert_eq!(ours.genus, expected["genus"].as_i64(), "{name}: genus");
+        }
+        let volume = expected["volume"].as_f64().expect("volume");
+        let ours_volume = ours.volume.expect("closed");
+        assert!(
+            (ours_volume - volume).abs() <= 1e-9 * volume.abs(),
+            "{name}: volume {ours_volume} vs manifold3d {volume}"
+        );
+        println!(
+            "{name}: valid, χ {euler}, genus {:?}, volume {ours_volume} (manifold3d {volume})",
+            ours.genus
+        );
     }
 }

@@ -68,6 +68,65 @@ def write_raw_obj(path, verts, tris):
         f.write("".join("f %d %d %d\n" % tuple(t) for t in (tris + 1).tolist()))
 
 
+def read_polygon_obj(path):
+    """A minimal OBJ reader for the bundled fixtures: `v` and `f` lines,
+    `v/vt/vn` corners, negative indices; bit-identical positions merged (the
+    same weld wingedge applies by default)."""
+    positions, index_of, remap, faces = [], {}, [], []
+    with open(path) as f:
+        for line in f:
+            words = line.split()
+            if not words:
+                continue
+            if words[0] == "v":
+                p = tuple(float(x) for x in words[1:4])
+                remap.append(index_of.setdefault(p, len(positions)))
+                if remap[-1] == len(positions):
+                    positions.append(p)
+            elif words[0] == "f":
+                corners = [int(w.split("/")[0]) for w in words[1:]]
+                faces.append([remap[c - 1 if c > 0 else len(remap) + c] for c in corners])
+    return np.array(positions, dtype=np.float64), faces
+
+
+def triangulated(verts, faces):
+    """Triangles of polygon faces (non-convex ones included), by manifold3d's
+    own triangulator on each face projected to its dominant axis plane."""
+    tris = []
+    for face in faces:
+        pts = verts[face]
+        normal = np.zeros(3)
+        for i in range(len(pts)):
+            normal += np.cross(pts[i], pts[(i + 1) % len(pts)])
+        axis = int(np.argmax(np.abs(normal)))
+        keep = [(axis + 1) % 3, (axis + 2) % 3]
+        flat = pts[:, keep]
+        if normal[axis] < 0:
+            flat = flat[:, ::-1]
+        for t in m3d.triangulate([np.ascontiguousarray(flat)]):
+            tris.append([face[int(i)] for i in t])
+    return np.array(tris, dtype=np.uint64)
+
+
+def fixture_answers(fixtures_dir):
+    """manifold3d's status, genus, Euler characteristic and volume for every
+    closed bundled fixture (polygons triangulated by manifold3d)."""
+    out = {}
+    for name in sorted(os.listdir(fixtures_dir)):
+        if not name.endswith(".obj"):
+            continue
+        verts, faces = read_polygon_obj(os.path.join(fixtures_dir, name))
+        tris = triangulated(verts, faces)
+        built = M(m3d.Mesh64(vert_properties=np.array(verts), tri_verts=tris))
+        out[name] = {
+            "status": str(built.status()).split(".")[-1],
+            "genus": int(built.genus()),
+            "volume": float(built.volume()),
+            "euler": int(built.num_vert()) - int(built.num_edge()) + int(built.num_tri()),
+        }
+    return out
+
+
 def named_meshes(rng):
     """Closed meshes from manifold3d primitives and booleans."""
     cube = M.cube((2.0, 2.0, 2.0), center=True)
@@ -180,6 +239,7 @@ def main():
     parser.add_argument("--rays", type=int, default=10000)
     parser.add_argument("--csg-cases", type=int, default=4)
     parser.add_argument("--seed", type=int, default=20261121)
+    parser.add_argument("--fixtures", help="a folder of closed OBJ fixtures to judge too")
     args = parser.parse_args()
     os.makedirs(args.out_dir, exist_ok=True)
     rng = np.random.default_rng(args.seed)
@@ -206,6 +266,8 @@ def main():
         write_raw_obj(os.path.join(args.out_dir, name + ".obj"), verts, tris)
         report["broken"][name] = {"status": status_of(verts, tris)}
     report["csg"] = csg_cases(rng, args.csg_cases, args.out_dir)
+    if args.fixtures:
+        report["fixtures"] = fixture_answers(args.fixtures)
     with open(os.path.join(args.out_dir, "oracle.json"), "w") as f:
         json.dump(report, f)
 
