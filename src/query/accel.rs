@@ -282,6 +282,10 @@ pub struct Accel {
 
 /// Grid cells per triangle.
 const CELLS_PER_TRIANGLE: f64 = 1.0;
+/// The largest ratio of the grid's cell counts along `y` and `z`: a mesh
+/// that is flat in one of them still gets a grid of sensible shape. A layout
+/// choice, not a tolerance: it decides no answer.
+const MAX_GRID_ASPECT: f64 = 1e6;
 /// Largest number of triangles in a BVH leaf.
 const LEAF_SIZE: usize = 4;
 /// SAH bins per split.
@@ -447,7 +451,7 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         (z1 - z0).max(f64::MIN_POSITIVE),
     );
     let cells = (yz.len() as f64 * CELLS_PER_TRIANGLE).clamp(1.0, 64.0e6);
-    let aspect = (wy / wz).clamp(1e-6, 1e6);
+    let aspect = (wy / wz).clamp(1.0 / MAX_GRID_ASPECT, MAX_GRID_ASPECT);
     let ny = ((cells * aspect).sqrt().round() as usize).clamp(1, 1 << 14);
     let nz = ((cells / ny as f64).round() as usize).clamp(1, 1 << 14);
     let mut grid = YzGrid {
