@@ -3,6 +3,7 @@
 use glam::DVec3;
 use thiserror::Error;
 
+use super::primitive::push_convex_interval;
 use super::{Containment, Crossing, Primitive, Stats, SurfaceId};
 use crate::geom::{Aabb, Ray};
 
@@ -128,21 +129,7 @@ impl Primitive for AxisBox {
         else {
             return false;
         };
-        if far <= 0.0 {
-            return false;
-        }
-        let inside = near <= 0.0;
-        if !inside {
-            crossings.push(Crossing {
-                t: near,
-                surface: near_surface,
-            });
-        }
-        crossings.push(Crossing {
-            t: far,
-            surface: far_surface,
-        });
-        inside
+        push_convex_interval(crossings, (near, near_surface), (far, far_surface))
     }
 
     fn classify_point(&self, p: DVec3) -> Containment {

@@ -22,6 +22,33 @@ pub struct Crossing {
     pub surface: SurfaceId,
 }
 
+/// Appends the crossings of a convex solid that the ray's line meets over
+/// the parameter interval from `near` to `far` (each with the surface hit
+/// there), keeping only `t > 0`, and returns whether the ray's origin is
+/// inside (`near ≤ 0 < far`). An interval ending at or behind the origin
+/// adds nothing.
+pub(crate) fn push_convex_interval(
+    crossings: &mut Vec<Crossing>,
+    (near, near_surface): (f64, SurfaceId),
+    (far, far_surface): (f64, SurfaceId),
+) -> bool {
+    if far <= 0.0 {
+        return false;
+    }
+    let inside = near <= 0.0;
+    if !inside {
+        crossings.push(Crossing {
+            t: near,
+            surface: near_surface,
+        });
+    }
+    crossings.push(Crossing {
+        t: far,
+        surface: far_surface,
+    });
+    inside
+}
+
 /// A solid that answers rays and points: a leaf of a CSG tree (the seed's
 /// "primitive object": one "for which we have a ray-object intersection
 /// algorithm").

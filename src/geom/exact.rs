@@ -144,24 +144,7 @@ pub fn det2_sign(r0: [Diff; 2], r1: [Diff; 2]) -> Sign {
 #[must_use]
 #[inline]
 pub fn line_side_filter(d: DVec3, u: DVec3, v: DVec3) -> Option<Sign> {
-    let m12 = u.y * v.z;
-    let m21 = u.z * v.y;
-    let n12 = u.z * v.x;
-    let n21 = u.x * v.z;
-    let o12 = u.x * v.y;
-    let o21 = u.y * v.x;
-    let det = d.x * (m12 - m21) + d.y * (n12 - n21) + d.z * (o12 - o21);
-    let permanent = d.x.abs() * (m12.abs() + m21.abs())
-        + d.y.abs() * (n12.abs() + n21.abs())
-        + d.z.abs() * (o12.abs() + o21.abs());
-    let bound = DET3_BOUND * permanent;
-    if det > bound {
-        Some(Sign::Positive)
-    } else if -det > bound {
-        Some(Sign::Negative)
-    } else {
-        None
-    }
+    line_side_filter_scalar(d.to_array(), u.to_array(), v.to_array())
 }
 
 /// [`line_side_filter`] on scalar coordinates: `d = (dx, dy, dz)`,
