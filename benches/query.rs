@@ -1,8 +1,8 @@
 //! Benchmarks of the query layer on a generated UV sphere (seeded inputs):
 //! accel build, point classification (parity, batch) and first-hit rays.
 //!
-//! The table against the peers on the shared meshes comes from
-//! `examples/query_table.rs` and `examples/peers_query.py`.
+//! The comparison with the peers (same meshes, points and rays, one run)
+//! is `benches/peers/run.py`, which drives `examples/peers_wingedge.rs`.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;

@@ -1,7 +1,8 @@
 //! Benchmarks of the validate layer: every check (self-intersection
 //! included) on a closed triangulated sphere, and the OBJ import of the same
-//! sphere. `examples/validate_bench.rs` times a whole file end to end and
-//! `benches/peers_validate.py` compares it with trimesh + manifold3d.
+//! sphere. `examples/peers_wingedge.rs validate` times a whole file end to
+//! end and `benches/peers/run.py` compares it with trimesh + manifold3d and
+//! parry.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;

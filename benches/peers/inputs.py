@@ -1,0 +1,176 @@
+"""The meshes, points and rays every library in the peer comparison answers.
+
+Each mesh is made with manifold3d (or built here and accepted by manifold3d
+as a closed 2-manifold) and written as an OBJ with every coordinate printed
+to 17 significant digits, so the file holds exactly the `f64` vertices the
+Python peers see in memory. Next to `<name>.obj` go:
+
+    <name>.points.f64   N x 3 little-endian f64: uniform in the mesh's box
+    <name>.rays.f64     N x 6 little-endian f64: origin on a sphere around
+                        the box (1.5 x its half-diagonal), unit direction
+                        towards a uniform point in the box
+    <name>.json         how it was made (recipe, seed, counts, volume)
+
+Everything is seeded; a directory whose `<name>.json` already describes the
+same recipe and query count is reused as is.
+"""
+import json
+import os
+import zlib
+
+import numpy as np
+import manifold3d as m3d
+
+RECIPES = {
+    "sphere_80k": "manifold3d Manifold.sphere(1, circular_segments=400): 80,000 triangles",
+    "torus_knot": "(2,3) torus-knot tube, radius 0.14 around the curve with R=1, a=0.42; "
+                  "2,000 x 50 quads split in two: 200,000 triangles",
+    "sphere_1m": "manifold3d Manifold.sphere(1, circular_segments=1416): 1,002,528 triangles",
+    "csg_diff": "manifold3d cube(2) - sphere(0.7, 128 segments, at (0,0,1)) - cylinder along x "
+                "(r 0.4, 128 segments): a CAD-like part with long thin fan triangles, genus 1",
+}
+
+
+def _sphere(segments):
+    return m3d.Manifold.sphere(1.0, segments)
+
+
+def _knot_curve(u, R=1.0, a=0.42):
+    """The (2,3) torus knot and its derivative at parameters `u`."""
+    r = R + a * np.cos(3 * u)
+    c = np.stack([r * np.cos(2 * u), r * np.sin(2 * u), a * np.sin(3 * u)], axis=-1)
+    dr = -3 * a * np.sin(3 * u)
+    dc = np.stack([dr * np.cos(2 * u) - 2 * r * np.sin(2 * u),
+                   dr * np.sin(2 * u) + 2 * r * np.cos(2 * u),
+                   3 * a * np.cos(3 * u)], axis=-1)
+    return c, dc
+
+
+def _torus_knot(n_u=2000, n_v=50, radius=0.14):
+    """A tube around the torus knot, with checks that it does not touch itself."""
+    u = np.linspace(0.0, 2 * np.pi, n_u, endpoint=False)
+    centre, tangent = _knot_curve(u)
+    tangent /= np.linalg.norm(tangent, axis=1, keepdims=True)
+    # A smooth periodic frame: the direction from the torus' core circle to
+    # the curve, made orthogonal to the tangent.
+    core = np.stack([np.cos(2 * u), np.sin(2 * u), np.zeros_like(u)], axis=-1)
+    normal = centre - core
+    normal -= np.sum(normal * tangent, axis=1, keepdims=True) * tangent
+    normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+    binormal = np.cross(tangent, normal)
+    v = np.linspace(0.0, 2 * np.pi, n_v, endpoint=False)
+    ring = np.cos(v)[None, :, None] * normal[:, None, :] + np.sin(v)[None, :, None] * binormal[:, None, :]
+    vertices = (centre[:, None, :] + radius * ring).reshape(-1, 3)
+    i, j = np.meshgrid(np.arange(n_u), np.arange(n_v), indexing="ij")
+    a = i * n_v + j
+    b = ((i + 1) % n_u) * n_v + j
+    c = ((i + 1) % n_u) * n_v + (j + 1) % n_v
+    d = i * n_v + (j + 1) % n_v
+    triangles = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),
+                                np.stack([a, c, d], -1).reshape(-1, 3)])
+    if _signed_volume(vertices, triangles) < 0:
+        triangles = triangles[:, ::-1]
+    # The tube must not touch itself: far-apart stretches of the curve stay
+    # more than two radii apart, and the curve bends less than the radius.
+    s = np.linspace(0.0, 2 * np.pi, 3000, endpoint=False)
+    pts, _ = _knot_curve(s)
+    gap = np.abs(s[:, None] - s[None, :])
+    gap = np.minimum(gap, 2 * np.pi - gap)
+    dist = np.linalg.norm(pts[:, None, :] - pts[None, :, :], axis=-1)
+    clearance = dist[gap > 0.5].min()
+    _, d1 = _knot_curve(s)
+    _, d1b = _knot_curve(s + 1e-5)
+    curvature = np.linalg.norm(np.cross(d1, (d1b - d1) / 1e-5), axis=1) / np.linalg.norm(d1, axis=1) ** 3
+    if clearance <= 2.2 * radius or 1.0 / curvature.max() <= 1.2 * radius:
+        raise RuntimeError("torus knot tube would touch itself: clearance %.3f, min radius of curvature %.3f"
+                           % (clearance, 1.0 / curvature.max()))
+    mesh = m3d.Mesh64(vert_properties=np.ascontiguousarray(vertices),
+                      tri_verts=np.ascontiguousarray(triangles, dtype=np.uint64))
+    return m3d.Manifold(mesh)
+
+
+def _csg_diff():
+    cube = m3d.Manifold.cube((2.0, 2.0, 2.0), True)
+    dimple = m3d.Manifold.sphere(0.7, 128).translate((0.0, 0.0, 1.0))
+    hole = m3d.Manifold.cylinder(3.0, 0.4, -1.0, 128, True).rotate((0.0, 90.0, 0.0))
+    return cube - dimple - hole
+
+
+MAKERS = {
+    "sphere_80k": lambda: _sphere(400),
+    "torus_knot": _torus_knot,
+    "sphere_1m": lambda: _sphere(1416),
+    "csg_diff": _csg_diff,
+}
+
+
+def _signed_volume(vertices, triangles):
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+
+
+def _write_obj(path, vertices, triangles):
+    with open(path, "w") as f:
+        f.write("# wingedge peer comparison input (benches/peers/inputs.py)\n")
+        f.write("".join("v %r %r %r\n" % tuple(v) for v in vertices.tolist()))
+        f.write("".join("f %d %d %d\n" % tuple(t) for t in (triangles + 1).tolist()))
+
+
+def _queries(bmin, bmax, n, seed):
+    rng = np.random.default_rng(seed)
+    points = bmin + (bmax - bmin) * rng.random((n, 3))
+    centre = 0.5 * (bmin + bmax)
+    radius = 0.75 * np.linalg.norm(bmax - bmin)
+    on_sphere = rng.normal(size=(n, 3))
+    on_sphere /= np.linalg.norm(on_sphere, axis=1, keepdims=True)
+    origins = centre + radius * on_sphere
+    directions = bmin + (bmax - bmin) * rng.random((n, 3)) - origins
+    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+    return points, np.hstack([origins, directions])
+
+
+def make(directory, name, n_queries):
+    """Writes (or reuses) `name`'s mesh, points and rays in `directory`; returns its description."""
+    if name not in MAKERS:
+        raise SystemExit("unknown mesh %r (known: %s)" % (name, ", ".join(MAKERS)))
+    meta_path = os.path.join(directory, name + ".json")
+    seed = zlib.crc32(name.encode())
+    wanted = {"recipe": RECIPES[name], "seed": seed, "queries": n_queries}
+    if os.path.exists(meta_path):
+        with open(meta_path) as f:
+            meta = json.load(f)
+        if all(meta.get(k) == v for k, v in wanted.items()) and all(
+                os.path.exists(os.path.join(directory, name + ext)) for ext in (".obj", ".points.f64", ".rays.f64")):
+            return meta
+    for ext in (".obj", ".points.f64", ".rays.f64", ".json"):
+        stale = os.path.join(directory, name + ext)
+        if os.path.lexists(stale):
+            os.remove(stale)  # never write through a link to someone else's file
+    solid = MAKERS[name]()
+    if solid.status() != m3d.Error.NoError:
+        raise RuntimeError("%s: manifold3d status %s" % (name, solid.status()))
+    mesh = solid.to_mesh64()
+    vertices = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
+    triangles = np.asarray(mesh.tri_verts, dtype=np.int64)
+    _write_obj(os.path.join(directory, name + ".obj"), vertices, triangles)
+    points, rays = _queries(vertices.min(0), vertices.max(0), n_queries, seed)
+    points.astype("<f8").tofile(os.path.join(directory, name + ".points.f64"))
+    rays.astype("<f8").tofile(os.path.join(directory, name + ".rays.f64"))
+    meta = dict(wanted, triangles=int(solid.num_tri()), vertices=int(solid.num_vert()),
+                genus=int(solid.genus()), volume=float(solid.volume()))
+    with open(meta_path, "w") as f:
+        json.dump(meta, f, indent=1)
+    return meta
+
+
+def link_existing(source, directory, name):
+    """Uses `source/<name>.{obj,points.f64,rays.f64}` (made elsewhere) through symbolic links."""
+    for ext in (".obj", ".points.f64", ".rays.f64"):
+        src = os.path.join(os.path.abspath(source), name + ext)
+        if not os.path.exists(src):
+            raise SystemExit("%s is missing" % src)
+        dst = os.path.join(directory, name + ext)
+        if os.path.lexists(dst):
+            os.remove(dst)
+        os.symlink(src, dst)
+    return {"recipe": "taken from " + os.path.abspath(source)}

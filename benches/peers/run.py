@@ -1,0 +1,303 @@
+#!/usr/bin/env python3
+"""wingedge and its peers on the same meshes, points and rays, in one run.
+
+    python3 benches/peers/run.py --out /tmp/peers
+
+builds the examples (`cargo build --release --examples`), makes the inputs
+(seeded; see inputs.py) under OUT/inputs, then for each mesh:
+
+  (a) point classification of 1M points uniform in the mesh's box,
+  (b) first-hit ray casting of 1M rays from a sphere around the box,
+  (c) import + validation of the mesh's OBJ file,
+
+by wingedge (examples/peers_wingedge.rs), parry3d and parry3d-f64
+(examples/peers_parry.rs), trimesh with Embree, libigl's fast winding number,
+open3d's RaycastingScene and manifold3d (python_peers.py). Everyone gets 2
+threads (RAYON_NUM_THREADS, OMP_NUM_THREADS, open3d's nthreads); every
+timing is the best of 3 unless a run takes over 5 s; setup (the
+acceleration structure's build) is timed apart from the queries, and reading
+the input files is not timed. Each validation runs in a fresh process (so
+its peak memory is its own), three rounds, wingedge and the peers
+alternating.
+
+Every answer is compared with wingedge's. Where a library and wingedge
+differ (a point's side; a ray's hit or miss, or its `t` by more than 1e-4
+relative), exact rational arithmetic (exact.py, independent of every
+library) decides which is right, for up to --arbitrate such queries per mesh
+and task, plus a control sample of queries on which everyone agrees.
+
+The table goes to stdout and OUT/peers.md; everything measured to
+OUT/peers.json. The inputs take about 0.5 GB under OUT and are reused by
+the next run.
+"""
+import argparse
+import datetime
+import json
+import os
+import platform
+import subprocess
+import sys
+import time
+
+THREADS = 2
+for _var in ("RAYON_NUM_THREADS", "OMP_NUM_THREADS"):
+    os.environ[_var] = str(THREADS)
+
+import numpy as np  # noqa: E402  (after the thread settings)
+
+import exact  # noqa: E402
+import inputs  # noqa: E402
+import python_peers  # noqa: E402
+import report  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+EXAMPLES = os.path.join(ROOT, "target", "release", "examples")
+DEFAULT_MESHES = ["sphere_80k", "torus_knot", "sphere_1m"]
+T_TOLERANCE = 1e-4  # relative, for comparing first-hit parameters
+VALIDATE_ROUNDS = 3
+
+
+def log(*parts):
+    print("[%s]" % time.strftime("%H:%M:%S"), *parts, file=sys.stderr, flush=True)
+
+
+def run_json_lines(command):
+    """Runs a command and parses every stdout line as JSON; stops the run with its stderr on failure."""
+    done = subprocess.run(command, capture_output=True, text=True)
+    if done.returncode != 0:
+        raise SystemExit("%s failed (exit %d):\n%s" % (" ".join(command), done.returncode, done.stderr))
+    return [json.loads(line) for line in done.stdout.splitlines() if line.startswith("{")]
+
+
+def read_obj_arrays(path):
+    """The vertices and triangles of an OBJ with `v x y z` and `f i j k` lines."""
+    vertices, triangles = [], []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("v "):
+                vertices.append(line.split()[1:4])
+            elif line.startswith("f "):
+                triangles.append([int(w.split("/")[0]) for w in line.split()[1:4]])
+    return np.array(vertices, dtype=np.float64), np.array(triangles, dtype=np.int64) - 1
+
+
+# ---------------------------------------------------------------- agreement
+
+def points_differ(ours, peer):
+    """Indices where a peer's inside/outside differs from wingedge's (boundary answers excluded)."""
+    ours = ours[: len(peer)]
+    return np.nonzero((peer != (ours == 1)) & (ours != 2))[0]
+
+
+def t_differ(a, b):
+    hit_a, hit_b = np.isfinite(a), np.isfinite(b)
+    both = hit_a & hit_b
+    off = np.zeros(len(a), bool)
+    off[both] = np.abs(a[both] - b[both]) > T_TOLERANCE * np.maximum(1.0, np.abs(a[both]))
+    return (hit_a != hit_b) | off
+
+
+def rays_differ(ours, peer):
+    return np.nonzero(t_differ(ours[: len(peer)], peer))[0]
+
+
+def max_t_gap(ours, peer):
+    ours = ours[: len(peer)]
+    both = np.isfinite(ours) & np.isfinite(peer)
+    return float(np.abs(ours[both] - peer[both]).max()) if both.any() else 0.0
+
+
+def arbitrate(mesh, points, rays, ours, rows, limit, rng):
+    """Exact answers for the queries some row differs on, plus a unanimous control sample."""
+    verdicts = {}
+    for task in ("points", "rays"):
+        peers = [r for r in rows if r["task"] == task and r["library"] != "wingedge"]
+        disputed = sorted(set().union(*[set(r["differs"].tolist()) for r in peers])) if peers else []
+        unanimous = np.setdiff1d(np.arange(min(len(r["answers"]) for r in peers)), disputed) if peers else []
+        control = rng.choice(unanimous, size=min(10, len(unanimous)), replace=False).tolist()
+        chosen = disputed[:limit] + sorted(control)
+        start = time.perf_counter()
+        answers = {}
+        for i in chosen:
+            if task == "points":
+                answers[i] = exact.classify_point(mesh, points[i], rng)
+            else:
+                t, how = exact.first_hit(mesh, rays[i, :3], rays[i, 3:])
+                answers[i] = (np.inf if t is None else float(t), how)
+        wingedge_wrong = sum(not _right(task, ours[task][i], answers[i], wingedge=True) for i in chosen)
+        verdicts[task] = {"answers": answers, "disputed": len(disputed), "checked": min(len(disputed), limit),
+                          "control": control, "wingedge_wrong": wingedge_wrong,
+                          "seconds": time.perf_counter() - start}
+    for r in rows:
+        v = verdicts[r["task"]]["answers"]
+        checked = [i for i in r["differs"].tolist() if i in v]
+        control = [i for i in verdicts[r["task"]]["control"] if i < len(r["answers"])]
+        r["checked"] = len(checked)
+        r["peer_wrong"] = sum(not _right(r["task"], r["answers"][i], v[i]) for i in checked)
+        r["wingedge_wrong"] = sum(not _right(r["task"], ours[r["task"]][i], v[i], wingedge=True) for i in checked)
+        r["control_wrong"] = sum(not _right(r["task"], r["answers"][i], v[i],
+                                            wingedge=r["library"] == "wingedge") for i in control)
+    return verdicts
+
+
+def _right(task, answer, truth, wingedge=False):
+    if task == "points":
+        if wingedge:
+            return {0: "outside", 1: "inside", 2: "boundary"}[int(answer)] == truth
+        return truth == "boundary" or bool(answer) == (truth == "inside")
+    t_exact = truth[0]
+    return not t_differ(np.array([t_exact]), np.array([float(answer)]))[0]
+
+
+# ---------------------------------------------------------------- the run
+
+def queries_for_mesh(name, directory, meta, args, rng):
+    log(name, "wingedge")
+    ours_line = run_json_lines([os.path.join(EXAMPLES, "peers_wingedge"), "queries", directory, name])[0]
+    ours = {"points": np.fromfile(os.path.join(directory, name + ".wingedge.points.u8"), np.uint8),
+            "rays": np.fromfile(os.path.join(directory, name + ".wingedge.rays.f64"), "<f8")}
+    rows = [dict(library="wingedge", precision="f64, exact signs", threads=ours_line["threads"], task=task,
+                 setup_s=ours_line["accel_s"], seconds=ours_line[task + "_s"], queries=ours_line[task],
+                 answers=ours[task]) for task in ("points", "rays")]
+    log(name, "parry")
+    for line in run_json_lines([os.path.join(EXAMPLES, "peers_parry"), "queries", directory,
+                                str(args.parry_points), name]):
+        tag = line["library"]
+        label = {"parry_f32": "parry3d", "parry_f64": "parry3d-f64"}[tag]
+        answers = {"points": np.fromfile(os.path.join(directory, "%s.%s.points.u8" % (name, tag)), np.uint8) == 1,
+                   "rays": np.fromfile(os.path.join(directory, "%s.%s.rays.f64" % (name, tag)), "<f8")}
+        for task in ("points", "rays"):
+            rows.append(dict(library=label, precision=tag[-3:], threads=line["threads"], task=task,
+                             setup_s=line["build_s"], seconds=line[task + "_s"], queries=line[task],
+                             answers=answers[task]))
+    vertices, triangles = read_obj_arrays(os.path.join(directory, name + ".obj"))
+    points = np.fromfile(os.path.join(directory, name + ".points.f64"), "<f8").reshape(-1, 3)
+    rays = np.fromfile(os.path.join(directory, name + ".rays.f64"), "<f8").reshape(-1, 6)
+    log(name, "trimesh")
+    rows += python_peers.trimesh_embree(vertices, triangles, points, rays)
+    log(name, "libigl")
+    rows += python_peers.libigl_fwn(vertices, triangles, points)
+    log(name, "open3d")
+    rows += python_peers.open3d_scene(vertices, triangles, points, rays)
+    log(name, "manifold3d")
+    rows += python_peers.manifold3d_rays(vertices, triangles, rays, args.manifold_seconds)
+    for r in rows:
+        r["mesh"] = name
+        r["triangles"] = len(triangles)
+        r["differs"] = (points_differ if r["task"] == "points" else rays_differ)(ours[r["task"]], r["answers"])
+        if r["task"] == "rays":
+            r["max_t_gap"] = max_t_gap(ours["rays"], r["answers"])
+    log(name, "exact arbitration")
+    verdicts = arbitrate(exact.Mesh(vertices, triangles), points, rays, ours, rows, args.arbitrate, rng)
+    return rows, verdicts
+
+
+def validate_python_peers(path):
+    """One fresh-process measurement: trimesh.load, then manifold3d's Manifold from its arrays."""
+    import manifold3d as m3d
+    import trimesh
+    start = time.perf_counter()
+    mesh = trimesh.load(path, process=False, force="mesh")
+    loaded = time.perf_counter()
+    solid = m3d.Manifold(m3d.Mesh64(vert_properties=np.ascontiguousarray(mesh.vertices, dtype=np.float64),
+                                    tri_verts=np.ascontiguousarray(mesh.faces, dtype=np.uint64)))
+    status = solid.status()
+    seconds = time.perf_counter() - start
+    rss = None
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                rss = int(line.split()[1]) / 1024
+    print(json.dumps({"file": path, "seconds": seconds, "import_s": loaded - start, "rss_mib": rss,
+                      "status": status.name, "valid": status == m3d.Error.NoError,
+                      "triangles": int(solid.num_tri()), "genus": int(solid.genus()),
+                      "volume": float(solid.volume()),
+                      "trimesh_watertight": bool(mesh.is_watertight),
+                      "trimesh_winding_consistent": bool(mesh.is_winding_consistent)}))
+
+
+def validation_for_mesh(name, directory):
+    path = os.path.join(directory, name + ".obj")
+    commands = {
+        "wingedge": [os.path.join(EXAMPLES, "peers_wingedge"), "validate", path],
+        "trimesh.load + manifold3d": [sys.executable, os.path.abspath(__file__), "--validate-with-python-peers", path],
+        "parry3d-f64 (tobj)": [os.path.join(EXAMPLES, "peers_parry"), "validate", path],
+    }
+    best = {}
+    for _ in range(VALIDATE_ROUNDS):
+        for library, command in commands.items():
+            line = run_json_lines(command)[0]
+            if library not in best or line["seconds"] < best[library]["seconds"]:
+                best[library] = line
+    return best
+
+
+def machine():
+    cpu = "?"
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next(line.split(":", 1)[1].strip() for line in f if line.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    from importlib.metadata import version
+    packages = {p: version(p) for p in ("numpy", "trimesh", "embreex", "libigl", "open3d", "manifold3d")}
+    rustc = subprocess.run(["rustc", "--version"], capture_output=True, text=True).stdout.strip()
+    parry = "?"
+    with open(os.path.join(ROOT, "Cargo.lock")) as f:
+        lock = f.read().split("[[package]]")
+    for block in lock:
+        if 'name = "parry3d"' in block:
+            parry = block.split('version = "')[1].split('"')[0]
+    return {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+            "cpu": cpu, "cores": os.cpu_count(), "python": platform.python_version(), "rustc": rustc,
+            "parry3d": parry, "packages": packages, "threads": THREADS}
+
+
+def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--validate-with-python-peers":
+        validate_python_peers(sys.argv[2])
+        return
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", required=True, help="directory for inputs, answers and the table")
+    ap.add_argument("--inputs", help="use NAME.obj/.points.f64/.rays.f64 from this directory instead of making them")
+    ap.add_argument("--meshes", default=",".join(DEFAULT_MESHES),
+                    help="comma-separated, from: %s" % ", ".join(inputs.MAKERS))
+    ap.add_argument("--queries", type=int, default=1_000_000, help="points and rays per mesh")
+    ap.add_argument("--parry-points", type=int, default=50_000,
+                    help="points given to parry's contains_point (slow on large curved meshes)")
+    ap.add_argument("--manifold-seconds", type=float, default=3.0,
+                    help="time budget per mesh for manifold3d's one-at-a-time ray_cast")
+    ap.add_argument("--arbitrate", type=int, default=200, help="disputed queries settled exactly per mesh and task")
+    ap.add_argument("--no-build", action="store_true", help="skip cargo build (examples already built)")
+    args = ap.parse_args()
+    started = time.perf_counter()
+    directory = os.path.join(os.path.abspath(args.out), "inputs")
+    os.makedirs(directory, exist_ok=True)
+    if not args.no_build:
+        log("cargo build --release --examples")
+        subprocess.run(["cargo", "build", "--release", "--examples"], cwd=ROOT, check=True)
+    names = [n for n in args.meshes.split(",") if n]
+    rng = np.random.default_rng(20261121)
+    rows, verdicts, validations, metas = [], {}, {}, {}
+    for name in names:
+        log(name, "inputs")
+        metas[name] = (inputs.link_existing(args.inputs, directory, name) if args.inputs
+                       else inputs.make(directory, name, args.queries))
+        mesh_rows, verdicts[name] = queries_for_mesh(name, directory, metas[name], args, rng)
+        rows += mesh_rows
+        log(name, "validation")
+        validations[name] = validation_for_mesh(name, directory)
+    info = machine()
+    info["minutes"] = (time.perf_counter() - started) / 60
+    table = report.markdown(rows, verdicts, validations, info, args)
+    print(table)
+    with open(os.path.join(args.out, "peers.md"), "w") as f:
+        f.write(table)
+    with open(os.path.join(args.out, "peers.json"), "w") as f:
+        json.dump(report.as_json(rows, verdicts, validations, metas, info), f, indent=1,
+                  default=lambda o: o.item() if hasattr(o, "item") else str(o))
+    log("done in %.1f min; table in %s" % (info["minutes"], os.path.join(args.out, "peers.md")))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,251 @@
+//! wingedge's side of the peer comparison (`benches/peers/run.py` runs it).
+//!
+//! ```text
+//! cargo run --release --example peers_wingedge -- queries DIR NAME...
+//! cargo run --release --example peers_wingedge -- validate FILE.obj [REPEATS]
+//! ```
+//!
+//! **queries**: for each `NAME`, reads `DIR/NAME.obj` and builds the
+//! winged-edge solid (timed as `load_s`), builds the [`Accel`] (best of 3,
+//! `accel_s`), then reads `DIR/NAME.points.f64` (N × 3 little-endian `f64`)
+//! and `DIR/NAME.rays.f64` (N × 6: origin, direction) — reading is not timed —
+//! and times [`Accel::classify_batch`] (parity) and [`Accel::first_hit_batch`],
+//! best of 3 each, on the global rayon pool (`RAYON_NUM_THREADS` sets its
+//! size). Answers go to `DIR/NAME.wingedge.points.u8` (0 outside, 1 inside,
+//! 2 on the boundary) and `DIR/NAME.wingedge.rays.f64` (first-hit `t`, `inf`
+//! for a miss); one JSON line per mesh goes to stdout.
+//!
+//! **validate**: what `wingedge validate` does — import (tobj and the line
+//! pass, welding), build the winged-edge solid, every check (the exact
+//! self-intersection check included) — best of `REPEATS` (default 1), then
+//! one JSON line with the times, the verdict, the counts, genus, volume and
+//! this process's peak resident memory. Run it in a fresh process per
+//! measurement when the memory matters.
+//!
+//! Profiling aids (queries): `WINGEDGE_ONLY=points|rays|build` restricts the
+//! work (`build`: ten accel builds, no answers written); `WINGEDGE_CPU=1`
+//! prints the wall and calling-thread CPU time of each measurement to stderr.
+//! Run with `RAYON_NUM_THREADS=1` for single-thread rates.
+
+use std::error::Error;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde_json::json;
+use wingedge::geom::Ray;
+use wingedge::glam::DVec3;
+use wingedge::io::{ObjOptions, import_obj, read_obj};
+use wingedge::mesh::Solid;
+use wingedge::query::{Accel, Containment, Method};
+use wingedge::validate::{Options, validate_and_build};
+
+type Result<T> = std::result::Result<T, Box<dyn Error>>;
+
+const USAGE: &str =
+    "usage: peers_wingedge queries DIR NAME... | peers_wingedge validate FILE.obj [REPEATS]";
+
+/// Reads a raw little-endian `f64` file whose length is a multiple of
+/// `8 * width` bytes.
+fn read_f64s(path: &Path, width: usize) -> Result<Vec<f64>> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    if bytes.len() % (8 * width) != 0 {
+        return Err(format!(
+            "{}: {} bytes is not a whole number of {width}-component f64 records",
+            path.display(),
+            bytes.len()
+        )
+        .into());
+    }
+    Ok(bytes
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+        .collect())
+}
+
+/// CPU time of the calling thread, seconds.
+fn thread_cpu() -> f64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime only writes into the timespec we own.
+    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+/// Best wall time of `runs` calls (at least one) and the last result.
+fn best_of<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
+    let (mut best, mut best_cpu, mut out) = (f64::INFINITY, f64::INFINITY, None);
+    for _ in 0..runs.max(1) {
+        let (t, c) = (Instant::now(), thread_cpu());
+        let r = f();
+        best = best.min(t.elapsed().as_secs_f64());
+        best_cpu = best_cpu.min(thread_cpu() - c);
+        out = Some(std::hint::black_box(r));
+    }
+    if std::env::var_os("WINGEDGE_CPU").is_some() {
+        eprintln!("    wall {best:.4} s, calling-thread cpu {best_cpu:.4} s");
+    }
+    (best, out.expect("runs.max(1) >= 1"))
+}
+
+/// Peak resident memory of this process, MiB (Linux).
+fn peak_rss_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
+}
+
+fn write_answers(path: &Path, bytes: Vec<u8>) -> Result<()> {
+    std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()).into())
+}
+
+fn queries(dir: &Path, name: &str) -> Result<()> {
+    let only = std::env::var("WINGEDGE_ONLY").unwrap_or_default();
+    let runs = |what: &str| {
+        if only.is_empty() || only == what {
+            3
+        } else {
+            0
+        }
+    };
+    let obj = dir.join(format!("{name}.obj"));
+    let t = Instant::now();
+    let soup = read_obj(&obj)?;
+    let solid = Solid::try_from_soup(&soup).map_err(|e| format!("{}: {e}", obj.display()))?;
+    let load_s = t.elapsed().as_secs_f64();
+    let (accel_s, accel) = best_of(3, || Accel::new(&solid));
+    if only == "build" {
+        for _ in 0..10 {
+            std::hint::black_box(Accel::new(&solid));
+        }
+        return Ok(());
+    }
+    let stats = accel.stats();
+    let points: Vec<DVec3> = read_f64s(&dir.join(format!("{name}.points.f64")), 3)?
+        .chunks_exact(3)
+        .map(|c| DVec3::new(c[0], c[1], c[2]))
+        .collect();
+    let rays: Vec<Ray> = read_f64s(&dir.join(format!("{name}.rays.f64")), 6)?
+        .chunks_exact(6)
+        .map(|c| Ray::new(DVec3::new(c[0], c[1], c[2]), DVec3::new(c[3], c[4], c[5])))
+        .collect();
+    let (points_s, classes) = if runs("points") > 0 {
+        let (s, c) = best_of(runs("points"), || {
+            accel.classify_batch(&points, Method::Parity)
+        });
+        (s, c?)
+    } else {
+        (f64::NAN, Vec::new())
+    };
+    let (rays_s, hits) = if runs("rays") > 0 {
+        let (s, h) = best_of(runs("rays"), || accel.first_hit_batch(&rays));
+        (s, h?)
+    } else {
+        (f64::NAN, Vec::new())
+    };
+    if !classes.is_empty() {
+        let codes = classes
+            .iter()
+            .map(|c| match c {
+                Containment::Outside => 0,
+                Containment::Inside => 1,
+                Containment::OnBoundary => 2,
+            })
+            .collect();
+        write_answers(&dir.join(format!("{name}.wingedge.points.u8")), codes)?;
+    }
+    if !hits.is_empty() {
+        let ts = hits
+            .iter()
+            .flat_map(|h| h.map_or(f64::INFINITY, |c| c.t).to_le_bytes())
+            .collect();
+        write_answers(&dir.join(format!("{name}.wingedge.rays.f64")), ts)?;
+    }
+    let count = |want: Containment| classes.iter().filter(|&&c| c == want).count();
+    println!(
+        "{}",
+        json!({
+            "mesh": name,
+            "threads": rayon::current_num_threads(),
+            "triangles": stats.triangles,
+            "load_s": load_s,
+            "accel_s": accel_s,
+            "accel_bytes": stats.memory_bytes,
+            "points": points.len(),
+            "points_s": points_s,
+            "inside": count(Containment::Inside),
+            "boundary": count(Containment::OnBoundary),
+            "rays": rays.len(),
+            "rays_s": rays_s,
+            "hits": hits.iter().filter(|h| h.is_some()).count(),
+        })
+    );
+    Ok(())
+}
+
+fn validate(path: &Path, repeats: usize) -> Result<()> {
+    let mut best: Option<(f64, f64)> = None;
+    let mut last = None;
+    for _ in 0..repeats.max(1) {
+        let t0 = Instant::now();
+        let import = import_obj(path, &ObjOptions::default())?;
+        let import_s = t0.elapsed().as_secs_f64();
+        let (report, solid) = validate_and_build(&import, &Options::default())
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let total_s = t0.elapsed().as_secs_f64();
+        if best.is_none_or(|(_, b)| total_s < b) {
+            best = Some((import_s, total_s));
+        }
+        last = Some((report, solid.is_some()));
+    }
+    let (Some((import_s, total_s)), Some((report, built))) = (best, last) else {
+        return Ok(());
+    };
+    println!(
+        "{}",
+        json!({
+            "file": path.display().to_string(),
+            "seconds": total_s,
+            "import_s": import_s,
+            "rss_mib": peak_rss_mib(),
+            "valid": report.is_valid(),
+            "validity": report.validity,
+            "verdict": report.validity.describe(),
+            "vertices": report.vertices,
+            "edges": report.edges,
+            "faces": report.faces,
+            "genus": report.genus,
+            "volume": report.volume,
+            "violations": report.violations.len(),
+            "solid_built": built,
+        })
+    );
+    Ok(())
+}
+
+fn run(args: &[String]) -> Result<()> {
+    match args {
+        [mode, dir, names @ ..] if mode == "queries" && !names.is_empty() => {
+            let dir = PathBuf::from(dir);
+            names.iter().try_for_each(|name| queries(&dir, name))
+        }
+        [mode, file] if mode == "validate" => validate(Path::new(file), 1),
+        [mode, file, repeats] if mode == "validate" => {
+            let repeats = repeats
+                .parse()
+                .map_err(|e| format!("REPEATS {repeats:?}: {e}"))?;
+            validate(Path::new(file), repeats)
+        }
+        _ => Err(USAGE.into()),
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let Err(e) = run(&args) {
+        eprintln!("error: {e}");
+        std::process::exit(2);
+    }
+}
