@@ -63,7 +63,7 @@ def trimesh_embree(vertices, triangles, points, rays):
         return _first_hit_t(origins, directions, ray_index, locations)
 
     rays_s, t = best_of_3(cast)
-    common = {"library": "trimesh+Embree", "precision": "f32 Embree, f64 locations", "threads": 1,
+    common = {"library": "trimesh+Embree", "precision": "f32", "threads": 1,
               "setup_s": setup_s}
     return [dict(common, task="points", seconds=points_s, queries=len(points), answers=np.asarray(inside, bool)),
             dict(common, task="rays", seconds=rays_s, queries=len(rays), answers=t)]
@@ -74,7 +74,7 @@ def libigl_fwn(vertices, triangles, points):
     fwn = igl.FastWindingNumberBVH()
     setup_s, _ = best_of_3(lambda: fwn.init(vertices, triangles))
     seconds, w = best_of_3(lambda: fwn.winding_number(points))
-    return [{"library": "libigl fast winding number", "precision": "f64, far field approximated",
+    return [{"library": "libigl fast winding number", "precision": "f64, approximate",
              "threads": THREADS, "task": "points", "setup_s": setup_s, "seconds": seconds,
              "queries": len(points), "answers": w > 0.5}]
 

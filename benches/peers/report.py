@@ -23,6 +23,10 @@ def _exact_cell(row, verdict):
     return text
 
 
+def _ratio(x):
+    return "**%.2f×**" % x if x >= 0.1 else "**%.2g×**" % x
+
+
 def _label(row):
     return "%s (%s, %d thr)" % (row["library"], row["precision"], row["threads"])
 
@@ -38,10 +42,10 @@ def _query_rows(rows, verdicts):
                 rate, rate_text = _rate(r)
                 differ = "%s of %s" % (format(len(r["differs"]), ","), format(len(r["answers"]), ","))
                 if task == "rays" and r["library"] != "wingedge":
-                    differ += "; max \\|Δt\\| %.1g" % r["max_t_gap"]
+                    differ += "; elsewhere \\|Δt\\| ≤ %.1g" % r["max_t_gap"]
                 lines.append("| %s (%s) | %s | %s | %.3f | %s | %s | %s | %s |" % (
                     mesh, format(r["triangles"], ","), TASK_WORDS[task], _label(r), r["setup_s"], rate_text,
-                    "1" if r is ours else "**%.2f×**" % (rate / our_rate), differ,
+                    "1" if r is ours else _ratio(rate / our_rate), differ,
                     _exact_cell(r, verdicts[mesh][task])))
     return lines
 
@@ -52,25 +56,24 @@ def _validation_rows(validations, triangles):
         ours = results["wingedge"]
         for library, v in results.items():
             tri_rate = triangles[mesh] / v["seconds"] / 1e6
-            rate = "%.3f s (%.2f M tri/s), %.0f MiB" % (v["seconds"], tri_rate, v["rss_mib"] or float("nan"))
+            rate = "%.3g s (%.2f M tri/s), peak %.0f MiB" % (v["seconds"], tri_rate, v["rss_mib"] or float("nan"))
             if library == "wingedge":
                 agree = "%s, genus %s, volume %.9g" % (v["verdict"], v["genus"], v["volume"] or float("nan"))
                 ratio = "1"
             else:
-                ratio = "**%.2f×**" % (ours["seconds"] / v["seconds"])
+                ratio = _ratio(ours["seconds"] / v["seconds"])
                 if "status" in v:
                     same = v["valid"] == ours["valid"]
                     vol = abs(v["volume"] - ours["volume"]) / abs(ours["volume"]) if ours["volume"] else float("nan")
-                    agree = "status %s (%s); genus %d%s; volume rel. diff %.1g; trimesh watertight %s, winding consistent %s" % (
-                        v["status"], "same verdict" if same else "**verdict differs**", v["genus"],
-                        "" if v["genus"] == ours["genus"] else " (**differs**)", vol,
-                        v["trimesh_watertight"], v["trimesh_winding_consistent"])
+                    agree = "%s: status %s, genus %d, volume rel. diff %.0e; trimesh watertight %s, winding consistent %s" % (
+                        "agrees" if same and v["genus"] == ours["genus"] else "**differs**", v["status"],
+                        v["genus"], vol, v["trimesh_watertight"], v["trimesh_winding_consistent"])
                 else:
                     same = v["topology_ok"] == ours["valid"]
-                    agree = "half-edge topology %s (%s; checks orientation and repeated vertices only)" % (
-                        "ok" if v["topology_ok"] else "error: " + str(v["topology_error"]),
-                        "same verdict" if same else "**verdict differs**")
-            lines.append("| %s (%s) | import + validate | %s | %.3f (import) | %s | %s | %s | — |" % (
+                    agree = "%s: half-edge topology %s (checks only orientation and repeated corners)" % (
+                        "agrees" if same else "**differs**",
+                        "ok" if v["topology_ok"] else "error: " + str(v["topology_error"]))
+            lines.append("| %s (%s) | import + validate | %s | %.3f (import) | %s | %s | %s | |" % (
                 mesh, format(triangles[mesh], ","), library, v["import_s"], rate, ratio, agree))
     return lines
 
@@ -81,10 +84,11 @@ def markdown(rows, verdicts, validations, info, args):
     pk = info["packages"]
     out.append("Measured %s on %s (%d cores), %d threads for every library that can use them; "
                "Python %s, numpy %s, trimesh %s with embreex %s, libigl %s, open3d %s, manifold3d %s; "
-               "%s; parry3d / parry3d-f64 %s. Run took %.1f min."
+               "%s; parry3d / parry3d-f64 %s. The run took %.1f min; 1-minute load average %.1f at its start, "
+               "%.1f at its end."
                % (info["date"], info["cpu"], info["cores"], info["threads"], info["python"], pk["numpy"],
                   pk["trimesh"], pk["embreex"], pk["libigl"], pk["open3d"], pk["manifold3d"], info["rustc"],
-                  info["parry3d"], info["minutes"]))
+                  info["parry3d"], info["minutes"], info["load"][0], info["load"][1]))
     out.append("")
     out.append("| mesh (triangles) | task | library (precision, threads) | setup s | throughput | ÷ wingedge "
                "| answers that differ from wingedge | exact arithmetic on those: who is wrong |")
@@ -104,6 +108,22 @@ def markdown(rows, verdicts, validations, info, args):
             out.append("| %s | %s | %d | %d | %d | %d queries: %s | %.1f |" % (
                 mesh, TASK_WORDS[task], v["disputed"], len(v["answers"]), v["wingedge_wrong"], len(v["control"]),
                 ", ".join(control_wrong) or "none", v["seconds"]))
+    disputes = [(mesh, task, i, v["answers"][i], said) for mesh, by_task in verdicts.items()
+                for task, v in by_task.items() for i, said in list(v["said"].items())[:10]]
+    if disputes:
+        out.append("")
+        out.append("The disputed queries (first 10 per mesh and task), with the exact answer and every library's:")
+        out.append("")
+        for mesh, task, i, truth, said in disputes:
+            if task == "points":
+                exact_text = truth
+                words = ", ".join("%s %s" % (lib, a) for lib, a in said.items())
+            else:
+                exact_text = "miss" if truth[0] == float("inf") else "t = %.9g (%s)" % truth
+                words = ", ".join("%s %s" % (lib, "miss" if a == float("inf") else "%.7g" % a)
+                                  for lib, a in said.items())
+            out.append("- %s %s #%d: exact %s; %s" % (mesh, "point" if task == "points" else "ray", i,
+                                                      exact_text, words))
     return "\n".join(out) + "\n"
 
 
@@ -116,6 +136,7 @@ def as_json(rows, verdicts, validations, metas, info):
 
     def verdict(v):
         return {"disputed": v["disputed"], "settled": len(v["answers"]), "wingedge_wrong": v["wingedge_wrong"],
+                "said": {str(i): a for i, a in v["said"].items()},
                 "seconds": v["seconds"],
                 "answers": {str(i): (a if isinstance(a, str) else [a[0], a[1]]) for i, a in v["answers"].items()}}
 

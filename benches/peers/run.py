@@ -102,8 +102,9 @@ def rays_differ(ours, peer):
 
 
 def max_t_gap(ours, peer):
+    """The largest |t - t_wingedge| over the rays on which both hit and agree."""
     ours = ours[: len(peer)]
-    both = np.isfinite(ours) & np.isfinite(peer)
+    both = np.isfinite(ours) & np.isfinite(peer) & ~t_differ(ours, peer)
     return float(np.abs(ours[both] - peer[both]).max()) if both.any() else 0.0
 
 
@@ -113,7 +114,7 @@ def arbitrate(mesh, points, rays, ours, rows, limit, rng):
     for task in ("points", "rays"):
         peers = [r for r in rows if r["task"] == task and r["library"] != "wingedge"]
         disputed = sorted(set().union(*[set(r["differs"].tolist()) for r in peers])) if peers else []
-        unanimous = np.setdiff1d(np.arange(min(len(r["answers"]) for r in peers)), disputed) if peers else []
+        unanimous = np.setdiff1d(np.arange(len(ours[task])), disputed)
         control = rng.choice(unanimous, size=min(10, len(unanimous)), replace=False).tolist()
         chosen = disputed[:limit] + sorted(control)
         start = time.perf_counter()
@@ -125,8 +126,11 @@ def arbitrate(mesh, points, rays, ours, rows, limit, rng):
                 t, how = exact.first_hit(mesh, rays[i, :3], rays[i, 3:])
                 answers[i] = (np.inf if t is None else float(t), how)
         wingedge_wrong = sum(not _right(task, ours[task][i], answers[i], wingedge=True) for i in chosen)
+        said = {i: {r["library"]: _answer_word(task, r["answers"][i], r["library"] == "wingedge")
+                    for r in rows if r["task"] == task and i < len(r["answers"])}
+                for i in disputed[:limit]}
         verdicts[task] = {"answers": answers, "disputed": len(disputed), "checked": min(len(disputed), limit),
-                          "control": control, "wingedge_wrong": wingedge_wrong,
+                          "control": control, "wingedge_wrong": wingedge_wrong, "said": said,
                           "seconds": time.perf_counter() - start}
     for r in rows:
         v = verdicts[r["task"]]["answers"]
@@ -138,6 +142,13 @@ def arbitrate(mesh, points, rays, ours, rows, limit, rng):
         r["control_wrong"] = sum(not _right(r["task"], r["answers"][i], v[i],
                                             wingedge=r["library"] == "wingedge") for i in control)
     return verdicts
+
+
+def _answer_word(task, answer, wingedge):
+    if task == "points":
+        return {0: "outside", 1: "inside", 2: "boundary"}[int(answer)] if wingedge else (
+            "inside" if answer else "outside")
+    return float(answer)
 
 
 def _right(task, answer, truth, wingedge=False):
@@ -220,8 +231,8 @@ def validation_for_mesh(name, directory):
     path = os.path.join(directory, name + ".obj")
     commands = {
         "wingedge": [os.path.join(EXAMPLES, "peers_wingedge"), "validate", path],
-        "trimesh.load + manifold3d": [sys.executable, os.path.abspath(__file__), "--validate-with-python-peers", path],
-        "parry3d-f64 (tobj)": [os.path.join(EXAMPLES, "peers_parry"), "validate", path],
+        "trimesh.load + manifold3d Manifold": [sys.executable, os.path.abspath(__file__), "--validate-with-python-peers", path],
+        "tobj + parry3d-f64 TriMesh topology": [os.path.join(EXAMPLES, "peers_parry"), "validate", path],
     }
     best = {}
     for _ in range(VALIDATE_ROUNDS):
@@ -233,12 +244,16 @@ def validation_for_mesh(name, directory):
 
 
 def machine():
-    cpu = "?"
+    cpu, virtual = "?", False
     try:
         with open("/proc/cpuinfo") as f:
-            cpu = next(line.split(":", 1)[1].strip() for line in f if line.startswith("model name"))
-    except (OSError, StopIteration):
+            text = f.read()
+        cpu = text.split("model name", 1)[1].split(":", 1)[1].split("\n", 1)[0].strip()
+        virtual = " hypervisor" in text
+    except (OSError, IndexError):
         pass
+    if virtual:
+        cpu += ", a virtual machine"
     from importlib.metadata import version
     packages = {p: version(p) for p in ("numpy", "trimesh", "embreex", "libigl", "open3d", "manifold3d")}
     rustc = subprocess.run(["rustc", "--version"], capture_output=True, text=True).stdout.strip()
@@ -271,6 +286,7 @@ def main():
     ap.add_argument("--no-build", action="store_true", help="skip cargo build (examples already built)")
     args = ap.parse_args()
     started = time.perf_counter()
+    load_at_start = os.getloadavg()[0]
     directory = os.path.join(os.path.abspath(args.out), "inputs")
     os.makedirs(directory, exist_ok=True)
     if not args.no_build:
@@ -289,6 +305,7 @@ def main():
         validations[name] = validation_for_mesh(name, directory)
     info = machine()
     info["minutes"] = (time.perf_counter() - started) / 60
+    info["load"] = (load_at_start, os.getloadavg()[0])
     table = report.markdown(rows, verdicts, validations, info, args)
     print(table)
     with open(os.path.join(args.out, "peers.md"), "w") as f:
