@@ -27,7 +27,7 @@ RECIPES = {
                   "2,000 x 50 quads split in two: 200,000 triangles",
     "sphere_1m": "manifold3d Manifold.sphere(1, circular_segments=1416): 1,002,528 triangles",
     "csg_diff": "manifold3d cube(2) - sphere(0.7, 128 segments, at (0,0,1)) - cylinder along x "
-                "(r 0.4, 128 segments): a CAD-like part with long thin fan triangles, genus 1",
+                "(r 0.4, 128 segments): a CAD-like part with long thin fan triangles, genus 2",
 }
 
 
@@ -165,6 +165,9 @@ def make(directory, name, n_queries):
 
 def link_existing(source, directory, name):
     """Uses `source/<name>.{obj,points.f64,rays.f64}` (made elsewhere) through symbolic links."""
+    stale = os.path.join(directory, name + ".json")
+    if os.path.exists(stale):
+        os.remove(stale)  # the files below are no longer the ones it describes
     for ext in (".obj", ".points.f64", ".rays.f64"):
         src = os.path.join(os.path.abspath(source), name + ext)
         if not os.path.exists(src):

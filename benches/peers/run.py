@@ -27,7 +27,7 @@ library) decides which is right, for up to --arbitrate such queries per mesh
 and task, plus a control sample of queries on which everyone agrees.
 
 The table goes to stdout and OUT/peers.md; everything measured to
-OUT/peers.json. The inputs take about 0.5 GB under OUT and are reused by
+OUT/peers.json. The inputs take about 0.4 GB under OUT and are reused by
 the next run.
 """
 import argparse
@@ -124,18 +124,20 @@ def arbitrate(mesh, points, rays, ours, rows, limit, rng):
                 answers[i] = exact.classify_point(mesh, points[i], rng)
             else:
                 t, how = exact.first_hit(mesh, rays[i, :3], rays[i, 3:])
+                if how == "in_plane":
+                    continue  # the ray lies in a face's plane: not settled here
                 answers[i] = (np.inf if t is None else float(t), how)
-        wingedge_wrong = sum(not _right(task, ours[task][i], answers[i], wingedge=True) for i in chosen)
+        wingedge_wrong = sum(not _right(task, ours[task][i], answers[i], wingedge=True) for i in answers)
         said = {i: {r["library"]: _answer_word(task, r["answers"][i], r["library"] == "wingedge")
                     for r in rows if r["task"] == task and i < len(r["answers"])}
-                for i in disputed[:limit]}
+                for i in disputed[:limit] if i in answers}
         verdicts[task] = {"answers": answers, "disputed": len(disputed), "checked": min(len(disputed), limit),
                           "control": control, "wingedge_wrong": wingedge_wrong, "said": said,
                           "seconds": time.perf_counter() - start}
     for r in rows:
         v = verdicts[r["task"]]["answers"]
         checked = [i for i in r["differs"].tolist() if i in v]
-        control = [i for i in verdicts[r["task"]]["control"] if i < len(r["answers"])]
+        control = [i for i in verdicts[r["task"]]["control"] if i < len(r["answers"]) and i in v]
         r["checked"] = len(checked)
         r["peer_wrong"] = sum(not _right(r["task"], r["answers"][i], v[i]) for i in checked)
         r["wingedge_wrong"] = sum(not _right(r["task"], ours[r["task"]][i], v[i], wingedge=True) for i in checked)
@@ -162,7 +164,7 @@ def _right(task, answer, truth, wingedge=False):
 
 # ---------------------------------------------------------------- the run
 
-def queries_for_mesh(name, directory, meta, args, rng):
+def queries_for_mesh(name, directory, args, rng):
     log(name, "wingedge")
     ours_line = run_json_lines([os.path.join(EXAMPLES, "peers_wingedge"), "queries", directory, name])[0]
     ours = {"points": np.fromfile(os.path.join(directory, name + ".wingedge.points.u8"), np.uint8),
@@ -299,7 +301,7 @@ def main():
         log(name, "inputs")
         metas[name] = (inputs.link_existing(args.inputs, directory, name) if args.inputs
                        else inputs.make(directory, name, args.queries))
-        mesh_rows, verdicts[name] = queries_for_mesh(name, directory, metas[name], args, rng)
+        mesh_rows, verdicts[name] = queries_for_mesh(name, directory, args, rng)
         rows += mesh_rows
         log(name, "validation")
         validations[name] = validation_for_mesh(name, directory)
