@@ -179,7 +179,10 @@ fn bundled_mesh_scenes_load_and_defective_meshes_are_refused() {
     let error = Scene::from_file(&tmp.join("scene.json"))
         .unwrap_err()
         .to_string();
-    assert!(error.starts_with("root.union[1].mesh: mesh "), "{error}");
+    assert!(
+        error.contains("scene.json: root.union[1].mesh: mesh "),
+        "{error}"
+    );
     assert!(error.contains("open.obj"), "{error}");
     assert!(error.contains("not a valid closed solid"), "{error}");
     std::fs::remove_dir_all(&tmp).unwrap();

@@ -86,6 +86,32 @@ pub enum ObjError {
         /// vertices defined before the line).
         available: usize,
     },
+    /// A face corner whose vertex index is too large for any file to define
+    /// (beyond 64-bit integers, e.g. `18446744073709551616`).
+    #[error("{}:{line}: vertex index {token} is out of range: {available} vertices are defined", .path.display())]
+    IndexTooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The face's line.
+        line: usize,
+        /// The index as written.
+        token: String,
+        /// How many vertices the file defines (for a negative index: the
+        /// vertices defined before the line).
+        available: usize,
+    },
+    /// A face with more corners than [`ObjOptions::max_face_corners`].
+    #[error("{}:{line}: a face with {count} corners exceeds the limit of {limit} corners per face (checking a face costs time quadratic in its corners; raise the limit with --max-face-corners or ObjOptions::max_face_corners)", .path.display())]
+    FaceTooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The face's line.
+        line: usize,
+        /// How many corners it has.
+        count: usize,
+        /// The limit in force.
+        limit: usize,
+    },
     /// A face corner that is not `v`, `v/vt`, `v//vn` or `v/vt/vn` with
     /// integer indices.
     #[error("{}:{line}: cannot read face corner `{token}`", .path.display())]
@@ -131,6 +157,8 @@ impl ObjError {
             | ObjError::TooFewCorners { line, .. }
             | ObjError::ZeroIndex { line, .. }
             | ObjError::IndexOutOfRange { line, .. }
+            | ObjError::IndexTooLarge { line, .. }
+            | ObjError::FaceTooLarge { line, .. }
             | ObjError::BadCorner { line, .. }
             | ObjError::NonFinite { line, .. } => Some(*line),
             ObjError::Parse { line, .. } => *line,
@@ -139,11 +167,32 @@ impl ObjError {
     }
 }
 
+/// The default of [`ObjOptions::max_face_corners`].
+pub const DEFAULT_MAX_FACE_CORNERS: usize = 4096;
+
 /// How to read an OBJ file.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ObjOptions {
     /// Which coincident vertices to merge; see [`WeldMode`].
     pub weld: WeldMode,
+    /// The most corners one face (or polyline) may have; a larger one is
+    /// refused with [`ObjError::FaceTooLarge`] before anything is parsed.
+    ///
+    /// Validating a face of `n` corners costs `O(n²)` (the simplicity test
+    /// of its outline, its ear-clipped triangulation and the tests of its
+    /// neighbours against it): at the default of
+    /// [`DEFAULT_MAX_FACE_CORNERS`] a single face takes a few seconds.
+    /// Raise it for files with larger faces if waiting is acceptable.
+    pub max_face_corners: usize,
+}
+
+impl Default for ObjOptions {
+    fn default() -> Self {
+        ObjOptions {
+            weld: WeldMode::default(),
+            max_face_corners: DEFAULT_MAX_FACE_CORNERS,
+        }
+    }
 }
 
 /// An imported OBJ file: the soup and where each part of it came from.
@@ -217,11 +266,16 @@ pub fn import_obj_bytes(
     options: &ObjOptions,
 ) -> Result<ObjImport, ObjError> {
     let start = std::time::Instant::now();
+    precheck(path, bytes, options.max_face_corners)?;
     // The line pass and tobj read the same bytes independently.
     let (scan, models) = rayon::join(|| scan(path, bytes), || run_tobj(path, bytes));
-    let scan = scan?;
+    let (scan, models) = match (scan, models) {
+        (Ok(scan), Ok(models)) => (scan, models),
+        (Err(ours), Err(theirs)) => return Err(earlier(ours, theirs)),
+        (Err(e), Ok(_)) | (Ok(_), Err(e)) => return Err(e),
+    };
     let parsed = start.elapsed().as_secs_f64();
-    let positions = align_positions(path, bytes, &scan, &models?)?;
+    let positions = align_positions(path, bytes, &scan, &models)?;
     let mut soup = PolygonSoup {
         positions,
         polygons: Vec::with_capacity(scan.faces.len()),
@@ -289,21 +343,71 @@ fn line_of_offset(bytes: &[u8], offset: usize) -> usize {
     1 + bytes[..offset].iter().filter(|&&b| b == b'\n').count()
 }
 
-/// The line pass: one walk over the bytes, no allocation per line.
-fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
-    let p = || path.to_path_buf();
+/// Of two errors found by different passes, the one on the earlier line
+/// (an error without a line counts as after every line; `first` wins ties).
+fn earlier(first: ObjError, second: ObjError) -> ObjError {
+    let key = |e: &ObjError| e.line().unwrap_or(usize::MAX);
+    if key(&second) < key(&first) {
+        second
+    } else {
+        first
+    }
+}
+
+/// Checks that need no parsing, made before either parser runs so that a
+/// hostile file is refused before anything is built from it: binary data
+/// (a NUL byte or invalid UTF-8: the first such line is named) and faces
+/// with more than `max_face_corners` corners (tobj would otherwise read the
+/// whole face first).
+fn precheck(path: &Path, bytes: &[u8], max_face_corners: usize) -> Result<(), ObjError> {
     if let Some(offset) = memchr::memchr(0, bytes) {
         return Err(ObjError::Binary {
-            path: p(),
+            path: path.to_path_buf(),
             line: line_of_offset(bytes, offset),
         });
     }
     if let Err(e) = std::str::from_utf8(bytes) {
         return Err(ObjError::Binary {
-            path: p(),
+            path: path.to_path_buf(),
             line: line_of_offset(bytes, e.valid_up_to()),
         });
     }
+    // Every corner takes at least two bytes (a digit and a separator), so
+    // only lines longer than this can hold too many corners.
+    let shortest_too_long = max_face_corners.saturating_mul(2).saturating_add(2);
+    let mut start = 0;
+    for (index, end) in memchr::memchr_iter(b'\n', bytes)
+        .chain(std::iter::once(bytes.len()))
+        .enumerate()
+    {
+        let text = &bytes[start..end];
+        start = end + 1;
+        if text.len() < shortest_too_long {
+            continue;
+        }
+        let mut words = text
+            .split(|b| b.is_ascii_whitespace())
+            .filter(|w| !w.is_empty());
+        if !matches!(words.next(), Some(b"f" | b"l")) {
+            continue;
+        }
+        let count = words.count();
+        if count > max_face_corners {
+            return Err(ObjError::FaceTooLarge {
+                path: path.to_path_buf(),
+                line: index + 1,
+                count,
+                limit: max_face_corners,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The line pass: one walk over the bytes, no allocation per line. The
+/// bytes have passed [`precheck`].
+fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
+    let p = || path.to_path_buf();
     let mut s = Scan::default();
     let mut group: Option<usize> = None;
     let mut material: Option<usize> = None;
@@ -342,7 +446,22 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                         line,
                         token: String::from_utf8_lossy(word).into_owned(),
                     };
-                    let index = parse_index(index_text).ok_or_else(bad)?;
+                    let index = match parse_index(index_text) {
+                        IndexText::Value(index) => index,
+                        IndexText::TooLarge { negative } => {
+                            return Err(ObjError::IndexTooLarge {
+                                path: p(),
+                                line,
+                                token: String::from_utf8_lossy(index_text).into_owned(),
+                                available: if negative {
+                                    defined
+                                } else {
+                                    count_vertex_lines(bytes)
+                                },
+                            });
+                        }
+                        IndexText::NotAnIndex => return Err(bad()),
+                    };
                     let resolved = match index {
                         0 => return Err(ObjError::ZeroIndex { path: p(), line }),
                         i if i < 0 => {
@@ -421,24 +540,55 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
     Ok(s)
 }
 
+/// What a corner's vertex index reads as.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum IndexText {
+    /// An integer that fits in 64 bits.
+    Value(i64),
+    /// Digits whose value is beyond 64 bits (beyond `i64`): no file can
+    /// define that many vertices.
+    TooLarge {
+        /// Written with a minus sign.
+        negative: bool,
+    },
+    /// Not an optionally signed run of decimal digits.
+    NotAnIndex,
+}
+
 /// An OBJ index: optional sign, decimal digits, nothing else.
-fn parse_index(text: &[u8]) -> Option<i64> {
+fn parse_index(text: &[u8]) -> IndexText {
     let (negative, digits) = match text.first() {
         Some(b'-') => (true, &text[1..]),
         Some(b'+') => (false, &text[1..]),
         _ => (false, text),
     };
-    if digits.is_empty() || digits.len() > 18 {
-        return None;
+    if digits.is_empty() || !digits.iter().all(u8::is_ascii_digit) {
+        return IndexText::NotAnIndex;
     }
-    let mut value: i64 = 0;
-    for &d in digits {
-        if !d.is_ascii_digit() {
-            return None;
+    let magnitude = digits.iter().try_fold(0u64, |value, &d| {
+        value.checked_mul(10)?.checked_add(u64::from(d - b'0'))
+    });
+    let value = magnitude.and_then(|m| {
+        if negative {
+            0i64.checked_sub_unsigned(m)
+        } else {
+            i64::try_from(m).ok()
         }
-        value = value * 10 + i64::from(d - b'0');
-    }
-    Some(if negative { -value } else { value })
+    });
+    value.map_or(IndexText::TooLarge { negative }, IndexText::Value)
+}
+
+/// How many `v` lines the file holds (for the message of an index too
+/// large to resolve, found before the end of the file).
+fn count_vertex_lines(bytes: &[u8]) -> usize {
+    bytes
+        .split(|&b| b == b'\n')
+        .filter(|line| {
+            line.split(|b| b.is_ascii_whitespace())
+                .find(|w| !w.is_empty())
+                == Some(b"v")
+        })
+        .count()
 }
 
 fn intern(names: &mut Vec<Arc<str>>, name: &str) -> usize {
@@ -462,12 +612,57 @@ fn run_tobj(path: &Path, bytes: &[u8]) -> Result<Vec<tobj::Model>, ObjError> {
     let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| {
         Err(tobj::LoadError::OpenFileFailed)
     })
-    .map_err(|e| ObjError::Parse {
-        path: path.to_path_buf(),
-        line: locate_tobj_error(bytes, &e),
-        message: e.to_string(),
+    .map_err(|e| {
+        let line = locate_tobj_error(bytes, &e);
+        let what = describe_tobj_error(&e);
+        ObjError::Parse {
+            path: path.to_path_buf(),
+            line,
+            message: match line {
+                Some(line) => format!("{what}: `{}`", excerpt_of_line(bytes, line)),
+                None => what,
+            },
+        }
     })?;
     Ok(models)
+}
+
+/// What a tobj error means, in the terms of the OBJ format.
+fn describe_tobj_error(error: &tobj::LoadError) -> String {
+    use tobj::LoadError as E;
+    match error {
+        E::PositionParseError => {
+            "cannot read vertex position: a `v` line needs the numbers x y z (then optionally w, or r g b)"
+        }
+        E::ScalingByZeroError => "a `v` line has weight w = 0",
+        E::ColorParseError => {
+            "a `v` line has 5 or more than 6 numbers (x y z, then optionally w, or r g b)"
+        }
+        E::NormalParseError => "cannot read normal: a `vn` line needs the numbers x y z",
+        E::TexcoordParseError => "cannot read texture coordinate: a `vt` line needs the numbers u v",
+        E::FaceTexCoordOutOfBounds => {
+            "a face corner names a texture coordinate (`v/vt`) that is not defined"
+        }
+        E::FaceNormalOutOfBounds => "a face corner names a normal (`v//vn`) that is not defined",
+        E::MaterialParseError => "`usemtl` without a material name",
+        other => return format!("cannot parse: {other}"),
+    }
+    .to_string()
+}
+
+/// The text of a 1-based line, shortened to at most 60 characters.
+fn excerpt_of_line(bytes: &[u8], line: usize) -> String {
+    const SHOWN: usize = 60;
+    let text = bytes
+        .split(|&b| b == b'\n')
+        .nth(line - 1)
+        .unwrap_or_default();
+    let text = String::from_utf8_lossy(text);
+    let text = text.trim();
+    match text.char_indices().nth(SHOWN) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_string(),
+    }
 }
 
 /// Places the positions tobj read at their original vertex numbers;
@@ -737,6 +932,85 @@ mod tests {
         .unwrap_err();
         assert!(matches!(junk, ObjError::Binary { line: 2, .. }), "{junk}");
         assert!(junk.to_string().starts_with("j:2:"));
+    }
+
+    #[test]
+    fn indices_beyond_64_bits_are_out_of_range() {
+        for index in [
+            "9223372036854775808",
+            "18446744073709551616",
+            "-9223372036854775809",
+            "99999999999999999999999999999999",
+        ] {
+            let e = read(&format!(
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 {index}\nv 0 0 1\n"
+            ))
+            .unwrap_err();
+            assert!(matches!(e, ObjError::IndexTooLarge { line: 4, .. }), "{e}");
+            let available = if index.starts_with('-') { 3 } else { 4 };
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "t.obj:4: vertex index {index} is out of range: {available} vertices are defined"
+                )
+            );
+        }
+        for (index, available) in [("9223372036854775807", 3), ("-9223372036854775808", 3)] {
+            let e = read(&format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 {index}\n")).unwrap_err();
+            assert!(
+                matches!(e, ObjError::IndexOutOfRange { line: 4, available: a, .. } if a == available),
+                "{e}"
+            );
+        }
+        assert_eq!(parse_index(b"+7"), IndexText::Value(7));
+        assert_eq!(parse_index(b"-"), IndexText::NotAnIndex);
+        assert_eq!(parse_index(b"1e3"), IndexText::NotAnIndex);
+    }
+
+    #[test]
+    fn faces_above_the_corner_limit_are_refused_before_parsing() {
+        let options = ObjOptions {
+            max_face_corners: 5,
+            ..ObjOptions::default()
+        };
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 1 2 3\n";
+        let e = import_obj_bytes(Path::new("t.obj"), text.as_bytes(), &options).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                ObjError::FaceTooLarge {
+                    line: 4,
+                    count: 6,
+                    limit: 5,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(
+            e.to_string()
+                .starts_with("t.obj:4: a face with 6 corners exceeds the limit of 5")
+        );
+        // At the limit the face is read (and found degenerate later).
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 1 2\n";
+        assert!(import_obj_bytes(Path::new("t.obj"), text.as_bytes(), &options).is_ok());
+        // Long lines that are not faces are not faces.
+        let text = format!("# {}\n{TET}", "x ".repeat(100));
+        assert!(import_obj_bytes(Path::new("t.obj"), text.as_bytes(), &options).is_ok());
+    }
+
+    #[test]
+    fn the_first_bad_line_wins_whichever_pass_finds_it() {
+        // tobj refuses line 2, our pass line 4 (and would say "no faces").
+        let e = read("v 0 0 0\nv 1 y 0\nv 0 1 0\nf 1 2 0\n").unwrap_err();
+        assert_eq!(e.line(), Some(2), "{e}");
+        let e = read("v a b c\nv a b c\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.obj:1: cannot read vertex position: a `v` line needs the numbers x y z (then optionally w, or r g b): `v a b c`"
+        );
+        let e = read("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\nv 1 y 0\n").unwrap_err();
+        assert!(matches!(e, ObjError::ZeroIndex { line: 4, .. }), "{e}");
     }
 
     #[test]
