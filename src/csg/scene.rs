@@ -304,7 +304,17 @@ fn read_scene_file(
             "is a directory, not a scene file",
         )));
     }
-    let text = std::fs::read_to_string(path).map_err(read_error)?;
+    let bytes = std::fs::read(path).map_err(read_error)?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        SceneError::Json {
+            file: path.display().to_string(),
+            line: 1 + valid.iter().filter(|&&b| b == b'\n').count(),
+            column: 1 + valid.len() - line_start,
+            message: "binary data (not UTF-8 text)".into(),
+        }
+    })?;
     files.push(std::fs::canonicalize(path).map_err(read_error)?);
     let value = parse_json(&text, &path.display().to_string())?;
     let reader = Reader {

@@ -145,3 +145,22 @@ impl Drop for TempDir {
         let _ = std::fs::remove_dir_all(&self.path);
     }
 }
+
+/// The largest peak resident memory of any child process this test
+/// process has waited for so far, in bytes (Linux only; `None` elsewhere).
+/// Tests run in parallel threads of one process, so this bounds every
+/// command run so far, not only the last.
+pub fn peak_child_rss_bytes() -> Option<u64> {
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: getrusage only writes the struct it is given.
+        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+        let ok = unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) } == 0;
+        // Linux reports kilobytes.
+        ok.then(|| u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024)
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        None
+    }
+}
