@@ -202,7 +202,7 @@ pub struct Scene {
 }
 
 const TOP_KEYS: &str = "root, camera, light, shadows";
-const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, union, intersection, difference, or transform with child";
+const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, union, intersection, difference, scene, or transform with child";
 
 impl Scene {
     /// Reads a scene file; mesh paths are relative to its folder.

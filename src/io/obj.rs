@@ -409,6 +409,8 @@ fn precheck(path: &Path, bytes: &[u8], max_face_corners: usize) -> Result<(), Ob
 fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
     let p = || path.to_path_buf();
     let mut s = Scan::default();
+    let mut textures = AttributeCount::default();
+    let mut normals = AttributeCount::default();
     let mut group: Option<usize> = None;
     let mut material: Option<usize> = None;
     let mut offset = 0;
@@ -435,17 +437,25 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                 s.vertex_lines.push(u32::try_from(line).unwrap_or(u32::MAX));
                 s.vertex_offsets.push(start);
             }
+            b"vt" => textures.defined += 1,
+            b"vn" => normals.defined += 1,
             b"f" | b"l" => {
                 let polyline = keyword == b"l";
                 let first = s.corners.len();
                 let defined = s.vertex_lines.len();
                 for word in words {
-                    let index_text = word.split(|&b| b == b'/').next().unwrap_or_default();
                     let bad = || ObjError::BadCorner {
                         path: p(),
                         line,
                         token: String::from_utf8_lossy(word).into_owned(),
                     };
+                    let (index_text, texture, normal) = corner_parts(word).ok_or_else(bad)?;
+                    if let Some(text) = texture {
+                        check_attribute_index(path, bytes, line, text, "vt", &mut textures)?;
+                    }
+                    if let Some(text) = normal {
+                        check_attribute_index(path, bytes, line, text, "vn", &mut normals)?;
+                    }
                     let index = match parse_index(index_text) {
                         IndexText::Value(index) => index,
                         IndexText::TooLarge { negative } => {
@@ -456,7 +466,7 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                                 available: if negative {
                                     defined
                                 } else {
-                                    count_vertex_lines(bytes)
+                                    count_statements(bytes, b"v")
                                 },
                             });
                         }
@@ -522,6 +532,16 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
             _ => {}
         }
     }
+    for (keyword, count) in [("vt", textures), ("vn", normals)] {
+        if count.out_of_range() {
+            return Err(first_attribute_out_of_range(
+                path,
+                bytes,
+                keyword,
+                count.defined,
+            ));
+        }
+    }
     let available = s.vertex_lines.len();
     for face in &s.faces {
         let corners = &s.corners[face.start..face.start + face.len];
@@ -578,17 +598,168 @@ fn parse_index(text: &[u8]) -> IndexText {
     value.map_or(IndexText::TooLarge { negative }, IndexText::Value)
 }
 
-/// How many `v` lines the file holds (for the message of an index too
-/// large to resolve, found before the end of the file).
-fn count_vertex_lines(bytes: &[u8]) -> usize {
+/// How many lines of the file start with `keyword` (for the message of an
+/// index found before the end of the file).
+fn count_statements(bytes: &[u8], keyword: &[u8]) -> usize {
     bytes
         .split(|&b| b == b'\n')
         .filter(|line| {
             line.split(|b| b.is_ascii_whitespace())
                 .find(|w| !w.is_empty())
-                == Some(b"v")
+                == Some(keyword)
         })
         .count()
+}
+
+/// The vertex, texture-coordinate and normal index texts of a corner.
+type CornerParts<'a> = (&'a [u8], Option<&'a [u8]>, Option<&'a [u8]>);
+
+/// A face corner split into its vertex, texture-coordinate and normal
+/// index texts: `v`, `v/vt`, `v//vn` or `v/vt/vn`; `None` for any other
+/// shape (`1/`, `1/2/`, `1//`, `1/2/3/4`).
+fn corner_parts(word: &[u8]) -> Option<CornerParts<'_>> {
+    let mut parts = word.split(|&b| b == b'/');
+    let vertex = parts.next()?;
+    let texture = parts.next();
+    let normal = parts.next();
+    if parts.next().is_some() {
+        return None;
+    }
+    match (texture, normal) {
+        (None, _) => Some((vertex, None, None)),
+        (Some(t), None) if !t.is_empty() => Some((vertex, Some(t), None)),
+        (Some(t), Some(n)) if !n.is_empty() => {
+            Some((vertex, (!t.is_empty()).then_some(t), Some(n)))
+        }
+        _ => None,
+    }
+}
+
+/// A kind of face-corner attribute (`vt` or `vn`): how many the file
+/// defines so far and whether a corner named one beyond them.
+#[derive(Clone, Copy, Debug, Default)]
+struct AttributeCount {
+    /// `vt` or `vn` lines read so far.
+    defined: usize,
+    /// The largest positive index used so far (checked at the end, since
+    /// an attribute may be defined after the face using it).
+    largest_used: usize,
+    /// A negative index reached back before the first definition.
+    negative_out_of_range: bool,
+}
+
+impl AttributeCount {
+    /// Whether some corner names an attribute the file does not define.
+    /// As tobj, a file that defines none of this kind has its indices
+    /// ignored (only positions are read).
+    fn out_of_range(&self) -> bool {
+        self.defined > 0 && (self.negative_out_of_range || self.largest_used > self.defined)
+    }
+}
+
+/// Checks the form of a texture-coordinate or normal index written as
+/// `text` on `line` and records its range in `count` (checked once the
+/// whole file is read).
+fn check_attribute_index(
+    path: &Path,
+    bytes: &[u8],
+    line: usize,
+    text: &[u8],
+    keyword: &'static str,
+    count: &mut AttributeCount,
+) -> Result<(), ObjError> {
+    let what = attribute_name(keyword);
+    let error = |message: String| ObjError::Parse {
+        path: path.to_path_buf(),
+        line: Some(line),
+        message,
+    };
+    match parse_index(text) {
+        IndexText::NotAnIndex => Err(error(format!(
+            "cannot read {what} index `{}`",
+            String::from_utf8_lossy(text)
+        ))),
+        IndexText::TooLarge { negative } => Err(error(format!(
+            "{what} index {} is out of range: {} `{keyword}` lines are defined",
+            String::from_utf8_lossy(text),
+            if negative {
+                count.defined
+            } else {
+                count_statements(bytes, keyword.as_bytes())
+            },
+        ))),
+        IndexText::Value(0) => Err(error(format!(
+            "{what} index 0 is invalid (OBJ indices start at 1, or count back from -1)"
+        ))),
+        IndexText::Value(i) if i < 0 => {
+            if usize::try_from(i.unsigned_abs()).map_or(true, |back| back > count.defined) {
+                count.negative_out_of_range = true;
+            }
+            Ok(())
+        }
+        IndexText::Value(i) => {
+            let i = usize::try_from(i).unwrap_or(usize::MAX);
+            count.largest_used = count.largest_used.max(i);
+            Ok(())
+        }
+    }
+}
+
+fn attribute_name(keyword: &str) -> &'static str {
+    if keyword == "vt" {
+        "texture coordinate"
+    } else {
+        "normal"
+    }
+}
+
+/// The first face line naming a `keyword` attribute (`vt` or `vn`) that
+/// the file does not define, of which it holds `defined` (only called once
+/// such a line is known to exist).
+fn first_attribute_out_of_range(
+    path: &Path,
+    bytes: &[u8],
+    keyword: &'static str,
+    defined: usize,
+) -> ObjError {
+    let what = attribute_name(keyword);
+    let mut before = 0usize;
+    for (i, text) in bytes.split(|&b| b == b'\n').enumerate() {
+        let mut words = text
+            .split(|b| b.is_ascii_whitespace())
+            .filter(|w| !w.is_empty());
+        match words.next() {
+            Some(k) if k == keyword.as_bytes() => before += 1,
+            Some(b"f" | b"l") => {
+                for word in words {
+                    let Some((_, texture, normal)) = corner_parts(word) else {
+                        continue;
+                    };
+                    let index = if keyword == "vt" { texture } else { normal };
+                    let Some(IndexText::Value(index)) = index.map(parse_index) else {
+                        continue;
+                    };
+                    let available = if index < 0 { before } else { defined };
+                    let reach = usize::try_from(index.unsigned_abs()).unwrap_or(usize::MAX);
+                    if reach > available {
+                        return ObjError::Parse {
+                            path: path.to_path_buf(),
+                            line: Some(i + 1),
+                            message: format!(
+                                "{what} index {index} is out of range: {available} `{keyword}` lines are defined"
+                            ),
+                        };
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    ObjError::Parse {
+        path: path.to_path_buf(),
+        line: None,
+        message: format!("a {what} index is out of range"),
+    }
 }
 
 fn intern(names: &mut Vec<Arc<str>>, name: &str) -> usize {
@@ -1011,6 +1182,48 @@ mod tests {
         );
         let e = read("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\nv 1 y 0\n").unwrap_err();
         assert!(matches!(e, ObjError::ZeroIndex { line: 4, .. }), "{e}");
+    }
+
+    #[test]
+    fn corners_must_have_one_of_the_four_shapes_and_indices_in_range() {
+        for corner in ["1/", "1/2/", "1//", "1/2/3/4", "/1"] {
+            let e = read(&format!("{TET}f 1 2 {corner}\n")).unwrap_err();
+            assert!(
+                matches!(e, ObjError::BadCorner { line: 9, .. }),
+                "{corner}: {e}"
+            );
+        }
+        let e = read(&format!("{TET}f 1 2/x 3\n")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.obj:9: cannot read texture coordinate index `x`"
+        );
+        // Attributes may be defined after the faces using them; a file
+        // without any has their indices ignored.
+        let text = format!("{TET}f 2/1/1 3/1/1 4/1/1\nvt 0 0\nvn 0 0 1\n");
+        read(&text).unwrap();
+        read(&format!("{TET}f 2/7 3/-9 4/1\n")).unwrap();
+        let e = read(&format!("{TET}f 1/3 2/1 3/1\nvt 0 0\n")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.obj:9: texture coordinate index 3 is out of range: 1 `vt` lines are defined"
+        );
+        let e = read(&format!("{TET}vn 0 0 1\nf 1//1 2//-2 3//1\n")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.obj:10: normal index -2 is out of range: 1 `vn` lines are defined"
+        );
+        let e = read(&format!("{TET}vt 0 0\nf 1/1 2/1 3/1 4/-2\n")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.obj:10: texture coordinate index -2 is out of range: 1 `vt` lines are defined"
+        );
+        let e = read(&format!("{TET}f 1/0 2/1 3/1\n")).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("t.obj:9: texture coordinate index 0 is invalid"),
+            "{e}"
+        );
     }
 
     #[test]
