@@ -23,6 +23,7 @@
 
 pub mod csg;
 mod disjoint_sets;
+mod fixed_chunks;
 pub mod geom;
 pub mod io;
 pub mod mesh;

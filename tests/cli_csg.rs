@@ -1,30 +1,8 @@
 //! The CSG commands on the bundled scenes.
 
-use std::io::Write;
-use std::process::{Command, Stdio};
+mod common;
 
-fn wingedge(args: &[&str], stdin: &str) -> (i32, String, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_wingedge"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
-    child
-        .stdin
-        .take()
-        .expect("stdin is piped")
-        .write_all(stdin.as_bytes())
-        .expect("stdin accepts input");
-    let out = child.wait_with_output().expect("the binary finishes");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use common::cli::{TempDir, wingedge_stdin as wingedge};
 
 const DRILLED: &str = "fixtures/scenes/drilled_cube.json";
 
@@ -74,9 +52,8 @@ fn volume_of_a_scene_and_of_a_mesh() {
 
 #[test]
 fn render_writes_a_png_of_the_asked_size() {
-    let dir = std::env::temp_dir().join(format!("wingedge-render-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let png = dir.join("drilled.png");
+    let dir = TempDir::new("render");
+    let png = dir.path().join("drilled.png");
     let png_arg = png.to_str().unwrap();
     let (code, _, err) = wingedge(
         &[
@@ -96,21 +73,16 @@ fn render_writes_a_png_of_the_asked_size() {
     assert!(!err.contains("shadow rays 0"), "{err}");
     let (code, _, err) = wingedge(&["render", DRILLED, "-o", png_arg, "--size", "64by48"], "");
     assert_eq!(code, 2, "{err}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn scene_errors_name_the_json_path() {
-    let dir = std::env::temp_dir().join(format!("wingedge-scene-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let scene = dir.join("bad.json");
-    std::fs::write(
-        &scene,
+    let dir = TempDir::new("scene");
+    let scene = dir.write(
+        "bad.json",
         r#"{"root": {"difference": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, {"sphere": {"center": [0,0,0], "radius": 0}}]}}"#,
-    )
-    .unwrap();
+    );
     let (code, _, err) = wingedge(&["volume", scene.to_str().unwrap()], "");
     assert_eq!(code, 2);
     assert!(err.contains("root.difference[1].sphere.radius"), "{err}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,19 +1,8 @@
 //! The `wingedge info` command on bundled fixtures and built-ins.
 
-use std::process::Command;
+mod common;
 
-fn wingedge(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_wingedge"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use common::cli::wingedge;
 
 #[test]
 fn info_on_the_bundled_dodecahedron() {

@@ -1,22 +1,12 @@
 //! `wingedge validate`: exit codes, the JSON contract, unreadable input.
 
 use std::path::PathBuf;
-use std::process::Command;
 
 use serde_json::Value;
 
-fn wingedge(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_wingedge"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+mod common;
+
+use common::cli::{TempDir, wingedge};
 
 fn json(args: &[&str]) -> (i32, Vec<Value>) {
     let mut all = vec!["validate", "--json"];
@@ -24,15 +14,6 @@ fn json(args: &[&str]) -> (i32, Vec<Value>) {
     let (code, out, err) = wingedge(&all);
     let value: Value = serde_json::from_str(&out).unwrap_or_else(|e| panic!("{e}: {out} {err}"));
     (code, value.as_array().expect("an array").clone())
-}
-
-/// A scratch file with the given bytes, unique per test.
-fn scratch(name: &str, bytes: &[u8]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("wingedge-cli-validate-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join(name);
-    std::fs::write(&path, bytes).expect("write");
-    path
 }
 
 #[test]
@@ -132,33 +113,34 @@ fn json_contract() {
 
 #[test]
 fn unreadable_input_names_file_and_line() {
+    let scratch = TempDir::new("cli-validate");
     let dir = std::env::temp_dir();
     let cases: Vec<(PathBuf, Option<u64>, &str)> = vec![
         (PathBuf::from("fixtures/missing.obj"), None, "cannot read"),
         (dir.clone(), None, "is a directory"),
         (
-            scratch("junk.obj", b"v 0 0 0\n\x00\x01\x02\xff\xfe"),
+            scratch.write("junk.obj", b"v 0 0 0\n\x00\x01\x02\xff\xfe"),
             Some(2),
             "binary",
         ),
-        (scratch("empty.obj", b""), None, "no faces"),
+        (scratch.write("empty.obj", b""), None, "no faces"),
         (
-            scratch("zero.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"),
+            scratch.write("zero.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"),
             Some(4),
             "index 0",
         ),
         (
-            scratch("range.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
+            scratch.write("range.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
             Some(4),
             "out of range",
         ),
         (
-            scratch("nan.obj", b"v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n"),
+            scratch.write("nan.obj", b"v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n"),
             Some(2),
             "non-finite",
         ),
         (
-            scratch("two.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2\n"),
+            scratch.write("two.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2\n"),
             Some(5),
             "at least 3 corners",
         ),
@@ -181,6 +163,7 @@ fn unreadable_input_names_file_and_line() {
 
 #[test]
 fn weld_flags() {
+    let scratch = TempDir::new("cli-validate");
     let (code, files) = json(&["--no-weld", "fixtures/valid/exporter_cube.obj"]);
     assert_eq!(code, 1);
     assert_eq!(files[0]["weld"]["merged"], 0);
@@ -190,7 +173,7 @@ fn weld_flags() {
     let text = std::fs::read_to_string("fixtures/valid/exporter_cube.obj")
         .unwrap()
         .replacen("v 0 0 0\n", "v 0 0 1e-9\n", 1);
-    let nudged = scratch("nudged.obj", text.as_bytes());
+    let nudged = scratch.write("nudged.obj", text.as_bytes());
     let p = nudged.to_string_lossy().into_owned();
     let (code, _) = json(&[&p]);
     assert_eq!(code, 1);

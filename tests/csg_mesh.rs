@@ -3,6 +3,9 @@
 
 use std::path::Path;
 
+mod common;
+
+use common::cli::TempDir;
 use glam::DVec3;
 use wingedge::csg::{AxisBox, Containment, Csg, CsgExpr, Polyhedron, Scene, Stats};
 use wingedge::geom::Ray;
@@ -163,24 +166,23 @@ fn bundled_mesh_scenes_load_and_defective_meshes_are_refused() {
     assert!(v > 0.2 * whole && v < whole, "{v}");
 
     // A cube with one face missing: refused with the validator's verdict.
-    let tmp = std::env::temp_dir().join(format!("wingedge-open-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
-    std::fs::write(
-        tmp.join("open.obj"),
+    let tmp = TempDir::new("open");
+    tmp.write(
+        "open.obj",
         "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
          f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n",
-    )
-    .unwrap();
-    std::fs::write(
-        tmp.join("scene.json"),
+    );
+    tmp.write(
+        "scene.json",
         r#"{"root": {"union": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, {"mesh": "open.obj"}]}}"#,
-    )
-    .unwrap();
-    let error = Scene::from_file(&tmp.join("scene.json"))
+    );
+    let error = Scene::from_file(&tmp.path().join("scene.json"))
         .unwrap_err()
         .to_string();
-    assert!(error.starts_with("root.union[1].mesh: mesh "), "{error}");
+    assert!(
+        error.contains("scene.json: root.union[1].mesh: mesh "),
+        "{error}"
+    );
     assert!(error.contains("open.obj"), "{error}");
     assert!(error.contains("not a valid closed solid"), "{error}");
-    std::fs::remove_dir_all(&tmp).unwrap();
 }

@@ -1,15 +1,17 @@
 //! Solids written as OBJ read back with the same topology and measures.
 
+mod common;
+
+use common::cli::TempDir;
 use wingedge::io::{read_obj, to_obj_string, write_obj};
 use wingedge::mesh::{Solid, builders};
 
 #[test]
 fn every_builtin_survives_a_round_trip() {
-    let dir = std::env::temp_dir().join(format!("wingedge-roundtrip-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = TempDir::new("roundtrip");
     for name in builders::NAMES {
         let solid = builders::by_name(name).unwrap();
-        let path = dir.join(format!("{name}.obj"));
+        let path = dir.path().join(format!("{name}.obj"));
         write_obj(&solid, &path).unwrap();
         let back = Solid::try_from_soup(&read_obj(&path).unwrap()).unwrap();
         back.check_consistency().unwrap();
@@ -34,7 +36,6 @@ fn every_builtin_survives_a_round_trip() {
         let original: Vec<usize> = solid.faces().map(|(f, _)| solid.face_degree(f)).collect();
         assert_eq!(degrees, original);
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

@@ -187,6 +187,7 @@ fn the_exporter_cube_welds_closed_and_keeps_groups_and_materials() {
     // Without the weld every edge is open.
     let options = ObjOptions {
         weld: wingedge::io::WeldMode::None,
+        ..ObjOptions::default()
     };
     let import = import_obj(&fixture("valid/exporter_cube.obj"), &options).unwrap();
     let r = validate_import(&import, &Options::default()).unwrap();

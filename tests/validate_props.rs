@@ -65,7 +65,7 @@ proptest! {
             1 => WeldMode::Exact,
             _ => WeldMode::Within(wingedge::geom::Tolerance { weld: 0.3, ..Default::default() }),
         };
-        if let Ok(import) = import_obj_bytes(Path::new("p.obj"), text.as_bytes(), &ObjOptions { weld }) {
+        if let Ok(import) = import_obj_bytes(Path::new("p.obj"), text.as_bytes(), &ObjOptions { weld, ..ObjOptions::default() }) {
             let (report, solid) = validate_and_build(&import, &Options::default()).unwrap();
             prop_assert_eq!(report.faces, import.soup.polygons.len());
             if report.validity == Validity::ValidSolid {

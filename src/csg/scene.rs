@@ -9,6 +9,7 @@
 //!       | {"cylinder": {"base": [x,y,z], "axis": [x,y,z], "radius": r}}   (axis: base to top)
 //!       | {"union": [NODE, ...]} | {"intersection": [NODE, ...]} | {"difference": [NODE, NODE, ...]}
 //!       | {"transform": {"translate": [..], "rotate_deg": [rx,ry,rz], "scale": [..]}, "child": NODE}
+//!       | {"scene": "relative/path.json"}       (the root of another scene file)
 //! camera := {"eye": [x,y,z], "look_at": [x,y,z], "up": [x,y,z], "fov_deg": f}   (up, fov_deg optional)
 //! light  := {"direction": [x,y,z]} | {"position": [x,y,z]}, plus optional "ambient": a in [0, 1]
 //! ```
@@ -17,7 +18,21 @@
 //! then translates; each part is optional. Mesh paths are relative to the
 //! scene file. Unknown keys and bad values are errors naming the JSON path,
 //! e.g. `root.difference[1].sphere.radius`.
+//!
+//! # Limits
+//!
+//! Hostile files are refused quickly, with the limit named in the error:
+//! JSON nested deeper than [`MAX_JSON_DEPTH`] (the JSON reader's own
+//! limit), nodes nested deeper than [`MAX_NODE_DEPTH`] counting through
+//! included files, more than [`MAX_NODES`] nodes in all (each inclusion
+//! counted again), included files nested deeper than
+//! [`MAX_INCLUDE_DEPTH`], and a file that includes itself, directly or
+//! through others (paths compared after canonicalization). The camera,
+//! light and shadows of an included scene are ignored; a mesh named twice
+//! is read and validated once.
 
+use std::cell::{Cell, RefCell};
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -78,10 +93,64 @@ pub enum SceneError {
         /// Why (the validator's report for a defective mesh).
         message: String,
     },
+    /// A limit of the format was exceeded (see the [module docs](self)).
+    #[error("{at}: {what} exceeds the limit of {limit}")]
+    Limit {
+        /// The JSON path where the limit was crossed.
+        at: String,
+        /// What was counted.
+        what: &'static str,
+        /// The limit.
+        limit: usize,
+    },
+    /// A scene file includes itself, directly or through other files.
+    #[error("{at}: scene {} includes itself: {}", .chain.last().map_or(String::new(), |f| f.display().to_string()), chain_text(.chain))]
+    IncludeCycle {
+        /// The JSON path of the `scene` node that closes the cycle.
+        at: String,
+        /// The files of the cycle, from the first to the one included again.
+        chain: Vec<PathBuf>,
+    },
+    /// An included scene file is unreadable or wrong.
+    #[error("{at}: included scene: {source}")]
+    Include {
+        /// The JSON path of the `scene` node.
+        at: String,
+        /// What is wrong with the included file (naming it).
+        source: Box<SceneError>,
+    },
+    /// An error inside a scene file, with the file it is in.
+    #[error("{}: {source}", .file.display())]
+    InFile {
+        /// The scene file.
+        file: PathBuf,
+        /// The error, naming its JSON path.
+        source: Box<SceneError>,
+    },
     /// The tree is malformed (a singular transform, an empty operator).
     #[error("{0}")]
     Csg(#[from] CsgError),
 }
+
+fn chain_text(chain: &[PathBuf]) -> String {
+    chain
+        .iter()
+        .map(|f| f.display().to_string())
+        .collect::<Vec<_>>()
+        .join(" → ")
+}
+
+/// How deep JSON may nest (arrays and objects); deeper text is refused by
+/// the JSON reader before any node is read.
+pub const MAX_JSON_DEPTH: usize = 128;
+/// How deep nodes may nest, counting through included scene files (a node
+/// per operator, transform or inclusion).
+pub const MAX_NODE_DEPTH: usize = 256;
+/// How many nodes a scene may have, counting included scenes once per
+/// inclusion.
+pub const MAX_NODES: usize = 1_000_000;
+/// How deep scene files may include scene files.
+pub const MAX_INCLUDE_DEPTH: usize = 16;
 
 /// Where the camera is and what it looks at.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -133,7 +202,7 @@ pub struct Scene {
 }
 
 const TOP_KEYS: &str = "root, camera, light, shadows";
-const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, union, intersection, difference, or transform with child";
+const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, union, intersection, difference, scene, or transform with child";
 
 impl Scene {
     /// Reads a scene file; mesh paths are relative to its folder.
@@ -142,40 +211,35 @@ impl Scene {
     ///
     /// [`SceneError`] naming the file, the JSON position or the JSON path.
     pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-            file: path.to_path_buf(),
-            source,
-        })?;
-        let base = path.parent().unwrap_or(Path::new("."));
-        Scene::from_json(&text, &path.display().to_string(), base)
+        let state = ReadState::default();
+        let (value, root) = read_scene_file(path, &state, Vec::new(), 0)?;
+        object(&value, "scene")
+            .and_then(|top| Scene::assemble(top, root))
+            .map_err(|e| in_file(path, e))
     }
 
-    /// Parses scene text; `name` names it in messages and mesh paths are
-    /// relative to `base`.
+    /// Parses scene text; `name` names it in messages and mesh and scene
+    /// paths are relative to `base`.
     ///
     /// # Errors
     ///
-    /// As [`Scene::from_file`].
+    /// As [`Scene::from_file`]; errors other than JSON syntax name the JSON
+    /// path only (the text has no file).
     pub fn from_json(text: &str, name: &str, base: &Path) -> Result<Scene, SceneError> {
-        let value: Value = serde_json::from_str(text).map_err(|e| SceneError::Json {
-            file: name.to_string(),
-            line: e.line(),
-            column: e.column(),
-            message: e.to_string(),
-        })?;
-        let top = object(&value, "scene")?;
-        check_keys(
-            top,
-            "scene",
-            &["root", "camera", "light", "shadows"],
-            TOP_KEYS,
-        )?;
-        let root = top.get("root").ok_or_else(|| SceneError::Value {
-            at: "scene".into(),
-            message: "missing \"root\"".into(),
-        })?;
-        let reader = Reader { base };
-        let expr = reader.node(root, "root")?;
+        let state = ReadState::default();
+        let value = parse_json(text, name)?;
+        let reader = Reader {
+            base,
+            state: &state,
+            files: Vec::new(),
+        };
+        let (top, root) = reader.top(&value, 0)?;
+        Scene::assemble(top, root)
+    }
+
+    /// The camera, light and shadows of a checked top-level object, and the
+    /// tree.
+    fn assemble(top: &Map<String, Value>, expr: CsgExpr) -> Result<Scene, SceneError> {
         let camera = top.get("camera").map(|v| camera(v, "camera")).transpose()?;
         let light = top.get("light").map(|v| light(v, "light")).transpose()?;
         let shadows = match top.get("shadows") {
@@ -192,12 +256,152 @@ impl Scene {
     }
 }
 
+/// Parses JSON text, naming `name` and the position on failure.
+fn parse_json(text: &str, name: &str) -> Result<Value, SceneError> {
+    // serde_json refuses text nested deeper than its recursion limit.
+    serde_json::from_str(text).map_err(|e| {
+        let message = if e.to_string().starts_with("recursion limit exceeded") {
+            format!("nested deeper than {MAX_JSON_DEPTH} levels (the limit)")
+        } else {
+            e.to_string()
+        };
+        SceneError::Json {
+            file: name.to_string(),
+            line: e.line(),
+            column: e.column(),
+            message,
+        }
+    })
+}
+
+/// Wraps an error found inside `file` so that it names the file (errors
+/// that already do are returned as they are).
+fn in_file(file: &Path, error: SceneError) -> SceneError {
+    match error {
+        SceneError::Read { .. } | SceneError::Json { .. } | SceneError::InFile { .. } => error,
+        other => SceneError::InFile {
+            file: file.to_path_buf(),
+            source: Box::new(other),
+        },
+    }
+}
+
+/// Reads a scene file's JSON and its tree, whose root is
+/// `depth` nodes below the outermost root; `files` are the canonical paths
+/// of the files including it, outermost first.
+fn read_scene_file(
+    path: &Path,
+    state: &ReadState,
+    mut files: Vec<PathBuf>,
+    depth: usize,
+) -> Result<(Value, CsgExpr), SceneError> {
+    let read_error = |source| SceneError::Read {
+        file: path.to_path_buf(),
+        source,
+    };
+    if std::fs::metadata(path).map_err(read_error)?.is_dir() {
+        return Err(read_error(std::io::Error::other(
+            "is a directory, not a scene file",
+        )));
+    }
+    let bytes = std::fs::read(path).map_err(read_error)?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        SceneError::Json {
+            file: path.display().to_string(),
+            line: 1 + valid.iter().filter(|&&b| b == b'\n').count(),
+            column: 1 + valid.len() - line_start,
+            message: "binary data (not UTF-8 text)".into(),
+        }
+    })?;
+    files.push(std::fs::canonicalize(path).map_err(read_error)?);
+    let value = parse_json(&text, &path.display().to_string())?;
+    let reader = Reader {
+        base: path.parent().unwrap_or(Path::new(".")),
+        state,
+        files,
+    };
+    let (_, root) = reader.top(&value, depth).map_err(|e| in_file(path, e))?;
+    Ok((value, root))
+}
+
+/// What all the files of one scene share while being read: the node count
+/// and the meshes and scenes already loaded (by canonical path), so that a
+/// file named many times is read once.
+#[derive(Default)]
+struct ReadState {
+    nodes: Cell<usize>,
+    /// The deepest node depth reached since it was last reset.
+    deepest: Cell<usize>,
+    meshes: RefCell<HashMap<PathBuf, Arc<dyn Primitive>>>,
+    scenes: RefCell<HashMap<PathBuf, IncludedScene>>,
+}
+
+/// A scene file read once, for the next inclusions.
+#[derive(Clone)]
+struct IncludedScene {
+    root: CsgExpr,
+    /// Scene nodes it was read from.
+    nodes: usize,
+    /// Levels of scene nodes below its root.
+    height: usize,
+}
+
+/// Reads the nodes of one scene file.
 struct Reader<'a> {
+    /// The folder mesh and scene paths are relative to.
     base: &'a Path,
+    state: &'a ReadState,
+    /// Canonical paths of this file and the files including it, outermost
+    /// first (empty for text without a file).
+    files: Vec<PathBuf>,
 }
 
 impl Reader<'_> {
-    fn node(&self, value: &Value, at: &str) -> Result<CsgExpr, SceneError> {
+    /// Checks the top-level keys and reads the tree under `root`, `depth`
+    /// nodes below the outermost root.
+    fn top<'v>(
+        &self,
+        value: &'v Value,
+        depth: usize,
+    ) -> Result<(&'v Map<String, Value>, CsgExpr), SceneError> {
+        let top = object(value, "scene")?;
+        check_keys(
+            top,
+            "scene",
+            &["root", "camera", "light", "shadows"],
+            TOP_KEYS,
+        )?;
+        let root = top.get("root").ok_or_else(|| SceneError::Value {
+            at: "scene".into(),
+            message: "missing \"root\"".into(),
+        })?;
+        Ok((top, self.node(root, "root", depth)?))
+    }
+
+    /// Reads a node `depth` nodes below the outermost root.
+    fn node(&self, value: &Value, at: &str, depth: usize) -> Result<CsgExpr, SceneError> {
+        let limit = |what, limit| SceneError::Limit {
+            at: at.to_string(),
+            what,
+            limit,
+        };
+        if depth >= MAX_NODE_DEPTH {
+            return Err(limit(
+                "node nesting (counting through included scenes)",
+                MAX_NODE_DEPTH,
+            ));
+        }
+        let count = self.state.nodes.get() + 1;
+        if count > MAX_NODES {
+            return Err(limit(
+                "the number of nodes (counting included scenes)",
+                MAX_NODES,
+            ));
+        }
+        self.state.nodes.set(count);
+        self.state.deepest.set(self.state.deepest.get().max(depth));
         let obj = object(value, at)?;
         if obj.contains_key("transform") {
             check_keys(obj, at, &["transform", "child"], "transform and child")?;
@@ -206,7 +410,7 @@ impl Reader<'_> {
                 at: at.to_string(),
                 message: "transform without \"child\"".into(),
             })?;
-            let child = self.node(child, &format!("{at}.child"))?;
+            let child = self.node(child, &format!("{at}.child"), depth + 1)?;
             return Ok(child.transformed(transform));
         }
         let mut entries = obj.iter();
@@ -246,7 +450,7 @@ impl Reader<'_> {
                 let kids = items
                     .iter()
                     .enumerate()
-                    .map(|(i, v)| self.node(v, &format!("{here}[{i}]")))
+                    .map(|(i, v)| self.node(v, &format!("{here}[{i}]"), depth + 1))
                     .collect::<Result<Vec<_>, _>>()?;
                 Ok(match key.as_str() {
                     "union" => CsgExpr::Union(kids),
@@ -315,12 +519,18 @@ impl Reader<'_> {
                     return Err(bad(&here, "a file path (string)", body));
                 };
                 let file = self.base.join(relative);
-                let primitive = load_mesh(&file).map_err(|message| SceneError::Mesh {
+                let primitive = self.mesh(&file).map_err(|message| SceneError::Mesh {
                     at: here.clone(),
                     file,
                     message,
                 })?;
                 Ok(leaf(primitive))
+            }
+            "scene" => {
+                let Value::String(relative) = body else {
+                    return Err(bad(&here, "a scene file path (string)", body));
+                };
+                self.include(&self.base.join(relative), &here, depth)
             }
             _ => Err(SceneError::UnknownKey {
                 at: at.to_string(),
@@ -328,6 +538,90 @@ impl Reader<'_> {
                 expected: NODE_KEYS,
             }),
         }
+    }
+
+    /// A mesh leaf, loaded once per canonical path.
+    fn mesh(&self, file: &Path) -> Result<Arc<dyn Primitive>, String> {
+        if file
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+        {
+            return Err(
+                "is a scene file (JSON), not an OBJ mesh; include it with {\"scene\": PATH}".into(),
+            );
+        }
+        let key = std::fs::canonicalize(file).unwrap_or_else(|_| file.to_path_buf());
+        if let Some(p) = self.state.meshes.borrow().get(&key) {
+            return Ok(Arc::clone(p));
+        }
+        let primitive = load_mesh(file)?;
+        self.state
+            .meshes
+            .borrow_mut()
+            .insert(key, Arc::clone(&primitive));
+        Ok(primitive)
+    }
+
+    /// The root of another scene file, refused if it would include itself
+    /// or nest too deep.
+    fn include(&self, file: &Path, at: &str, depth: usize) -> Result<CsgExpr, SceneError> {
+        let include_error = |source| SceneError::Include {
+            at: at.to_string(),
+            source: Box::new(source),
+        };
+        if let Ok(canonical) = std::fs::canonicalize(file) {
+            if let Some(first) = self.files.iter().position(|f| *f == canonical) {
+                let mut chain = self.files[first..].to_vec();
+                chain.push(canonical);
+                return Err(SceneError::IncludeCycle {
+                    at: at.to_string(),
+                    chain,
+                });
+            }
+        }
+        if self.files.len() >= MAX_INCLUDE_DEPTH {
+            return Err(SceneError::Limit {
+                at: at.to_string(),
+                what: "the nesting of included scene files",
+                limit: MAX_INCLUDE_DEPTH,
+            });
+        }
+        let key = std::fs::canonicalize(file).unwrap_or_else(|_| file.to_path_buf());
+        let cached = self.state.scenes.borrow().get(&key).cloned();
+        if let Some(included) = cached {
+            // Read before: count its nodes and depth again, without reading.
+            if depth + 1 + included.height >= MAX_NODE_DEPTH {
+                return Err(SceneError::Limit {
+                    at: at.to_string(),
+                    what: "node nesting (counting through included scenes)",
+                    limit: MAX_NODE_DEPTH,
+                });
+            }
+            let count = self.state.nodes.get() + included.nodes;
+            if count > MAX_NODES {
+                return Err(SceneError::Limit {
+                    at: at.to_string(),
+                    what: "the number of nodes (counting included scenes)",
+                    limit: MAX_NODES,
+                });
+            }
+            self.state.nodes.set(count);
+            return Ok(included.root);
+        }
+        let before = self.state.nodes.get();
+        let deepest_before = self.state.deepest.replace(0);
+        // The included root sits one node below this one.
+        let (_, root) = read_scene_file(file, self.state, self.files.clone(), depth + 1)
+            .map_err(include_error)?;
+        let deepest = self.state.deepest.get();
+        self.state.deepest.set(deepest.max(deepest_before));
+        let included = IncludedScene {
+            height: deepest - (depth + 1),
+            nodes: self.state.nodes.get() - before,
+            root: root.clone(),
+        };
+        self.state.scenes.borrow_mut().insert(key, included);
+        Ok(root)
     }
 }
 
@@ -646,5 +940,146 @@ mod tests {
                 .starts_with("root.halfspace.normal: ")
         );
         assert!(error(r#"{"root": {"mesh": "nowhere.obj"}}"#).starts_with("root.mesh: mesh "));
+        assert!(error(r#"{"root": {"mesh": "other.json"}}"#).contains("is a scene file (JSON)"),);
+    }
+
+    #[test]
+    fn json_nested_too_deep_is_refused_by_the_reader() {
+        let depth = 100_000;
+        let text = format!(
+            "{{\"root\": {}{{\"box\": {{\"min\": [0,0,0], \"max\": [1,1,1]}}}}{}}}",
+            "{\"union\": [".repeat(depth),
+            "]}".repeat(depth)
+        );
+        let e = error(&text);
+        assert!(e.starts_with("test.json: line 1, column "), "{e}");
+        assert!(
+            e.ends_with("nested deeper than 128 levels (the limit)"),
+            "{e}"
+        );
+        // Just under the reader's limit the tree is read (the top object,
+        // two levels per union, three for the box).
+        let depth = (MAX_JSON_DEPTH - 5) / 2;
+        let text = format!(
+            "{{\"root\": {}{{\"box\": {{\"min\": [0,0,0], \"max\": [1,1,1]}}}}{}}}",
+            "{\"union\": [".repeat(depth),
+            "]}".repeat(depth)
+        );
+        parse(&text).unwrap();
+    }
+
+    /// A scratch folder removed when dropped.
+    struct Folder(PathBuf);
+
+    impl Folder {
+        fn new(name: &str) -> Folder {
+            let dir = std::env::temp_dir()
+                .join(format!("wingedge-scene-unit-{name}-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            Folder(dir)
+        }
+
+        fn write(&self, name: &str, text: &str) -> PathBuf {
+            let path = self.0.join(name);
+            std::fs::write(&path, text).unwrap();
+            path
+        }
+    }
+
+    impl Drop for Folder {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+
+    const BOX: &str = r#"{"box": {"min": [0,0,0], "max": [1,1,1]}}"#;
+
+    #[test]
+    fn included_scenes_are_read_and_cycles_refused() {
+        let dir = Folder::new("include");
+        dir.write(
+            "part.json",
+            &format!(r#"{{"root": {BOX}, "shadows": true}}"#),
+        );
+        let whole = dir.write(
+            "whole.json",
+            r#"{"root": {"union": [{"scene": "part.json"}, {"transform": {"translate": [2,0,0]}, "child": {"scene": "part.json"}}]}}"#,
+        );
+        let scene = Scene::from_file(&whole).unwrap();
+        assert_eq!(scene.csg.leaves().len(), 2);
+        // The included scene's settings are ignored.
+        assert!(!scene.shadows);
+
+        let me = dir.write("me.json", r#"{"root": {"scene": "me.json"}}"#);
+        let e = Scene::from_file(&me).unwrap_err();
+        assert!(
+            matches!(&e, SceneError::InFile { source, .. } if matches!(**source, SceneError::IncludeCycle { ref chain, .. } if chain.len() == 2)),
+            "{e}"
+        );
+        assert!(e.to_string().contains("me.json: root.scene: scene "), "{e}");
+        assert!(e.to_string().contains("includes itself"), "{e}");
+
+        let a = dir.write(
+            "a.json",
+            &format!(r#"{{"root": {{"union": [{BOX}, {{"scene": "b.json"}}]}}}}"#),
+        );
+        dir.write("b.json", r#"{"root": {"scene": "./a.json"}}"#);
+        let e = Scene::from_file(&a).unwrap_err().to_string();
+        assert!(
+            e.contains("a.json: root.union[1].scene: included scene: "),
+            "{e}"
+        );
+        assert!(e.contains("b.json: root.scene: scene "), "{e}");
+        assert!(e.contains("a.json → ") && e.contains("b.json → "), "{e}");
+
+        let bad = dir.write("bad.json", r#"{"root": {"scene": "broken.json"}}"#);
+        dir.write(
+            "broken.json",
+            r#"{"root": {"sphere": {"center": [0,0,0], "radius": -1}}}"#,
+        );
+        let e = Scene::from_file(&bad).unwrap_err().to_string();
+        assert!(
+            e.ends_with("broken.json: root.sphere.radius: expected a positive number, found -1"),
+            "{e}"
+        );
+        assert!(e.contains("bad.json: root.scene: included scene: "), "{e}");
+    }
+
+    #[test]
+    fn include_chains_and_node_counts_are_limited() {
+        let dir = Folder::new("limits");
+        let n = MAX_INCLUDE_DEPTH + 2;
+        for i in 0..n {
+            dir.write(
+                &format!("chain{i}.json"),
+                &format!(r#"{{"root": {{"scene": "chain{}.json"}}}}"#, i + 1),
+            );
+        }
+        dir.write(&format!("chain{n}.json"), &format!(r#"{{"root": {BOX}}}"#));
+        let e = Scene::from_file(&dir.0.join("chain0.json"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.ends_with("the nesting of included scene files exceeds the limit of 16"),
+            "{e}"
+        );
+        // Each file names its part 10 times: 10^7 boxes from 8 small files.
+        for i in 0..7 {
+            let parts = vec![format!(r#"{{"scene": "fan{}.json"}}"#, i + 1); 10].join(", ");
+            dir.write(
+                &format!("fan{i}.json"),
+                &format!(r#"{{"root": {{"union": [{parts}]}}}}"#),
+            );
+        }
+        dir.write("fan7.json", &format!(r#"{{"root": {BOX}}}"#));
+        let e = Scene::from_file(&dir.0.join("fan0.json"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.ends_with(
+                "the number of nodes (counting included scenes) exceeds the limit of 1000000"
+            ),
+            "{e}"
+        );
     }
 }

@@ -119,7 +119,10 @@ impl Csg {
             });
         }
         let done = std::sync::atomic::AtomicU64::new(0);
-        let (length, stats) = (0..ny)
+        // Rows in parallel, their lengths summed in row order afterwards: a
+        // rayon reduce would add them in an order that depends on the
+        // threads, and the volume's last bits with it.
+        let rows: Vec<(f64, Stats)> = (0..ny)
             .into_par_iter()
             .map(|j| {
                 let mut stats = Stats::default();
@@ -139,13 +142,13 @@ impl Csg {
                 progress(finished as f64 / ny as f64);
                 (row, stats)
             })
-            .reduce(
-                || (0.0, Stats::default()),
-                |(a, mut sa), (b, sb)| {
-                    sa += sb;
-                    (a + b, sa)
-                },
-            );
+            .collect();
+        let mut length = 0.0;
+        let mut stats = Stats::default();
+        for (row, row_stats) in rows {
+            length += row;
+            stats += row_stats;
+        }
         Ok(VolumeEstimate {
             volume: length * hx * hy,
             spacing: hx.max(hy),

@@ -6,6 +6,9 @@ mod obj_write;
 mod weld;
 
 pub use crate::mesh::PolygonSoup;
-pub use obj::{ObjError, ObjImport, ObjOptions, import_obj, import_obj_bytes, read_obj};
+pub use obj::{
+    DEFAULT_MAX_FACE_CORNERS, ObjError, ObjImport, ObjOptions, import_obj, import_obj_bytes,
+    read_obj,
+};
 pub use obj_write::{to_obj_string, write_obj};
 pub use weld::{WeldMode, WeldRefusal, WeldReport};

@@ -86,6 +86,32 @@ pub enum ObjError {
         /// vertices defined before the line).
         available: usize,
     },
+    /// A face corner whose vertex index is too large for any file to define
+    /// (beyond 64-bit integers, e.g. `18446744073709551616`).
+    #[error("{}:{line}: vertex index {token} is out of range: {available} vertices are defined", .path.display())]
+    IndexTooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The face's line.
+        line: usize,
+        /// The index as written.
+        token: String,
+        /// How many vertices the file defines (for a negative index: the
+        /// vertices defined before the line).
+        available: usize,
+    },
+    /// A face with more corners than [`ObjOptions::max_face_corners`].
+    #[error("{}:{line}: a face with {count} corners exceeds the limit of {limit} corners per face (checking a face costs time quadratic in its corners; raise the limit with --max-face-corners or ObjOptions::max_face_corners)", .path.display())]
+    FaceTooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The face's line.
+        line: usize,
+        /// How many corners it has.
+        count: usize,
+        /// The limit in force.
+        limit: usize,
+    },
     /// A face corner that is not `v`, `v/vt`, `v//vn` or `v/vt/vn` with
     /// integer indices.
     #[error("{}:{line}: cannot read face corner `{token}`", .path.display())]
@@ -131,6 +157,8 @@ impl ObjError {
             | ObjError::TooFewCorners { line, .. }
             | ObjError::ZeroIndex { line, .. }
             | ObjError::IndexOutOfRange { line, .. }
+            | ObjError::IndexTooLarge { line, .. }
+            | ObjError::FaceTooLarge { line, .. }
             | ObjError::BadCorner { line, .. }
             | ObjError::NonFinite { line, .. } => Some(*line),
             ObjError::Parse { line, .. } => *line,
@@ -139,11 +167,32 @@ impl ObjError {
     }
 }
 
+/// The default of [`ObjOptions::max_face_corners`].
+pub const DEFAULT_MAX_FACE_CORNERS: usize = 4096;
+
 /// How to read an OBJ file.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ObjOptions {
     /// Which coincident vertices to merge; see [`WeldMode`].
     pub weld: WeldMode,
+    /// The most corners one face (or polyline) may have; a larger one is
+    /// refused with [`ObjError::FaceTooLarge`] before anything is parsed.
+    ///
+    /// Validating a face of `n` corners costs `O(n²)` (the simplicity test
+    /// of its outline, its ear-clipped triangulation and the tests of its
+    /// neighbours against it): at the default of
+    /// [`DEFAULT_MAX_FACE_CORNERS`] a single face takes a few seconds.
+    /// Raise it for files with larger faces if waiting is acceptable.
+    pub max_face_corners: usize,
+}
+
+impl Default for ObjOptions {
+    fn default() -> Self {
+        ObjOptions {
+            weld: WeldMode::default(),
+            max_face_corners: DEFAULT_MAX_FACE_CORNERS,
+        }
+    }
 }
 
 /// An imported OBJ file: the soup and where each part of it came from.
@@ -217,11 +266,16 @@ pub fn import_obj_bytes(
     options: &ObjOptions,
 ) -> Result<ObjImport, ObjError> {
     let start = std::time::Instant::now();
+    precheck(path, bytes, options.max_face_corners)?;
     // The line pass and tobj read the same bytes independently.
     let (scan, models) = rayon::join(|| scan(path, bytes), || run_tobj(path, bytes));
-    let scan = scan?;
+    let (scan, models) = match (scan, models) {
+        (Ok(scan), Ok(models)) => (scan, models),
+        (Err(ours), Err(theirs)) => return Err(earlier(ours, theirs)),
+        (Err(e), Ok(_)) | (Ok(_), Err(e)) => return Err(e),
+    };
     let parsed = start.elapsed().as_secs_f64();
-    let positions = align_positions(path, bytes, &scan, &models?)?;
+    let positions = align_positions(path, bytes, &scan, &models)?;
     let mut soup = PolygonSoup {
         positions,
         polygons: Vec::with_capacity(scan.faces.len()),
@@ -289,22 +343,74 @@ fn line_of_offset(bytes: &[u8], offset: usize) -> usize {
     1 + bytes[..offset].iter().filter(|&&b| b == b'\n').count()
 }
 
-/// The line pass: one walk over the bytes, no allocation per line.
-fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
-    let p = || path.to_path_buf();
+/// Of two errors found by different passes, the one on the earlier line
+/// (an error without a line counts as after every line; `first` wins ties).
+fn earlier(first: ObjError, second: ObjError) -> ObjError {
+    let key = |e: &ObjError| e.line().unwrap_or(usize::MAX);
+    if key(&second) < key(&first) {
+        second
+    } else {
+        first
+    }
+}
+
+/// Checks that need no parsing, made before either parser runs so that a
+/// hostile file is refused before anything is built from it: binary data
+/// (a NUL byte or invalid UTF-8: the first such line is named) and faces
+/// with more than `max_face_corners` corners (tobj would otherwise read the
+/// whole face first).
+fn precheck(path: &Path, bytes: &[u8], max_face_corners: usize) -> Result<(), ObjError> {
     if let Some(offset) = memchr::memchr(0, bytes) {
         return Err(ObjError::Binary {
-            path: p(),
+            path: path.to_path_buf(),
             line: line_of_offset(bytes, offset),
         });
     }
     if let Err(e) = std::str::from_utf8(bytes) {
         return Err(ObjError::Binary {
-            path: p(),
+            path: path.to_path_buf(),
             line: line_of_offset(bytes, e.valid_up_to()),
         });
     }
+    // Every corner takes at least two bytes (a digit and a separator), so
+    // only lines longer than this can hold too many corners.
+    let shortest_too_long = max_face_corners.saturating_mul(2).saturating_add(2);
+    let mut start = 0;
+    for (index, end) in memchr::memchr_iter(b'\n', bytes)
+        .chain(std::iter::once(bytes.len()))
+        .enumerate()
+    {
+        let text = &bytes[start..end];
+        start = end + 1;
+        if text.len() < shortest_too_long {
+            continue;
+        }
+        let mut words = text
+            .split(|b| b.is_ascii_whitespace())
+            .filter(|w| !w.is_empty());
+        if !matches!(words.next(), Some(b"f" | b"l")) {
+            continue;
+        }
+        let count = words.count();
+        if count > max_face_corners {
+            return Err(ObjError::FaceTooLarge {
+                path: path.to_path_buf(),
+                line: index + 1,
+                count,
+                limit: max_face_corners,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The line pass: one walk over the bytes, no allocation per line. The
+/// bytes have passed [`precheck`].
+fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
+    let p = || path.to_path_buf();
     let mut s = Scan::default();
+    let mut textures = AttributeCount::default();
+    let mut normals = AttributeCount::default();
     let mut group: Option<usize> = None;
     let mut material: Option<usize> = None;
     let mut offset = 0;
@@ -331,18 +437,41 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                 s.vertex_lines.push(u32::try_from(line).unwrap_or(u32::MAX));
                 s.vertex_offsets.push(start);
             }
+            b"vt" => textures.defined += 1,
+            b"vn" => normals.defined += 1,
             b"f" | b"l" => {
                 let polyline = keyword == b"l";
                 let first = s.corners.len();
                 let defined = s.vertex_lines.len();
                 for word in words {
-                    let index_text = word.split(|&b| b == b'/').next().unwrap_or_default();
                     let bad = || ObjError::BadCorner {
                         path: p(),
                         line,
                         token: String::from_utf8_lossy(word).into_owned(),
                     };
-                    let index = parse_index(index_text).ok_or_else(bad)?;
+                    let (index_text, texture, normal) = corner_parts(word).ok_or_else(bad)?;
+                    if let Some(text) = texture {
+                        check_attribute_index(path, bytes, line, text, "vt", &mut textures)?;
+                    }
+                    if let Some(text) = normal {
+                        check_attribute_index(path, bytes, line, text, "vn", &mut normals)?;
+                    }
+                    let index = match parse_index(index_text) {
+                        IndexText::Value(index) => index,
+                        IndexText::TooLarge { negative } => {
+                            return Err(ObjError::IndexTooLarge {
+                                path: p(),
+                                line,
+                                token: String::from_utf8_lossy(index_text).into_owned(),
+                                available: if negative {
+                                    defined
+                                } else {
+                                    count_statements(bytes, b"v")
+                                },
+                            });
+                        }
+                        IndexText::NotAnIndex => return Err(bad()),
+                    };
                     let resolved = match index {
                         0 => return Err(ObjError::ZeroIndex { path: p(), line }),
                         i if i < 0 => {
@@ -403,6 +532,16 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
             _ => {}
         }
     }
+    for (keyword, count) in [("vt", textures), ("vn", normals)] {
+        if count.out_of_range() {
+            return Err(first_attribute_out_of_range(
+                path,
+                bytes,
+                keyword,
+                count.defined,
+            ));
+        }
+    }
     let available = s.vertex_lines.len();
     for face in &s.faces {
         let corners = &s.corners[face.start..face.start + face.len];
@@ -421,24 +560,206 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
     Ok(s)
 }
 
+/// What a corner's vertex index reads as.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum IndexText {
+    /// An integer that fits in 64 bits.
+    Value(i64),
+    /// Digits whose value is beyond 64 bits (beyond `i64`): no file can
+    /// define that many vertices.
+    TooLarge {
+        /// Written with a minus sign.
+        negative: bool,
+    },
+    /// Not an optionally signed run of decimal digits.
+    NotAnIndex,
+}
+
 /// An OBJ index: optional sign, decimal digits, nothing else.
-fn parse_index(text: &[u8]) -> Option<i64> {
+fn parse_index(text: &[u8]) -> IndexText {
     let (negative, digits) = match text.first() {
         Some(b'-') => (true, &text[1..]),
         Some(b'+') => (false, &text[1..]),
         _ => (false, text),
     };
-    if digits.is_empty() || digits.len() > 18 {
+    if digits.is_empty() || !digits.iter().all(u8::is_ascii_digit) {
+        return IndexText::NotAnIndex;
+    }
+    let magnitude = digits.iter().try_fold(0u64, |value, &d| {
+        value.checked_mul(10)?.checked_add(u64::from(d - b'0'))
+    });
+    let value = magnitude.and_then(|m| {
+        if negative {
+            0i64.checked_sub_unsigned(m)
+        } else {
+            i64::try_from(m).ok()
+        }
+    });
+    value.map_or(IndexText::TooLarge { negative }, IndexText::Value)
+}
+
+/// How many lines of the file start with `keyword` (for the message of an
+/// index found before the end of the file).
+fn count_statements(bytes: &[u8], keyword: &[u8]) -> usize {
+    bytes
+        .split(|&b| b == b'\n')
+        .filter(|line| {
+            line.split(|b| b.is_ascii_whitespace())
+                .find(|w| !w.is_empty())
+                == Some(keyword)
+        })
+        .count()
+}
+
+/// The vertex, texture-coordinate and normal index texts of a corner.
+type CornerParts<'a> = (&'a [u8], Option<&'a [u8]>, Option<&'a [u8]>);
+
+/// A face corner split into its vertex, texture-coordinate and normal
+/// index texts: `v`, `v/vt`, `v//vn` or `v/vt/vn`; `None` for any other
+/// shape (`1/`, `1/2/`, `1//`, `1/2/3/4`).
+fn corner_parts(word: &[u8]) -> Option<CornerParts<'_>> {
+    let mut parts = word.split(|&b| b == b'/');
+    let vertex = parts.next()?;
+    let texture = parts.next();
+    let normal = parts.next();
+    if parts.next().is_some() {
         return None;
     }
-    let mut value: i64 = 0;
-    for &d in digits {
-        if !d.is_ascii_digit() {
-            return None;
+    match (texture, normal) {
+        (None, _) => Some((vertex, None, None)),
+        (Some(t), None) if !t.is_empty() => Some((vertex, Some(t), None)),
+        (Some(t), Some(n)) if !n.is_empty() => {
+            Some((vertex, (!t.is_empty()).then_some(t), Some(n)))
         }
-        value = value * 10 + i64::from(d - b'0');
+        _ => None,
     }
-    Some(if negative { -value } else { value })
+}
+
+/// A kind of face-corner attribute (`vt` or `vn`): how many the file
+/// defines so far and whether a corner named one beyond them.
+#[derive(Clone, Copy, Debug, Default)]
+struct AttributeCount {
+    /// `vt` or `vn` lines read so far.
+    defined: usize,
+    /// The largest positive index used so far (checked at the end, since
+    /// an attribute may be defined after the face using it).
+    largest_used: usize,
+    /// A negative index reached back before the first definition.
+    negative_out_of_range: bool,
+}
+
+impl AttributeCount {
+    /// Whether some corner names an attribute the file does not define.
+    /// As tobj, a file that defines none of this kind has its indices
+    /// ignored (only positions are read).
+    fn out_of_range(&self) -> bool {
+        self.defined > 0 && (self.negative_out_of_range || self.largest_used > self.defined)
+    }
+}
+
+/// Checks the form of a texture-coordinate or normal index written as
+/// `text` on `line` and records its range in `count` (checked once the
+/// whole file is read).
+fn check_attribute_index(
+    path: &Path,
+    bytes: &[u8],
+    line: usize,
+    text: &[u8],
+    keyword: &'static str,
+    count: &mut AttributeCount,
+) -> Result<(), ObjError> {
+    let what = attribute_name(keyword);
+    let error = |message: String| ObjError::Parse {
+        path: path.to_path_buf(),
+        line: Some(line),
+        message,
+    };
+    match parse_index(text) {
+        IndexText::NotAnIndex => Err(error(format!(
+            "cannot read {what} index `{}`",
+            String::from_utf8_lossy(text)
+        ))),
+        IndexText::TooLarge { negative } => Err(error(format!(
+            "{what} index {} is out of range: {} `{keyword}` lines are defined",
+            String::from_utf8_lossy(text),
+            if negative {
+                count.defined
+            } else {
+                count_statements(bytes, keyword.as_bytes())
+            },
+        ))),
+        IndexText::Value(0) => Err(error(format!(
+            "{what} index 0 is invalid (OBJ indices start at 1, or count back from -1)"
+        ))),
+        IndexText::Value(i) if i < 0 => {
+            if usize::try_from(i.unsigned_abs()).map_or(true, |back| back > count.defined) {
+                count.negative_out_of_range = true;
+            }
+            Ok(())
+        }
+        IndexText::Value(i) => {
+            let i = usize::try_from(i).unwrap_or(usize::MAX);
+            count.largest_used = count.largest_used.max(i);
+            Ok(())
+        }
+    }
+}
+
+fn attribute_name(keyword: &str) -> &'static str {
+    if keyword == "vt" {
+        "texture coordinate"
+    } else {
+        "normal"
+    }
+}
+
+/// The first face line naming a `keyword` attribute (`vt` or `vn`) that
+/// the file does not define, of which it holds `defined` (only called once
+/// such a line is known to exist).
+fn first_attribute_out_of_range(
+    path: &Path,
+    bytes: &[u8],
+    keyword: &'static str,
+    defined: usize,
+) -> ObjError {
+    let what = attribute_name(keyword);
+    let mut before = 0usize;
+    for (i, text) in bytes.split(|&b| b == b'\n').enumerate() {
+        let mut words = text
+            .split(|b| b.is_ascii_whitespace())
+            .filter(|w| !w.is_empty());
+        match words.next() {
+            Some(k) if k == keyword.as_bytes() => before += 1,
+            Some(b"f" | b"l") => {
+                for word in words {
+                    let Some((_, texture, normal)) = corner_parts(word) else {
+                        continue;
+                    };
+                    let index = if keyword == "vt" { texture } else { normal };
+                    let Some(IndexText::Value(index)) = index.map(parse_index) else {
+                        continue;
+                    };
+                    let available = if index < 0 { before } else { defined };
+                    let reach = usize::try_from(index.unsigned_abs()).unwrap_or(usize::MAX);
+                    if reach > available {
+                        return ObjError::Parse {
+                            path: path.to_path_buf(),
+                            line: Some(i + 1),
+                            message: format!(
+                                "{what} index {index} is out of range: {available} `{keyword}` lines are defined"
+                            ),
+                        };
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    ObjError::Parse {
+        path: path.to_path_buf(),
+        line: None,
+        message: format!("a {what} index is out of range"),
+    }
 }
 
 fn intern(names: &mut Vec<Arc<str>>, name: &str) -> usize {
@@ -462,12 +783,57 @@ fn run_tobj(path: &Path, bytes: &[u8]) -> Result<Vec<tobj::Model>, ObjError> {
     let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| {
         Err(tobj::LoadError::OpenFileFailed)
     })
-    .map_err(|e| ObjError::Parse {
-        path: path.to_path_buf(),
-        line: locate_tobj_error(bytes, &e),
-        message: e.to_string(),
+    .map_err(|e| {
+        let line = locate_tobj_error(bytes, &e);
+        let what = describe_tobj_error(&e);
+        ObjError::Parse {
+            path: path.to_path_buf(),
+            line,
+            message: match line {
+                Some(line) => format!("{what}: `{}`", excerpt_of_line(bytes, line)),
+                None => what,
+            },
+        }
     })?;
     Ok(models)
+}
+
+/// What a tobj error means, in the terms of the OBJ format.
+fn describe_tobj_error(error: &tobj::LoadError) -> String {
+    use tobj::LoadError as E;
+    match error {
+        E::PositionParseError => {
+            "cannot read vertex position: a `v` line needs the numbers x y z (then optionally w, or r g b)"
+        }
+        E::ScalingByZeroError => "a `v` line has weight w = 0",
+        E::ColorParseError => {
+            "a `v` line has 5 or more than 6 numbers (x y z, then optionally w, or r g b)"
+        }
+        E::NormalParseError => "cannot read normal: a `vn` line needs the numbers x y z",
+        E::TexcoordParseError => "cannot read texture coordinate: a `vt` line needs the numbers u v",
+        E::FaceTexCoordOutOfBounds => {
+            "a face corner names a texture coordinate (`v/vt`) that is not defined"
+        }
+        E::FaceNormalOutOfBounds => "a face corner names a normal (`v//vn`) that is not defined",
+        E::MaterialParseError => "`usemtl` without a material name",
+        other => return format!("cannot parse: {other}"),
+    }
+    .to_string()
+}
+
+/// The text of a 1-based line, shortened to at most 60 characters.
+fn excerpt_of_line(bytes: &[u8], line: usize) -> String {
+    const SHOWN: usize = 60;
+    let text = bytes
+        .split(|&b| b == b'\n')
+        .nth(line - 1)
+        .unwrap_or_default();
+    let text = String::from_utf8_lossy(text);
+    let text = text.trim();
+    match text.char_indices().nth(SHOWN) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_string(),
+    }
 }
 
 /// Places the positions tobj read at their original vertex numbers;
@@ -737,6 +1103,127 @@ mod tests {
         .unwrap_err();
         assert!(matches!(junk, ObjError::Binary { line: 2, .. }), "{junk}");
         assert!(junk.to_string().starts_with("j:2:"));
+    }
+
+    #[test]
+    fn indices_beyond_64_bits_are_out_of_range() {
+        for index in [
+            "9223372036854775808",
+            "18446744073709551616",
+            "-9223372036854775809",
+            "99999999999999999999999999999999",
+        ] {
+            let e = read(&format!(
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 {index}\nv 0 0 1\n"
+            ))
+            .unwrap_err();
+            assert!(matches!(e, ObjError::IndexTooLarge { line: 4, .. }), "{e}");
+            let available = if index.starts_with('-') { 3 } else { 4 };
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "t.obj:4: vertex index {index} is out of range: {available} vertices are defined"
+                )
+            );
+        }
+        for (index, available) in [("9223372036854775807", 3), ("-9223372036854775808", 3)] {
+            let e = read(&format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 {index}\n")).unwrap_err();
+            assert!(
+                matches!(e, ObjError::IndexOutOfRange { line: 4, available: a, .. } if a == available),
+                "{e}"
+            );
+        }
+        assert_eq!(parse_index(b"+7"), IndexText::Value(7));
+        assert_eq!(parse_index(b"-"), IndexText::NotAnIndex);
+        assert_eq!(parse_index(b"1e3"), IndexText::NotAnIndex);
+    }
+
+    #[test]
+    fn faces_above_the_corner_limit_are_refused_before_parsing() {
+        let options = ObjOptions {
+            max_face_corners: 5,
+            ..ObjOptions::default()
+        };
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 1 2 3\n";
+        let e = import_obj_bytes(Path::new("t.obj"), text.as_bytes(), &options).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                ObjError::FaceTooLarge {
+                    line: 4,
+                    count: 6,
+                    limit: 5,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(
+            e.to_string()
+                .starts_with("t.obj:4: a face with 6 corners exceeds the limit of 5")
+        );
+        // At the limit the face is read (and found degenerate later).
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 1 2\n";
+        assert!(import_obj_bytes(Path::new("t.obj"), text.as_bytes(), &options).is_ok());
+        // Long lines that are not faces are not faces.
+        let text = format!("# {}\n{TET}", "x ".repeat(100));
+        assert!(import_obj_bytes(Path::new("t.obj"), text.as_bytes(), &options).is_ok());
+    }
+
+    #[test]
+    fn the_first_bad_line_wins_whichever_pass_finds_it() {
+        // tobj refuses line 2, our pass line 4 (and would say "no faces").
+        let e = read("v 0 0 0\nv 1 y 0\nv 0 1 0\nf 1 2 0\n").unwrap_err();
+        assert_eq!(e.line(), Some(2), "{e}");
+        let e = read("v a b c\nv a b c\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.obj:1: cannot read vertex position: a `v` line needs the numbers x y z (then optionally w, or r g b): `v a b c`"
+        );
+        let e = read("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\nv 1 y 0\n").unwrap_err();
+        assert!(matches!(e, ObjError::ZeroIndex { line: 4, .. }), "{e}");
+    }
+
+    #[test]
+    fn corners_must_have_one_of_the_four_shapes_and_indices_in_range() {
+        for corner in ["1/", "1/2/", "1//", "1/2/3/4", "/1"] {
+            let e = read(&format!("{TET}f 1 2 {corner}\n")).unwrap_err();
+            assert!(
+                matches!(e, ObjError::BadCorner { line: 9, .. }),
+                "{corner}: {e}"
+            );
+        }
+        let e = read(&format!("{TET}f 1 2/x 3\n")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.obj:9: cannot read texture coordinate index `x`"
+        );
+        // Attributes may be defined after the faces using them; a file
+        // without any has their indices ignored.
+        let text = format!("{TET}f 2/1/1 3/1/1 4/1/1\nvt 0 0\nvn 0 0 1\n");
+        read(&text).unwrap();
+        read(&format!("{TET}f 2/7 3/-9 4/1\n")).unwrap();
+        let e = read(&format!("{TET}f 1/3 2/1 3/1\nvt 0 0\n")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.obj:9: texture coordinate index 3 is out of range: 1 `vt` lines are defined"
+        );
+        let e = read(&format!("{TET}vn 0 0 1\nf 1//1 2//-2 3//1\n")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.obj:10: normal index -2 is out of range: 1 `vn` lines are defined"
+        );
+        let e = read(&format!("{TET}vt 0 0\nf 1/1 2/1 3/1 4/-2\n")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.obj:10: texture coordinate index -2 is out of range: 1 `vt` lines are defined"
+        );
+        let e = read(&format!("{TET}f 1/0 2/1 3/1\n")).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("t.obj:9: texture coordinate index 0 is invalid"),
+            "{e}"
+        );
     }
 
     #[test]

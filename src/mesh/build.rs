@@ -7,7 +7,7 @@
 //! (twin search is proportional to vertex degree).
 
 use glam::DVec3;
-use slotmap::Key;
+use slotmap::{Key, SlotMap};
 use thiserror::Error;
 
 use crate::disjoint_sets::DisjointSets;
@@ -175,6 +175,8 @@ impl Solid {
         pair_twins(soup, &mut halves, &outgoing)?;
         link_holes(soup, &mut halves, &outgoing)?;
         check_fans(soup, &halves, &outgoing)?;
+        // Freed before the solid's tables are allocated (lowers the peak).
+        drop(outgoing);
         Ok(assemble(soup, &halves))
     }
 }
@@ -397,12 +399,22 @@ fn pinch(h: &HalfEdges, out: &Outgoing, vertex: usize) -> BuildError {
 }
 
 fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
-    let mut solid = Solid::default();
     // Vertices in soup order, referenced ones only.
     let mut referenced = vec![false; soup.positions.len()];
     for &v in &h.from[..h.face_count] {
         referenced[v] = true;
     }
+    // The tables get their exact sizes up front: grown by doubling, a
+    // million-face solid would hold up to twice the slots it needs, and
+    // briefly both the old and the new buffer while growing.
+    let edge_count = (0..h.face_count)
+        .filter(|&e| h.twin[e] >= h.face_count || e < h.twin[e])
+        .count();
+    let mut solid = Solid {
+        vertices: SlotMap::with_capacity_and_key(referenced.iter().filter(|&&r| r).count()),
+        edges: SlotMap::with_capacity_and_key(edge_count),
+        faces: SlotMap::with_capacity_and_key(soup.polygons.len()),
+    };
     let vertex_ids: Vec<VertexId> = referenced
         .iter()
         .enumerate()

@@ -17,7 +17,6 @@ mod exact;
 mod report;
 mod solid_view;
 
-use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::geom::Tolerance;
@@ -216,17 +215,15 @@ fn run(
     };
     violations.extend(intersections);
     violations.sort_by_key(|v| v.rule);
-    let area = (0..ctx.face_count())
-        .into_par_iter()
-        .map(|f| {
-            let points: smallvec::SmallVec<[glam::DVec3; 8]> =
-                ctx.corners(f).iter().map(|&v| ctx.position(v)).collect();
-            match points.first() {
-                Some(&o) => crate::geom::newell_vector_area(&points, o).length(),
-                None => 0.0,
-            }
-        })
-        .sum();
+    // Summed in fixed chunks: the same bits for any number of threads.
+    let area = crate::fixed_chunks::sum(ctx.face_count(), |f| {
+        let points: smallvec::SmallVec<[glam::DVec3; 8]> =
+            ctx.corners(f).iter().map(|&v| ctx.position(v)).collect();
+        match points.first() {
+            Some(&o) => crate::geom::newell_vector_area(&points, o).length(),
+            None => 0.0,
+        }
+    });
     let shell_count = if not_built.is_none() {
         shells.len()
     } else {

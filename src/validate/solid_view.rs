@@ -8,7 +8,6 @@ use super::context::Context;
 use super::exact::{VolumeFilter, volume_sign, winding_number};
 use super::report::ShellSummary;
 use crate::geom::{Aabb, Sign};
-use rayon::prelude::*;
 
 use crate::mesh::{Polygon, PolygonSoup, Solid};
 
@@ -60,6 +59,10 @@ pub(crate) fn build(ctx: &Context) -> Result<Solid, String> {
 /// guarantees they form 2-manifold shells). Computed from the context rather
 /// than by walking the solid because it parallelises: on a million faces
 /// this is several times faster than [`Solid::shells`].
+/// Per shell: the exact-sign filter of its volume, its volume, its area and
+/// its face count.
+type ShellSums = (VolumeFilter, f64, f64, usize);
+
 pub(crate) fn measure(ctx: &Context) -> SolidView {
     let faces = ctx.face_count();
     let mut sets = crate::disjoint_sets::DisjointSets::new(faces);
@@ -99,33 +102,34 @@ pub(crate) fn measure(ctx: &Context) -> SolidView {
         let area = crate::geom::newell_vector_area(&points, points[0]).length();
         (filter, volume, area)
     };
-    let sums = (0..faces)
-        .into_par_iter()
-        .filter(|&f| ctx.in_topology[f])
-        .fold(
-            || vec![(VolumeFilter::default(), 0.0, 0.0, 0usize); count],
-            |mut acc, f| {
-                let (filter, volume, area) = per_face(f);
-                let slot = &mut acc[shell_of[f]];
-                slot.0.merge(&filter);
-                slot.1 += volume;
-                slot.2 += area;
-                slot.3 += 1;
-                acc
-            },
-        )
-        .reduce(
-            || vec![(VolumeFilter::default(), 0.0, 0.0, 0usize); count],
-            |mut a, b| {
-                for (x, y) in a.iter_mut().zip(b) {
-                    x.0.merge(&y.0);
-                    x.1 += y.1;
-                    x.2 += y.2;
-                    x.3 += y.3;
-                }
-                a
-            },
-        );
+    // Per chunk of faces, the sums of each run of faces of one shell, in
+    // face order; combined in chunk order, so that the floating-point sums
+    // (and the reports) do not depend on the number of threads.
+    let runs = crate::fixed_chunks::map_chunks(faces, |range| {
+        let mut runs: Vec<(usize, ShellSums)> = Vec::new();
+        for f in range.filter(|&f| ctx.in_topology[f]) {
+            let (filter, volume, area) = per_face(f);
+            let shell = shell_of[f];
+            if runs.last().is_none_or(|(s, _)| *s != shell) {
+                runs.push((shell, ShellSums::default()));
+            }
+            if let Some((_, sums)) = runs.last_mut() {
+                sums.0.merge(&filter);
+                sums.1 += volume;
+                sums.2 += area;
+                sums.3 += 1;
+            }
+        }
+        runs
+    });
+    let mut sums = vec![ShellSums::default(); count];
+    for (shell, run) in runs.into_iter().flatten() {
+        let slot = &mut sums[shell];
+        slot.0.merge(&run.0);
+        slot.1 += run.1;
+        slot.2 += run.2;
+        slot.3 += run.3;
+    }
     let mut vertices = vec![0usize; count];
     for v in 0..ctx.soup.positions.len() {
         if let Some(&f) = ctx.vertex_faces(v).first() {

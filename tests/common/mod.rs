@@ -1,6 +1,10 @@
-//! Fixtures for the query tests, generated in code.
+//! Shared test helpers: fixtures for the query tests, generated in code,
+//! and ([`cli`]) a runner for the command line with self-cleaning scratch
+//! folders.
 
 #![allow(dead_code)]
+
+pub mod cli;
 
 use glam::DVec3;
 use wingedge::mesh::{PolygonSoup, Solid, builders};

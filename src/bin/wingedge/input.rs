@@ -17,17 +17,22 @@ pub fn load_mesh(path: &Path) -> Result<(Solid, Accel), String> {
     Ok((solid, accel))
 }
 
-/// Reads all of `source` (`-` for standard input).
+/// Reads all of `source` (`-` for standard input) as text; bytes that are
+/// not UTF-8 are an error naming the first line that holds one.
 pub fn read_source(source: &str) -> Result<String, String> {
+    let mut bytes = Vec::new();
     if source == "-" {
-        let mut text = String::new();
         std::io::stdin()
-            .read_to_string(&mut text)
+            .read_to_end(&mut bytes)
             .map_err(|e| format!("standard input: cannot read: {e}"))?;
-        Ok(text)
     } else {
-        std::fs::read_to_string(source).map_err(|e| format!("{source}: cannot read: {e}"))
+        bytes = std::fs::read(source).map_err(|e| format!("{source}: cannot read: {e}"))?;
     }
+    String::from_utf8(bytes).map_err(|e| {
+        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = 1 + valid.iter().filter(|&&b| b == b'\n').count();
+        format!("{source}:{line}: binary data (not UTF-8 text)")
+    })
 }
 
 /// Parses lines of exactly `N` finite numbers separated by whitespace.

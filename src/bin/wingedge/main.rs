@@ -113,6 +113,10 @@ enum Command {
         /// How many instances of each broken rule to print (text output).
         #[arg(long, default_value_t = 3)]
         show: usize,
+        /// Refuse a face with more corners than this (checking a face costs
+        /// time quadratic in its corners).
+        #[arg(long, value_name = "N", default_value_t = wingedge::io::DEFAULT_MAX_FACE_CORNERS)]
+        max_face_corners: usize,
     },
     /// Render a scene to a PNG: Lambert shading with the scene's light,
     /// shadows only if the scene asks.
@@ -201,6 +205,7 @@ fn main() -> ExitCode {
             no_weld,
             planarity,
             show,
+            max_face_corners,
         } => validate::run(validate::Args {
             files,
             json,
@@ -208,6 +213,7 @@ fn main() -> ExitCode {
             no_weld,
             planarity,
             show,
+            max_face_corners,
         }),
     }
 }

@@ -16,6 +16,7 @@ pub struct Args {
     pub no_weld: bool,
     pub planarity: Option<f64>,
     pub show: usize,
+    pub max_face_corners: usize,
 }
 
 pub fn run(args: Args) -> ExitCode {
@@ -47,13 +48,19 @@ pub fn run(args: Args) -> ExitCode {
     let mut invalid = false;
     let mut json_out = Vec::new();
     for path in &args.files {
-        let outcome = import_obj(path, &ObjOptions { weld })
-            .map_err(|e| (e.to_string(), e.line()))
-            .and_then(|import| {
-                validate_import(&import, &options)
-                    .map(|report| (import, report))
-                    .map_err(|e| (format!("{}: {e}", path.display()), None))
-            });
+        let outcome = import_obj(
+            path,
+            &ObjOptions {
+                weld,
+                max_face_corners: args.max_face_corners,
+            },
+        )
+        .map_err(|e| (e.to_string(), e.line()))
+        .and_then(|import| {
+            validate_import(&import, &options)
+                .map(|report| (import, report))
+                .map_err(|e| (format!("{}: {e}", path.display()), None))
+        });
         match outcome {
             Err((message, line)) => {
                 unreadable = true;

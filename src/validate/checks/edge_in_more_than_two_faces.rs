@@ -16,12 +16,12 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
             Violation {
                 rule: Rule::EdgeInMoreThanTwoFaces,
                 message: format!(
-                    "edge {}–{} has {} faces {:?} (lines {:?}); a manifold edge has 2",
+                    "edge {}–{} has {} faces {} (lines {}); a manifold edge has 2",
                     edge.low(),
                     edge.high(),
                     faces.len(),
-                    faces,
-                    lines
+                    super::preview(&faces),
+                    super::preview(&lines)
                 ),
                 line: lines.first().copied(),
                 lines,

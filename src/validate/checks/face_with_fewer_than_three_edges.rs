@@ -11,9 +11,9 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
         .map(|f| Violation {
             rule: Rule::FaceWithFewerThanThreeEdges,
             message: format!(
-                "{} walks back along itself: its corners {:?} use fewer than 3 distinct edges",
+                "{} walks back along itself: its corners {} use fewer than 3 distinct edges",
                 ctx.face_name(f),
-                ctx.corners(f)
+                super::preview(ctx.corners(f))
             ),
             line: ctx.face_line(f),
             lines: ctx.face_line(f).into_iter().collect(),

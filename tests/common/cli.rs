@@ -1,0 +1,166 @@
+//! Running the `wingedge` binary from tests, and scratch folders that
+//! remove themselves.
+
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+/// How long a command may run before the test calls it hung. Not a speed
+/// assertion: a healthy command finishes in a small fraction of it, even
+/// in a debug build on a loaded machine.
+const HUNG_AFTER: Duration = Duration::from_secs(300);
+
+/// What a finished command left behind.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    /// The exit code (-1 when killed by a signal).
+    pub code: i32,
+    /// Standard output, as bytes.
+    pub stdout: Vec<u8>,
+    /// Standard error, as text.
+    pub stderr: String,
+}
+
+impl Outcome {
+    /// Standard output as text.
+    pub fn out(&self) -> String {
+        String::from_utf8_lossy(&self.stdout).into_owned()
+    }
+}
+
+/// Runs `wingedge ARGS` in the crate root with empty standard input;
+/// returns the exit code, standard output and standard error.
+pub fn wingedge(args: &[&str]) -> (i32, String, String) {
+    let o = run(args, "", &[]);
+    let out = o.out();
+    (o.code, out, o.stderr)
+}
+
+/// Runs `wingedge ARGS` in the crate root with `stdin` as standard input.
+pub fn wingedge_stdin(args: &[&str], stdin: &str) -> (i32, String, String) {
+    let o = run(args, stdin, &[]);
+    let out = o.out();
+    (o.code, out, o.stderr)
+}
+
+/// Runs `wingedge ARGS` in the crate root with `stdin` as standard input
+/// and `env` added to the environment. Panics if it runs longer than
+/// [`HUNG_AFTER`] (after killing it).
+pub fn run(args: &[&str], stdin: &str, env: &[(&str, &str)]) -> Outcome {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_wingedge"))
+        .args(args)
+        .envs(env.iter().copied())
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let mut input = child.stdin.take().expect("stdin is piped");
+    let stdin = stdin.as_bytes().to_vec();
+    // Feed and drain on threads so that no pipe fills up and blocks.
+    let feeder = std::thread::spawn(move || {
+        // A command that exits without reading its input closes the pipe.
+        let _ = input.write_all(&stdin);
+    });
+    let mut stdout_pipe = child.stdout.take().expect("stdout is piped");
+    let mut stderr_pipe = child.stderr.take().expect("stderr is piped");
+    let stdout = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        stdout_pipe
+            .read_to_end(&mut bytes)
+            .expect("stdout is readable");
+        bytes
+    });
+    let stderr = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        stderr_pipe
+            .read_to_end(&mut bytes)
+            .expect("stderr is readable");
+        bytes
+    });
+    let started = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("the child can be waited for") {
+            break status;
+        }
+        if started.elapsed() > HUNG_AFTER {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("wingedge {args:?} still running after {HUNG_AFTER:?}: killed");
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    feeder.join().expect("stdin feeder");
+    Outcome {
+        code: status.code().unwrap_or(-1),
+        stdout: stdout.join().expect("stdout reader"),
+        stderr: String::from_utf8_lossy(&stderr.join().expect("stderr reader")).into_owned(),
+    }
+}
+
+/// A scratch folder under the system's temporary folder, unique to this
+/// process and call, removed with everything in it when dropped (also when
+/// the test fails).
+pub struct TempDir {
+    path: PathBuf,
+}
+
+impl TempDir {
+    /// A new empty folder named after `label`.
+    pub fn new(label: &str) -> TempDir {
+        static NEXT: AtomicUsize = AtomicUsize::new(0);
+        let path = std::env::temp_dir().join(format!(
+            "wingedge-test-{label}-{}-{}",
+            std::process::id(),
+            NEXT.fetch_add(1, Ordering::Relaxed)
+        ));
+        let _ = std::fs::remove_dir_all(&path);
+        std::fs::create_dir_all(&path).expect("a scratch folder");
+        TempDir { path }
+    }
+
+    /// The folder.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Writes `bytes` to `name` in the folder; returns its path.
+    pub fn write(&self, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
+        let path = self.path.join(name);
+        std::fs::write(&path, bytes).expect("a scratch file");
+        path
+    }
+
+    /// The path of `name` in the folder, as text for a command line.
+    pub fn arg(&self, name: &str) -> String {
+        self.path.join(name).to_string_lossy().into_owned()
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.path);
+    }
+}
+
+/// The largest peak resident memory of any child process this test
+/// process has waited for so far, in bytes (Linux only; `None` elsewhere).
+/// Tests run in parallel threads of one process, so this bounds every
+/// command run so far, not only the last.
+pub fn peak_child_rss_bytes() -> Option<u64> {
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: getrusage only writes the struct it is given.
+        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+        let ok = unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) } == 0;
+        // Linux reports kilobytes.
+        ok.then(|| u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024)
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        None
+    }
+}
