@@ -12,7 +12,11 @@
 //! classified by parity and 1M rays (`<name>.rays.f64`) cast for their first
 //! hit, each best of 3 on 1 and on 2 threads. Answers are written to
 //! `<name>.in.wingedge.u8` (1 inside, 0 outside, 2 boundary) and
-//! `<name>.hit.wingedge.f64` (first-hit `t`, `inf` for a miss).
+//! `<name>.hit.wingedge.f64` (first-hit `t`, `inf` for a miss), and
+//! `<name>.hitface.wingedge.u32` (per ray: `2 · face + exit`, where `face`
+//! counts the solid's faces in iteration order and `exit` is 1 for a
+//! [`Transition::Exit`]; `u32::MAX` for a miss) so that two builds' exact
+//! decisions can be compared file to file.
 //!
 //! Profiling aids: `WINGEDGE_ONLY=points|rays|build` restricts the work
 //! (`build`: ten accel builds, no table row); `WINGEDGE_CPU=1` prints wall
@@ -25,7 +29,7 @@ use glam::DVec3;
 use wingedge::geom::Ray;
 use wingedge::io::read_obj;
 use wingedge::mesh::Solid;
-use wingedge::query::{Accel, Containment, Method};
+use wingedge::query::{Accel, Containment, Method, Transition};
 
 fn read_f64(path: &Path) -> Vec<f64> {
     let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -164,5 +168,20 @@ fn main() {
             .flat_map(|h| h.map_or(f64::INFINITY, |c| c.t).to_le_bytes())
             .collect();
         let _ = std::fs::write(dir.join(format!("{name}.hit.wingedge.f64")), ts);
+        let face_index: std::collections::HashMap<_, u32> = solid
+            .faces()
+            .enumerate()
+            .map(|(k, (id, _))| (id, k as u32))
+            .collect();
+        let faces: Vec<u8> = hits
+            .iter()
+            .flat_map(|h| {
+                h.map_or(u32::MAX, |c| {
+                    2 * face_index[&c.face] + u32::from(c.transition == Transition::Exit)
+                })
+                .to_le_bytes()
+            })
+            .collect();
+        let _ = std::fs::write(dir.join(format!("{name}.hitface.wingedge.u32")), faces);
     }
 }
