@@ -33,7 +33,7 @@ mod winding;
 pub use accel::{Accel, AccelStats, NotConvex};
 pub use line_face::{LineFaceHit, LineKind, intersect_line_face};
 pub use point_in_solid::Method;
-pub use ray_solid::{Crossing, RayCrossings, Transition};
+pub use ray_solid::{Crossing, RayCrossings, Transition, TraversalStats};
 
 use thiserror::Error;
 

@@ -8,7 +8,7 @@ use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
 
-use super::accel::{Node4, WIDTH};
+use super::accel::{BoxFrame, Node4, WIDTH, f32_below, f32_down, f32_up, f64_below};
 use super::{Accel, Containment, QueryError};
 
 /// Whether the ray enters or leaves the solid at a crossing.
@@ -56,52 +56,179 @@ pub struct RayCrossings {
     pub hits: Vec<Crossing>,
 }
 
-/// Per-ray constants for box tests.
-struct RayBox {
-    origin: [f64; 3],
-    inv: [f64; 3],
-    neg: [bool; 3],
+/// What one ray's traversal touched: the work counts behind its time, so
+/// that culling can be checked by counting rather than by timing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraversalStats {
+    /// BVH nodes whose four child boxes were tested.
+    pub nodes: u64,
+    /// Triangles the ray was tested against.
+    pub triangles: u64,
 }
 
-/// `1 + 2γ₃` with `γₙ = n u / (1 − n u)`: Ize's factor making the slab test
-/// conservative under rounding ("Robust BVH Ray Traversal", JCGT 2013).
-const SLAB_GROW: f64 = 1.0 + 2.0 * (3.0 * HALF_EPS / (1.0 - 3.0 * HALF_EPS));
-const HALF_EPS: f64 = f64::EPSILON / 2.0;
+/// Where a traversal reports its work: nowhere (the queries) or into a
+/// [`TraversalStats`] (the traced forms).
+trait Tally {
+    fn node(&mut self);
+    fn triangle(&mut self);
+}
+
+impl Tally for () {
+    #[inline(always)]
+    fn node(&mut self) {}
+    #[inline(always)]
+    fn triangle(&mut self) {}
+}
+
+impl Tally for TraversalStats {
+    #[inline(always)]
+    fn node(&mut self) {
+        self.nodes += 1;
+    }
+    #[inline(always)]
+    fn triangle(&mut self) {
+        self.triangles += 1;
+    }
+}
+
+/// A ray as the `f32` slab tests of the BVH see it: in the accel's
+/// [`BoxFrame`], with its parameter rescaled and every constant rounded so
+/// that the tests can only err towards entering a box.
+///
+/// In the frame, the ray is `o' + s · d'` with `o' = (o − centre) · scale`,
+/// `d' = d · 2⁻ᵏ` (`k` such that the largest `|d'ₐ|` is in `[1, 2)`) and
+/// `s = t · 2ᵏ · scale`: the same points, with `s` a power-of-two multiple of
+/// `t`, so comparisons of `s` are comparisons of `t`.
+///
+/// # Why the test is conservative
+///
+/// Per axis, the entry `(near − o')/d'ₐ` is computed from `f32` constants
+/// chosen to make it smaller (the origin rounded away from the near plane,
+/// `1/d'ₐ` rounded towards zero) and the exit `(far − o')/d'ₐ` from
+/// constants making it larger (the origin rounded the other way, `1/d'ₐ`
+/// rounded away from zero and grown by `1 + 2⁻²⁰`). The two `f32` roundings
+/// of the subtraction and the product change each by a factor within
+/// `(1 ± u)²`, `u = 2⁻²⁴`; as `(1 + u)² < (1 + 2⁻²⁰)(1 − u)²`, a box the
+/// exact ray enters at `s₀ ≤ s₁` has computed entry ≤ computed exit, and a
+/// computed entry at most `(1 + u)² s₀`. Signs survive rounding, so boxes
+/// behind the origin stay behind. A zero direction component gives `1/0 =
+/// ±∞` exactly (the slab then holds the origin or not, as the exact test
+/// says; `0 · ∞ = NaN` when the origin is on the slab plane leaves the bound
+/// unchanged). The limit a box is compared with is the current best `t`
+/// grown by the same `2⁻²⁰`, which covers both the entry's rounding and the
+/// `f64` rounding of the best `t` itself.
+struct RayBox {
+    /// The origin in the frame, rounded (per axis) away from the near
+    /// planes: used for entries.
+    o_near: [f32; 3],
+    /// The origin in the frame, rounded towards the near planes: used for
+    /// exits.
+    o_far: [f32; 3],
+    /// `1/d'ₐ` rounded towards zero (exactly `±∞` when `d'ₐ = 0`).
+    inv_near: [f32; 3],
+    /// `1/d'ₐ · (1 + 2⁻²⁰)` rounded away from zero.
+    inv_far: [f32; 3],
+    /// Per axis, the row of [`Node4::bounds`] holding the near planes
+    /// (lower bounds when the ray runs up the axis).
+    near_row: [usize; 3],
+    /// Per axis, the row holding the far planes.
+    far_row: [usize; 3],
+    /// `2ᵏ · scale`: the factor from `t` to `s`.
+    t_to_s: f64,
+}
+
+/// The relative margin of the slab tests, `2⁻²⁰` (see [`RayBox`]): an exact
+/// power of two, far above the `f32` rounding it covers.
+const SLAB_MARGIN: f64 = 1.0 / (1u64 << 20) as f64;
 
 impl RayBox {
-    fn new(ray: &Ray) -> RayBox {
-        let inv = DVec3::ONE / ray.direction;
-        RayBox {
-            origin: ray.origin.to_array(),
-            inv: inv.to_array(),
-            neg: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
+    fn new(ray: &Ray, frame: &BoxFrame) -> RayBox {
+        let d = ray.direction;
+        // 2^-k with the largest |d'| in [1, 2); `k` clamped so that 2^-k is
+        // a normal `f64` (a subnormal direction keeps |d'| ≥ 2^-74, whose
+        // reciprocal is still an `f32`).
+        let k = d.abs().max_element().log2().floor().clamp(-1000.0, 1000.0);
+        let d_scale = 2f64.powi(-(k as i32));
+        let mut rb = RayBox {
+            o_near: [0.0; 3],
+            o_far: [0.0; 3],
+            inv_near: [0.0; 3],
+            inv_far: [0.0; 3],
+            near_row: [0; 3],
+            far_row: [0; 3],
+            t_to_s: frame.scale / d_scale,
+        };
+        for a in 0..3 {
+            let o = frame.in_frame(ray.origin[a], a);
+            // One `f32` ulp beyond the directed rounding covers the `f64`
+            // rounding of `o` (far smaller than an `f32` ulp).
+            let (lo, hi) = (f32_below(f32_down(o)), -f32_below(-f32_up(o)));
+            let da = d[a] * d_scale;
+            let neg = da.is_sign_negative();
+            let recip = 1.0 / da.abs();
+            let (inv_lo, inv_hi) = if da == 0.0 {
+                (f32::INFINITY, f32::INFINITY)
+            } else {
+                (
+                    f32_down(f64_below(recip)),
+                    f32_up(recip * (1.0 + SLAB_MARGIN)),
+                )
+            };
+            if neg {
+                // Entry through the upper plane: (hi_plane − o) · (−|inv|)
+                // is smallest for the smallest origin.
+                rb.o_near[a] = lo;
+                rb.o_far[a] = hi;
+                rb.inv_near[a] = -inv_lo;
+                rb.inv_far[a] = -inv_hi;
+                rb.near_row[a] = 3 + a;
+                rb.far_row[a] = a;
+            } else {
+                rb.o_near[a] = hi;
+                rb.o_far[a] = lo;
+                rb.inv_near[a] = inv_lo;
+                rb.inv_far[a] = inv_hi;
+                rb.near_row[a] = a;
+                rb.far_row[a] = 3 + a;
+            }
         }
+        rb
     }
 
-    /// The entry parameters of a node's children's boxes, each `Some` if
-    /// the ray (`t ≥ 0`) may touch that box before `t_max`; conservative.
-    /// The children are computed side by side (the same operations per
-    /// child, so the compiler can pair them in vector registers).
+    /// The limit in `s` for a best crossing at `t` (grown by the margin,
+    /// rounded up; `+∞` for none).
+    #[inline]
+    fn limit(&self, t: f64) -> f32 {
+        let up = f32_up(t * self.t_to_s * (1.0 + SLAB_MARGIN));
+        -f32_below(-up)
+    }
+
+    /// The entry parameters `s` of a node's children's boxes, and a bit
+    /// mask of the children the ray (`s ≥ 0`) may touch no later than
+    /// `limit`; conservative (see [`RayBox`]). The children are computed
+    /// side by side with the same operations, so that the compiler keeps
+    /// them in one vector register.
     #[inline(always)]
-    fn enter4(&self, n: &Node4, t_max: f64) -> [Option<f64>; WIDTH] {
-        let mut t0 = [0.0f64; WIDTH];
-        let mut t1 = [t_max; WIDTH];
+    fn enter4(&self, n: &Node4, limit: f32) -> ([f32; WIDTH], u32) {
+        let mut t0 = [0.0f32; WIDTH];
+        let mut t1 = [limit; WIDTH];
         for a in 0..3 {
-            let (near, far) = if self.neg[a] {
-                (&n.max[a], &n.min[a])
-            } else {
-                (&n.min[a], &n.max[a])
-            };
+            let near = &n.bounds[self.near_row[a]];
+            let far = &n.bounds[self.far_row[a]];
             for k in 0..WIDTH {
-                let tn = (f64::from(near[k]) - self.origin[a]) * self.inv[a];
-                let tf = (f64::from(far[k]) - self.origin[a]) * self.inv[a] * SLAB_GROW;
+                let tn = (near[k] - self.o_near[a]) * self.inv_near[a];
+                let tf = (far[k] - self.o_far[a]) * self.inv_far[a];
                 // NaN (0 · ∞: origin on the slab plane of a parallel ray)
                 // leaves the bound unchanged.
                 t0[k] = if tn > t0[k] { tn } else { t0[k] };
                 t1[k] = if tf < t1[k] { tf } else { t1[k] };
             }
         }
-        std::array::from_fn(|k| (t0[k] <= t1[k]).then_some(t0[k]))
+        let mut mask = 0;
+        for k in 0..WIDTH {
+            mask |= u32::from(t0[k] <= t1[k]) << k;
+        }
+        (t0, mask)
     }
 }
 
@@ -143,7 +270,7 @@ impl Accel {
         self.require_closed()?;
         let mut on_boundary = false;
         let mut hits: Vec<(f64, u32, Sign)> = Vec::new();
-        self.traverse(ray, f64::INFINITY, |i, _| {
+        self.traverse(ray, f64::INFINITY, &mut (), |i, _| {
             match self.hit_triangle(ray, i) {
                 TriHit::Miss => {}
                 TriHit::Origin => on_boundary = true,
@@ -236,9 +363,29 @@ impl Accel {
             .collect()
     }
 
+    /// [`Accel::first_hit`], with the work its traversal did.
+    ///
+    /// # Errors
+    ///
+    /// [`QueryError::InvalidRay`] for a non-finite or zero-direction ray.
+    pub fn first_hit_traced(
+        &self,
+        ray: &Ray,
+    ) -> Result<(Option<Crossing>, TraversalStats), QueryError> {
+        self.check_ray(ray, 0)?;
+        let mut stats = TraversalStats::default();
+        let hit = self.first_hit_tallied(ray, &mut stats);
+        Ok((hit, stats))
+    }
+
     fn first_hit_unchecked(&self, ray: &Ray) -> Option<Crossing> {
+        self.first_hit_tallied(ray, &mut ())
+    }
+
+    #[inline(always)]
+    fn first_hit_tallied(&self, ray: &Ray, tally: &mut impl Tally) -> Option<Crossing> {
         let mut best: Option<(f64, u32, Sign)> = None;
-        self.traverse(ray, f64::INFINITY, |i, t_max| {
+        self.traverse(ray, f64::INFINITY, tally, |i, t_max| {
             // Once a crossing is known, a triangle whose rounded `t` is
             // larger cannot be the answer (the nearest is chosen by the
             // rounded `t`), whether or not the ray crosses it: skip the exact
@@ -349,36 +496,57 @@ impl Accel {
 
     /// Visits the triangles of every leaf whose box the ray may touch before
     /// the current limit, near child first. `visit(i, t_max)` returns the new
-    /// limit. Deferred subtrees are kept with their entry parameter, so that
-    /// a subtree beyond the limit is dropped without touching its node.
-    fn traverse(&self, ray: &Ray, t_max: f64, mut visit: impl FnMut(u32, f64) -> f64) {
-        let rb = RayBox::new(ray);
-        let mut limit = t_max;
-        let mut stack: smallvec::SmallVec<[(u32, f64); 64]> = smallvec::SmallVec::new();
+    /// limit (a `t`). Deferred subtrees are kept with their entry parameter,
+    /// so that a subtree beyond the limit is dropped without touching its
+    /// node.
+    #[inline(always)]
+    fn traverse(
+        &self,
+        ray: &Ray,
+        t_max: f64,
+        tally: &mut impl Tally,
+        mut visit: impl FnMut(u32, f64) -> f64,
+    ) {
+        let rb = RayBox::new(ray, &self.frame);
+        let mut t_limit = t_max;
+        let mut limit = rb.limit(t_limit);
+        let mut stack: smallvec::SmallVec<[(u32, f32); 64]> = smallvec::SmallVec::new();
         let nodes = &self.nodes;
         let mut current = 0u32;
         loop {
             let node = &nodes[current as usize];
-            let entry = rb.enter4(node, limit);
+            tally.node();
+            let (entry, mut mask) = rb.enter4(node, limit);
             // The children the ray may touch, nearer first (ties by slot).
-            let mut order: [(f64, usize); WIDTH] = [(0.0, 0); WIDTH];
+            let mut order: [(f32, usize); WIDTH] = [(0.0, 0); WIDTH];
             let mut len = 0;
-            for (k, e) in entry.into_iter().enumerate() {
-                if let Some(t) = e {
-                    let mut j = len;
-                    while j > 0 && order[j - 1].0 > t {
-                        order[j] = order[j - 1];
-                        j -= 1;
-                    }
-                    order[j] = (t, k);
-                    len += 1;
+            while mask != 0 {
+                let k = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                let t = entry[k];
+                let mut j = len;
+                while j > 0 && order[j - 1].0 > t {
+                    order[j] = order[j - 1];
+                    j -= 1;
+                }
+                order[j] = (t, k);
+                len += 1;
+            }
+            // Every child the ray may enter is requested from memory now, so
+            // that its cache misses overlap the work on the nearer ones.
+            for &(_, k) in &order[..len] {
+                let (child, count) = (node.child[k] as usize, node.count[k] as usize);
+                if count > 0 {
+                    prefetch(&self.tris[child..child + count]);
+                } else {
+                    prefetch(std::slice::from_ref(&nodes[child]));
                 }
             }
             // Leaves are tested at once, nearer first; the nearest inner
             // child is descended into, the others deferred (nearer popped
             // first).
             let mut next: Option<u32> = None;
-            let mut deferred: [(u32, f64); WIDTH] = [(0, 0.0); WIDTH];
+            let mut deferred: [(u32, f32); WIDTH] = [(0, 0.0); WIDTH];
             let mut n_deferred = 0;
             for &(t, k) in &order[..len] {
                 if t > limit {
@@ -387,7 +555,12 @@ impl Accel {
                 let (child, count) = (node.child[k], node.count[k]);
                 if count > 0 {
                     for i in child..child + count {
-                        limit = visit(i, limit);
+                        tally.triangle();
+                        let t_new = visit(i, t_limit);
+                        if t_new != t_limit {
+                            t_limit = t_new;
+                            limit = rb.limit(t_limit);
+                        }
                     }
                 } else if next.is_none() {
                     next = Some(child);
@@ -414,6 +587,25 @@ impl Accel {
             }
         }
     }
+}
+
+/// Asks the processor to start loading the cache lines of `items` (a hint:
+/// no effect on any answer; nothing on targets without the instruction).
+#[inline(always)]
+fn prefetch<T>(items: &[T]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        let start = items.as_ptr().cast::<i8>();
+        let bytes = std::mem::size_of_val(items);
+        for offset in (0..bytes).step_by(64) {
+            // SAFETY: SSE is part of the x86_64 baseline, and a prefetch
+            // is a hint that never faults, whatever the address.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(offset)) };
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = items;
 }
 
 /// Batches at least this large are cast in a coherent order...
