@@ -8,7 +8,9 @@
 //! ```
 //!
 //! For each mesh: OBJ read + winged-edge build (reported, not part of the
-//! accel), [`Accel::new`] (best of 3), then 1M points (`<name>.points.f64`)
+//! accel), [`Accel::new`] (best of 3; triangles and BVH — the `yz` grid of
+//! point queries is built by the first classification and its build time
+//! reported with its size), then 1M points (`<name>.points.f64`)
 //! classified by parity and 1M rays (`<name>.rays.f64`) cast for their first
 //! hit, each best of 3 on 1 and on 2 threads. Answers are written to
 //! `<name>.in.wingedge.u8` (1 inside, 0 outside, 2 boundary) and
@@ -87,7 +89,7 @@ fn main() {
         .build()
         .expect("pool");
     println!(
-        "| mesh | tris | OBJ read + solid build s | accel build s | accel MB | grid cells / entries | classify 1 thr M/s | classify 2 thr M/s | inside frac | boundary | first hit 1 thr M/s | first hit 2 thr M/s | hit frac |"
+        "| mesh | tris | OBJ read + solid build s | accel build s | accel MB | grid cells / entries (grid build s) | classify 1 thr M/s | classify 2 thr M/s | inside frac | boundary | first hit 1 thr M/s | first hit 2 thr M/s | hit frac |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for name in names {
@@ -97,7 +99,6 @@ fn main() {
         let solid = Solid::try_from_soup(&soup).unwrap_or_else(|e| panic!("{e}"));
         let load = t.elapsed().as_secs_f64();
         let (build, accel) = best_of(3, || Accel::new(&solid));
-        let stats = accel.stats();
         let p = read_f64(&dir.join(format!("{name}.points.f64")));
         let points: Vec<DVec3> = p
             .chunks_exact(3)
@@ -155,14 +156,17 @@ fn main() {
             .filter(|&&c| c == Containment::OnBoundary)
             .count();
         let hit = hits.iter().filter(|h| h.is_some()).count();
+        // After the point queries: with the grid they built.
+        let stats = accel.stats();
         let n = points.len() as f64;
         let m = rays.len() as f64;
         println!(
-            "| {name} | {} | {load:.3} | {build:.4} | {:.1} | {} / {} | {:.2} | {:.2} | {:.6} | {boundary} | {:.2} | {:.2} | {:.4} |",
+            "| {name} | {} | {load:.3} | {build:.4} | {:.1} | {} / {} ({:.4}) | {:.2} | {:.2} | {:.6} | {boundary} | {:.2} | {:.2} | {:.4} |",
             stats.triangles,
             stats.memory_bytes as f64 / 1e6,
             stats.grid_cells,
             stats.grid_entries,
+            stats.grid_build_time.as_secs_f64(),
             n / c1 / 1e6,
             n / c2 / 1e6,
             inside as f64 / n,

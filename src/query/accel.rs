@@ -58,14 +58,17 @@ pub struct AccelStats {
     pub triangles: usize,
     /// BVH nodes.
     pub bvh_nodes: usize,
-    /// Grid cells (`ny × nz`).
+    /// Grid cells (`ny × nz`); 0 until the grid is built (by the first
+    /// point query, or [`Accel::build_point_grid`]).
     pub grid_cells: usize,
-    /// Triangle references held by the grid's cells.
+    /// Triangle references held by the grid's cells (0 until it is built).
     pub grid_entries: usize,
-    /// Heap bytes held by the accel.
+    /// Heap bytes held by the accel (with the grid once it is built).
     pub memory_bytes: usize,
-    /// Wall time of [`Accel::new`].
+    /// Wall time of [`Accel::new`] (triangles and BVH).
     pub build_time: Duration,
+    /// Wall time of building the point grid (zero until it is built).
+    pub grid_build_time: Duration,
 }
 
 /// One fan triangle as the queries need it: its exact corners split by
@@ -328,6 +331,12 @@ fn fill_node4(nodes: &[Node], i: usize, at: usize, out: &mut Vec<Node4>) {
 /// The acceleration structure of one solid, built once and shared by every
 /// query (it is `Send + Sync`; batch queries split work over rayon's pool).
 ///
+/// Only the work a caller's queries need is done: [`Accel::new`] builds the
+/// fan triangles and the BVH (all that rays need); the `yz` grid of point
+/// classification is built by the first point query, and the convexity
+/// verdict of [`Method::Normals`](super::Method::Normals) by the first
+/// query that needs it (each once, thread-safe).
+///
 /// # Invariants
 ///
 /// - `tris` (in BVH leaf order) is the fan triangulation of every face with at least three
@@ -346,7 +355,7 @@ pub struct Accel {
     pub(super) tri_face: Vec<FaceId>,
     pub(super) nodes: Vec<Node4>,
     pub(super) frame: BoxFrame,
-    pub(super) grid: YzGrid,
+    grid: std::sync::OnceLock<(YzGrid, Duration)>,
     pub(super) bounds: Aabb,
     pub(super) boundary_edges: usize,
     pub(super) convexity: std::sync::OnceLock<Result<(), NotConvex>>,
@@ -365,8 +374,9 @@ const LEAF_SIZE: usize = 4;
 const BINS: usize = 16;
 
 impl Accel {
-    /// Builds the accel of `solid`: fan triangles, BVH and `yz` grid (the
-    /// convexity verdict of the normals method is computed on first use).
+    /// Builds the accel of `solid`: fan triangles and BVH (the `yz` grid of
+    /// point queries and the convexity verdict of the normals method are
+    /// computed on first use).
     ///
     /// Never fails: an open solid gets an accel too (the winding number is
     /// defined for it; parity and crossings then return
@@ -389,26 +399,24 @@ impl Accel {
             .iter()
             .flat_map(YzTri::corners)
             .fold(Aabb::EMPTY, Aabb::grow);
-        let grid = build_grid(&tris, bounds);
         let memory_bytes = tris.capacity() * std::mem::size_of::<YzTri>()
             + tri_face.capacity() * std::mem::size_of::<FaceId>()
-            + nodes.capacity() * std::mem::size_of::<Node4>()
-            + grid.cell_start.capacity() * 4
-            + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
+            + nodes.capacity() * std::mem::size_of::<Node4>();
         let stats = AccelStats {
             triangles: tris.len(),
             bvh_nodes: nodes.len(),
-            grid_cells: grid.ny * grid.nz,
-            grid_entries: grid.entries.len(),
+            grid_cells: 0,
+            grid_entries: 0,
             memory_bytes,
             build_time: Duration::ZERO,
+            grid_build_time: Duration::ZERO,
         };
         let mut accel = Accel {
             tris,
             tri_face,
             nodes,
             frame,
-            grid,
+            grid: std::sync::OnceLock::new(),
             bounds,
             boundary_edges,
             convexity: std::sync::OnceLock::new(),
@@ -418,10 +426,37 @@ impl Accel {
         accel
     }
 
-    /// Size and build time.
+    /// Size and build time (the grid's part once it is built).
     #[must_use]
     pub fn stats(&self) -> AccelStats {
-        self.stats
+        let mut stats = self.stats;
+        if let Some((grid, time)) = self.grid.get() {
+            stats.grid_cells = grid.ny * grid.nz;
+            stats.grid_entries = grid.entries.len();
+            stats.memory_bytes += grid.cell_start.capacity() * 4
+                + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
+            stats.grid_build_time = *time;
+        }
+        stats
+    }
+
+    /// Builds the `yz` grid of point classification now, if no point query
+    /// has yet (they build it on first use); for callers who want the cost
+    /// up front, or measured apart.
+    pub fn build_point_grid(&self) {
+        let _ = self.grid();
+    }
+
+    /// The `yz` grid, built on first use.
+    pub(super) fn grid(&self) -> &YzGrid {
+        &self
+            .grid
+            .get_or_init(|| {
+                let start = Instant::now();
+                let grid = build_grid(&self.tris, self.bounds);
+                (grid, start.elapsed())
+            })
+            .0
     }
 
     /// The bounding box of the solid's vertices.
@@ -1017,6 +1052,8 @@ mod tests {
             let accel = Accel::new(&solid);
             assert!(accel.is_closed());
             assert_eq!(accel.convexity(), Ok(()));
+            assert_eq!(accel.stats().grid_entries, 0, "the grid is built lazily");
+            accel.build_point_grid();
             let s = accel.stats();
             assert!(s.triangles >= solid.face_count());
             assert!(s.grid_entries >= s.triangles);
