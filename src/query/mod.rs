@@ -28,6 +28,7 @@ mod line_face;
 mod point_in_convex;
 mod point_in_solid;
 mod ray_solid;
+mod ray_stream;
 mod winding;
 
 pub use accel::{Accel, AccelStats, NotConvex};

@@ -117,7 +117,7 @@ impl Tally for TraversalStats {
 /// unchanged). The limit a box is compared with is the current best `t`
 /// grown by the same `2⁻²⁰`, which covers both the entry's rounding and the
 /// `f64` rounding of the best `t` itself.
-struct RayBox {
+pub(super) struct RayBox {
     /// The origin in the frame, rounded (per axis) away from the near
     /// planes: used for entries.
     o_near: [f32; 3],
@@ -142,13 +142,14 @@ struct RayBox {
 const SLAB_MARGIN: f64 = 1.0 / (1u64 << 20) as f64;
 
 impl RayBox {
-    fn new(ray: &Ray, frame: &BoxFrame) -> RayBox {
+    pub(super) fn new(ray: &Ray, frame: &BoxFrame) -> RayBox {
         let d = ray.direction;
-        // 2^-k with the largest |d'| in [1, 2); `k` clamped so that 2^-k is
-        // a normal `f64` (a subnormal direction keeps |d'| ≥ 2^-74, whose
-        // reciprocal is still an `f32`).
-        let k = d.abs().max_element().log2().floor().clamp(-1000.0, 1000.0);
-        let d_scale = 2f64.powi(-(k as i32));
+        // 2^-k with the largest |d'| in [1, 2), read off the exponent bits;
+        // `k` clamped so that 2^-k is a normal `f64` (a subnormal direction
+        // keeps |d'| ≥ 2^-74, whose reciprocal is still an `f32`).
+        let biased = ((d.abs().max_element().to_bits() >> 52) & 0x7ff) as i64;
+        let k = (biased - 1023).clamp(-1000, 1000);
+        let d_scale = f64::from_bits(((1023 - k) as u64) << 52);
         let mut rb = RayBox {
             o_near: [0.0; 3],
             o_far: [0.0; 3],
@@ -198,7 +199,7 @@ impl RayBox {
     /// The limit in `s` for a best crossing at `t` (grown by the margin,
     /// rounded up; `+∞` for none).
     #[inline]
-    fn limit(&self, t: f64) -> f32 {
+    pub(super) fn limit(&self, t: f64) -> f32 {
         let up = f32_up(t * self.t_to_s * (1.0 + SLAB_MARGIN));
         -f32_below(-up)
     }
@@ -209,7 +210,7 @@ impl RayBox {
     /// side by side with the same operations, so that the compiler keeps
     /// them in one vector register.
     #[inline(always)]
-    fn enter4(&self, n: &Node4, limit: f32) -> ([f32; WIDTH], u32) {
+    pub(super) fn enter4(&self, n: &Node4, limit: f32) -> ([f32; WIDTH], u32) {
         let mut t0 = [0.0f32; WIDTH];
         let mut t1 = [limit; WIDTH];
         for a in 0..3 {
@@ -231,6 +232,10 @@ impl RayBox {
         (t0, mask)
     }
 }
+
+/// The best crossing of a first-hit query so far: rounded `t`, triangle,
+/// and the sign of its crossing (`+` for an exit).
+pub(super) type BestHit = Option<(f64, u32, Sign)>;
 
 /// How a ray meets one triangle.
 enum TriHit {
@@ -321,13 +326,19 @@ impl Accel {
         for (index, ray) in rays.iter().enumerate() {
             self.check_ray(ray, index)?;
         }
+        // Each worker casts its rays a few at a time, interleaved (see
+        // `ray_stream`), so that one ray's cache misses overlap the others'
+        // work.
+        let cast = |rays: &[Ray]| {
+            let mut out = vec![None; rays.len()];
+            rays.par_chunks(STREAM_CHUNK)
+                .zip(out.par_chunks_mut(STREAM_CHUNK))
+                .for_each(|(r, o)| self.first_hits_interleaved(r, o));
+            out
+        };
         // Small meshes fit in cache: sorting would cost more than it saves.
         if rays.len() < SORTED_BATCH || self.tris.len() < COHERENT_MIN_TRIANGLES {
-            return Ok(rays
-                .par_iter()
-                .with_min_len(512)
-                .map(|r| self.first_hit_unchecked(r))
-                .collect());
+            return Ok(cast(rays));
         }
         // Large batches: cast the rays in the order of a 6-D Morton code of
         // (origin, direction), so that rays cast one after the other walk
@@ -335,11 +346,7 @@ impl Accel {
         // cache; answers are written back in input order.
         let order = coherent_order(rays);
         let sorted: Vec<Ray> = order.par_iter().map(|&i| rays[i as usize]).collect();
-        let answers: Vec<Option<Crossing>> = sorted
-            .par_iter()
-            .with_min_len(1024)
-            .map(|r| self.first_hit_unchecked(r))
-            .collect();
+        let answers = cast(&sorted);
         let mut out = vec![None; rays.len()];
         for (&i, a) in order.iter().zip(answers) {
             out[i as usize] = a;
@@ -384,34 +391,48 @@ impl Accel {
 
     #[inline(always)]
     fn first_hit_tallied(&self, ray: &Ray, tally: &mut impl Tally) -> Option<Crossing> {
-        let mut best: Option<(f64, u32, Sign)> = None;
+        let mut best: BestHit = None;
         self.traverse(ray, f64::INFINITY, tally, |i, t_max| {
-            // Once a crossing is known, a triangle whose rounded `t` is
-            // larger cannot be the answer (the nearest is chosen by the
-            // rounded `t`), whether or not the ray crosses it: skip the exact
-            // decision. `t_of` clamps only values `≤ 0` (and NaN) up to the
-            // smallest positive `f64`, which never exceeds `bt`, so the skip
-            // is exactly "would not be better".
-            let raw = self.plane_t(ray, i);
-            if let Some((bt, _, _)) = best {
-                if raw > bt {
-                    return t_max;
-                }
-            }
-            if let TriHit::Cross(s) = self.hit_triangle(ray, i) {
-                let t = if raw > 0.0 { raw } else { f64::MIN_POSITIVE };
-                let better = match best {
-                    None => true,
-                    Some((bt, bi, _)) => t < bt || (t == bt && i < bi),
-                };
-                if better {
-                    best = Some((t, i, s));
-                    return t;
-                }
-            }
-            t_max
+            self.consider_for_first_hit(ray, i, &mut best, t_max)
         });
         best.map(|(t, i, s)| self.crossing(t, i, s))
+    }
+
+    /// Tests triangle `i` for the first hit of `ray`, updating `best`;
+    /// returns the new limit `t` (the best crossing's, or `t_max` when it
+    /// did not change).
+    #[inline(always)]
+    pub(super) fn consider_for_first_hit(
+        &self,
+        ray: &Ray,
+        i: u32,
+        best: &mut BestHit,
+        t_max: f64,
+    ) -> f64 {
+        // Once a crossing is known, a triangle whose rounded `t` is larger
+        // cannot be the answer (the nearest is chosen by the rounded `t`),
+        // whether or not the ray crosses it: skip the exact decision. `t_of`
+        // clamps only values `≤ 0` (and NaN) up to the smallest positive
+        // `f64`, which never exceeds `bt`, so the skip is exactly "would not
+        // be better".
+        let raw = self.plane_t(ray, i);
+        if let Some((bt, _, _)) = *best {
+            if raw > bt {
+                return t_max;
+            }
+        }
+        if let TriHit::Cross(s) = self.hit_triangle(ray, i) {
+            let t = if raw > 0.0 { raw } else { f64::MIN_POSITIVE };
+            let better = match *best {
+                None => true,
+                Some((bt, bi, _)) => t < bt || (t == bt && i < bi),
+            };
+            if better {
+                *best = Some((t, i, s));
+                return t;
+            }
+        }
+        t_max
     }
 
     fn check_ray(&self, ray: &Ray, index: usize) -> Result<(), QueryError> {
@@ -426,7 +447,7 @@ impl Accel {
         }
     }
 
-    fn crossing(&self, t: f64, i: u32, s: Sign) -> Crossing {
+    pub(super) fn crossing(&self, t: f64, i: u32, s: Sign) -> Crossing {
         Crossing {
             t,
             face: self.tri_face[i as usize],
@@ -592,21 +613,31 @@ impl Accel {
 /// Asks the processor to start loading the cache lines of `items` (a hint:
 /// no effect on any answer; nothing on targets without the instruction).
 #[inline(always)]
-fn prefetch<T>(items: &[T]) {
+pub(super) fn prefetch<T>(items: &[T]) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
         let start = items.as_ptr().cast::<i8>();
         let bytes = std::mem::size_of_val(items);
-        for offset in (0..bytes).step_by(64) {
+        let mut offset = 0;
+        while offset < bytes {
             // SAFETY: SSE is part of the x86_64 baseline, and a prefetch
             // is a hint that never faults, whatever the address.
             unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(offset)) };
+            offset += 64;
+        }
+        if bytes > 0 {
+            // The last line, when the items straddle one more boundary.
+            // SAFETY: as above.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(bytes - 1)) };
         }
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = items;
 }
+
+/// Rays per unit of parallel work in [`Accel::first_hit_batch`].
+const STREAM_CHUNK: usize = 512;
 
 /// Batches at least this large are cast in a coherent order...
 const SORTED_BATCH: usize = 8192;
