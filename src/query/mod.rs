@@ -4,8 +4,11 @@
 //! ([`Accel::new`]) and shared (it is `Sync`) by any number of queries and
 //! threads. The accel holds a fan triangulation of every face (exact input
 //! coordinates, each triangle remembering its [`FaceId`](crate::mesh::FaceId)),
-//! a bounding-volume hierarchy for rays in any direction, and a uniform grid
-//! over the `yz` projection for the `+x` parity rays of point classification.
+//! a bounding-volume hierarchy for rays in any direction (`f32` boxes stored
+//! relative to the solid's centre, rounded outward, so culling works as well
+//! far from the origin as near it), and a uniform grid over the `yz`
+//! projection for the `+x` parity rays of point classification (built by the
+//! first point query: a scene that only casts rays never pays for it).
 //!
 //! # What "exact" means here
 //!

@@ -8,7 +8,7 @@ use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
 
-use super::accel::{BoxFrame, Node4, WIDTH, f32_below, f32_down, f32_up, f64_below};
+use super::accel::{BoxFrame, Node4, WIDTH};
 use super::{Accel, Containment, QueryError};
 
 /// Whether the ray enters or leaves the solid at a crossing.
@@ -106,7 +106,10 @@ impl Tally for TraversalStats {
 /// chosen to make it smaller (the origin rounded away from the near plane,
 /// `1/d'ₐ` rounded towards zero) and the exit `(far − o')/d'ₐ` from
 /// constants making it larger (the origin rounded the other way, `1/d'ₐ`
-/// rounded away from zero and grown by `1 + 2⁻²⁰`). The two `f32` roundings
+/// rounded away from zero and grown by `1 + 2⁻²⁰`; the origin is widened by
+/// `|f|·2⁻²² + 2⁻¹²⁶` around its `f32` value `f`, the reciprocals shrunk by
+/// `1 − 2⁻²²` and grown by `1 + 2⁻¹⁹`, which cover their own roundings).
+/// The two `f32` roundings
 /// of the subtraction and the product change each by a factor within
 /// `(1 ± u)²`, `u = 2⁻²⁴`; as `(1 + u)² < (1 + 2⁻²⁰)(1 − u)²`, a box the
 /// exact ray enters at `s₀ ≤ s₁` has computed entry ≤ computed exit, and a
@@ -137,9 +140,15 @@ pub(super) struct RayBox {
     t_to_s: f64,
 }
 
-/// The relative margin of the slab tests, `2⁻²⁰` (see [`RayBox`]): an exact
-/// power of two, far above the `f32` rounding it covers.
-const SLAB_MARGIN: f64 = 1.0 / (1u64 << 20) as f64;
+/// `2⁻²²`: the relative widening of the origin (see [`RayBox`]).
+const ORIGIN_WIDEN: f32 = 1.0 / (1u32 << 22) as f32;
+/// `1 − 2⁻²²`: `1/d'ₐ` rounded to `f32` (relative error at most 2⁻²⁴, plus
+/// 2⁻⁵³ from `f64`) times this, rounded, is below the exact reciprocal.
+const INV_SHRINK: f32 = 1.0 - ORIGIN_WIDEN;
+/// `1 + 2⁻¹⁹`: `1/d'ₐ` rounded to `f32` times this, rounded, is at least
+/// the exact reciprocal grown by the slab margin `1 + 2⁻²⁰`:
+/// `(1 − 2⁻²⁴)² (1 + 2⁻¹⁹) > 1 + 2⁻²⁰`.
+const INV_GROW: f32 = 1.0 + 2.0 / (1u32 << 20) as f32;
 
 impl RayBox {
     pub(super) fn new(ray: &Ray, frame: &BoxFrame) -> RayBox {
@@ -161,19 +170,25 @@ impl RayBox {
         };
         for a in 0..3 {
             let o = frame.in_frame(ray.origin[a], a);
-            // One `f32` ulp beyond the directed rounding covers the `f64`
-            // rounding of `o` (far smaller than an `f32` ulp).
-            let (lo, hi) = (f32_below(f32_down(o)), -f32_below(-f32_up(o)));
+            // The origin widened by `|f|·2⁻²² + 2⁻¹²⁶` either way (see
+            // `RayBox`): covers the rounding to `f32` (at most `|f|·2⁻²⁴`,
+            // or 2⁻¹⁵⁰ below the normal range), the `f64` rounding of `o`
+            // and the rounding of the widening itself. Beyond the `f32`
+            // range: no constraint at all.
+            let f = o as f32;
+            let (lo, hi) = if f.is_finite() {
+                let m = f.abs() * ORIGIN_WIDEN + f32::MIN_POSITIVE;
+                (f - m, f + m)
+            } else {
+                (f32::NEG_INFINITY, f32::INFINITY)
+            };
             let da = d[a] * d_scale;
             let neg = da.is_sign_negative();
-            let recip = 1.0 / da.abs();
+            let recip = (1.0 / da.abs()) as f32;
             let (inv_lo, inv_hi) = if da == 0.0 {
                 (f32::INFINITY, f32::INFINITY)
             } else {
-                (
-                    f32_down(f64_below(recip)),
-                    f32_up(recip * (1.0 + SLAB_MARGIN)),
-                )
+                ((recip * INV_SHRINK).min(f32::MAX), recip * INV_GROW)
             };
             if neg {
                 // Entry through the upper plane: (hi_plane − o) · (−|inv|)
@@ -200,8 +215,10 @@ impl RayBox {
     /// rounded up; `+∞` for none).
     #[inline]
     pub(super) fn limit(&self, t: f64) -> f32 {
-        let up = f32_up(t * self.t_to_s * (1.0 + SLAB_MARGIN));
-        -f32_below(-up)
+        // `(x as f32) ≥ x (1 − 2⁻²⁴)` for normal `f32`; grown by 2⁻¹⁹ and
+        // rounded it is at least `x (1 + 2⁻²⁰)`; `+ 2⁻¹²⁶` covers `x` below
+        // the normal range. `+∞` stays `+∞`.
+        ((t * self.t_to_s) as f32) * INV_GROW + f32::MIN_POSITIVE
     }
 
     /// The entry parameters `s` of a node's children's boxes, and a bit
@@ -276,7 +293,7 @@ impl Accel {
         let mut on_boundary = false;
         let mut hits: Vec<(f64, u32, Sign)> = Vec::new();
         self.traverse(ray, f64::INFINITY, &mut (), |i, _| {
-            match self.hit_triangle(ray, i) {
+            match self.hit_triangle::<true>(ray, i) {
                 TriHit::Miss => {}
                 TriHit::Origin => on_boundary = true,
                 TriHit::Cross(s) => hits.push((self.t_of(ray, i), i, s)),
@@ -415,13 +432,20 @@ impl Accel {
         // clamps only values `≤ 0` (and NaN) up to the smallest positive
         // `f64`, which never exceeds `bt`, so the skip is exactly "would not
         // be better".
-        let raw = self.plane_t(ray, i);
-        if let Some((bt, _, _)) = *best {
-            if raw > bt {
-                return t_max;
+        // Before the first crossing, most triangles tested are misses:
+        // decide first, and construct `t` only for a crossing.
+        let raw = match *best {
+            Some((bt, _, _)) => {
+                let raw = self.plane_t(ray, i);
+                if raw > bt {
+                    return t_max;
+                }
+                Some(raw)
             }
-        }
-        if let TriHit::Cross(s) = self.hit_triangle(ray, i) {
+            None => None,
+        };
+        if let TriHit::Cross(s) = self.hit_triangle::<false>(ray, i) {
+            let raw = raw.unwrap_or_else(|| self.plane_t(ray, i));
             let t = if raw > 0.0 { raw } else { f64::MIN_POSITIVE };
             let better = match *best {
                 None => true,
@@ -476,8 +500,12 @@ impl Accel {
         n.dot(a - ray.origin) / n.dot(ray.direction)
     }
 
+    /// How `ray` meets triangle `i`; with `ORIGIN = false` the (costlier)
+    /// test of the origin lying on the triangle is skipped and reported as
+    /// a miss — what first-hit queries need, which list no crossing at the
+    /// origin.
     #[inline]
-    fn hit_triangle(&self, ray: &Ray, i: u32) -> TriHit {
+    fn hit_triangle<const ORIGIN: bool>(&self, ray: &Ray, i: u32) -> TriHit {
         let [a, b, c] = &self.tris[i as usize].corners();
         let (o, d) = (&ray.origin, &ray.direction);
         let dd = [d.x, d.y, d.z];
@@ -486,15 +514,22 @@ impl Accel {
         let s0 = line_side_filter_scalar(dd, u, v).unwrap_or_else(|| line_side_sos(*o, *d, *a, *b));
         let w = [c.x - o.x, c.y - o.y, c.z - o.z];
         let s1 = line_side_filter_scalar(dd, v, w).unwrap_or_else(|| line_side_sos(*o, *d, *b, *c));
+        let origin_check = || {
+            if ORIGIN {
+                self.origin_check(*a, *b, *c, *o)
+            } else {
+                TriHit::Miss
+            }
+        };
         if s0 != s1 || s0 == Sign::Zero {
-            return self.origin_check(*a, *b, *c, *o);
+            return origin_check();
         }
         let s2 = line_side_filter_scalar(dd, w, u).unwrap_or_else(|| line_side_sos(*o, *d, *c, *a));
         if s2 != s0 {
-            return self.origin_check(*a, *b, *c, *o);
+            return origin_check();
         }
         match orient3d(*a, *b, *c, *o) {
-            Sign::Zero => self.origin_check(*a, *b, *c, *o),
+            Sign::Zero => origin_check(),
             side if side == -s0 => TriHit::Cross(s0),
             _ => TriHit::Miss,
         }
@@ -704,6 +739,82 @@ fn alternate(hits: &mut [(f64, u32, Sign)], mut inside: bool) {
 mod tests {
     use super::*;
     use crate::mesh::builders;
+
+    /// The `f32` slab test never rejects a box the exact ray enters: boxes
+    /// and rays at many scales and offsets, including rays grazing a box's
+    /// face and rays parallel to an axis, checked against the slab test
+    /// evaluated in `f64` (whose error, ~1e-16 relative, is far below the
+    /// `f32` margins).
+    #[test]
+    fn f32_slab_test_is_conservative() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut uniform = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut entered = 0;
+        for case in 0..20_000 {
+            let centre = DVec3::new(uniform(), uniform(), uniform()) * 2e8 - DVec3::splat(1e8);
+            let scale = 2f64.powi((uniform() * 40.0) as i32 - 20);
+            let frame = BoxFrame { centre, scale };
+            let size = 1.0 / scale;
+            let mut rand = || DVec3::new(uniform(), uniform(), uniform()) * 2.0 - DVec3::ONE;
+            let lo = centre + rand() * size;
+            let hi = lo + (rand() + DVec3::ONE) * size * 0.1;
+            let origin = centre + rand() * size * 3.0;
+            let mut direction = (lo + (hi - lo) * (rand() + DVec3::ONE) * 0.5) - origin;
+            if case % 5 == 0 {
+                direction[case % 3] = 0.0;
+            }
+            if direction == DVec3::ZERO {
+                continue;
+            }
+            direction *= 2f64.powi((uniform() * 200.0) as i32 - 100);
+            let ray = Ray::new(origin, direction);
+            let mut node = Node4 {
+                bounds: [[f32::INFINITY; WIDTH]; 6],
+                child: [0; WIDTH],
+                count: [1; WIDTH],
+            };
+            for a in 0..3 {
+                node.bounds[a] = [f32::INFINITY; WIDTH];
+                node.bounds[3 + a] = [f32::NEG_INFINITY; WIDTH];
+                node.bounds[a][0] = frame.lower(lo[a], a);
+                node.bounds[3 + a][0] = frame.upper(hi[a], a);
+            }
+            // The slab test in f64 on the exact box, shrunk by 1e-9 of its
+            // size so that rounding cannot make it enter spuriously.
+            let shrink = (hi - lo) * 1e-9;
+            let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+            let mut misses = false;
+            for a in 0..3 {
+                let (l, h) = (lo[a] + shrink[a], hi[a] - shrink[a]);
+                if direction[a] == 0.0 {
+                    misses |= origin[a] < l || origin[a] > h;
+                    continue;
+                }
+                let (ta, tb) = (
+                    (l - origin[a]) / direction[a],
+                    (h - origin[a]) / direction[a],
+                );
+                t0 = t0.max(ta.min(tb));
+                t1 = t1.min(ta.max(tb));
+            }
+            if misses || t0 > t1 {
+                continue;
+            }
+            entered += 1;
+            let rb = RayBox::new(&ray, &frame);
+            let (entry, mask) = rb.enter4(&node, rb.limit(f64::INFINITY));
+            assert_eq!(mask, 1, "case {case}: {ray:?} misses [{lo}, {hi}]");
+            // And with the limit at the exact entry, the box still counts.
+            let (_, mask) = rb.enter4(&node, rb.limit(t0));
+            assert_eq!(mask, 1, "case {case}: entry {} vs limit {t0}", entry[0]);
+        }
+        assert!(entered > 5_000, "{entered}");
+    }
 
     #[test]
     fn ray_through_a_cube() {
