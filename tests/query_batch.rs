@@ -46,6 +46,11 @@ fn batches_match_single_queries() {
     for (r, h) in rays.iter().zip(&hits) {
         assert_eq!(accel.first_hit(r).unwrap(), *h);
     }
+    // Small batches (no reordering; fewer rays than interleaved lanes, and
+    // a part-filled last chunk) and an empty one.
+    for n in [0, 1, 5, 8, 9, 700] {
+        assert_eq!(accel.first_hit_batch(&rays[..n]).unwrap(), hits[..n]);
+    }
     let crossings = accel.ray_crossings_batch(&rays[..2000]).unwrap();
     for (r, c) in rays.iter().zip(&crossings) {
         assert_eq!(accel.ray_crossings(r).unwrap(), *c);

@@ -484,3 +484,82 @@ fn convexity_verdicts_of_the_fixtures() {
         }
     }
 }
+
+/// Regression: the BVH's `f32` boxes were stored in absolute coordinates,
+/// so a solid 1e8 from the origin got boxes a few units wide around a unit
+/// sphere and culling stopped (every ray visited most of the tree). They are
+/// now stored relative to the accel's centre. A translation by 2²⁷ ≈ 1.3e8
+/// is exact for coordinates on a 2⁻²⁰ grid, so every answer must be
+/// identical, and the nodes a ray visits (counted, not timed) must stay
+/// about the same.
+#[test]
+fn far_from_the_origin_answers_are_identical_and_culling_still_works() {
+    let grid = |x: f64| (x * 2f64.powi(20)).round() / 2f64.powi(20);
+    let on_grid = |p: DVec3| DVec3::new(grid(p.x), grid(p.y), grid(p.z));
+    let soup = mapped(&builders::sphere_soup(40), on_grid);
+    let shift = DVec3::new(2f64.powi(27), -(2f64.powi(27)), 2f64.powi(26));
+    assert!(soup.positions.iter().all(|&p| (p + shift) - shift == p));
+    let near = build(&soup);
+    let far = build(&mapped(&soup, |p| p + shift));
+    let (a, b) = (Accel::new(&near), Accel::new(&far));
+    let face_index = |solid: &Solid| -> std::collections::HashMap<_, usize> {
+        solid
+            .faces()
+            .enumerate()
+            .map(|(k, (f, _))| (f, k))
+            .collect()
+    };
+    let (fa, fb) = (face_index(&near), face_index(&far));
+    // Seeded rays from a shell around the sphere towards points inside its
+    // box, origins on the same grid.
+    let mut state = 0x2545_F491_4F6C_DD1Du64;
+    let mut uniform = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut nodes_near, mut nodes_far, mut hits) = (0, 0, 0);
+    for _ in 0..2000 {
+        let mut unit = || DVec3::new(uniform(), uniform(), uniform()) * 2.0 - DVec3::ONE;
+        let origin = on_grid(unit().normalize_or(DVec3::X) * 2.5);
+        let direction = unit() - origin;
+        let (hit_a, stats_a) = a.first_hit_traced(&Ray::new(origin, direction)).unwrap();
+        let (hit_b, stats_b) = b
+            .first_hit_traced(&Ray::new(origin + shift, direction))
+            .unwrap();
+        match (hit_a, hit_b) {
+            (None, None) => {}
+            (Some(x), Some(y)) => {
+                hits += 1;
+                assert_eq!(x.t, y.t, "{origin} {direction}");
+                assert_eq!(x.transition, y.transition, "{origin} {direction}");
+                assert_eq!(fa[&x.face], fb[&y.face], "{origin} {direction}");
+            }
+            other => panic!("{origin} {direction}: {other:?}"),
+        }
+        let all_a = a.ray_crossings(&Ray::new(origin, direction)).unwrap();
+        let all_b = b
+            .ray_crossings(&Ray::new(origin + shift, direction))
+            .unwrap();
+        assert_eq!(all_a.origin, all_b.origin);
+        let ts = |r: &wingedge::query::RayCrossings| r.hits.iter().map(|h| h.t).collect::<Vec<_>>();
+        assert_eq!(ts(&all_a), ts(&all_b), "{origin} {direction}");
+        nodes_near += stats_a.nodes;
+        nodes_far += stats_b.nodes;
+    }
+    assert!(hits > 500, "{hits} of 2000 rays hit");
+    // Culling works at all: a ray visits a small part of the tree...
+    let per_ray = nodes_near as f64 / 2000.0;
+    assert!(
+        per_ray < a.stats().bvh_nodes as f64 / 8.0,
+        "{per_ray} of {} nodes",
+        a.stats().bvh_nodes
+    );
+    // ...and as well far away as near the origin.
+    assert!(
+        nodes_far as f64 <= 1.25 * nodes_near as f64,
+        "far {nodes_far} vs near {nodes_near} node visits"
+    );
+    println!("node visits: near {nodes_near}, far {nodes_far}; {hits} hits");
+}

@@ -58,14 +58,17 @@ pub struct AccelStats {
     pub triangles: usize,
     /// BVH nodes.
     pub bvh_nodes: usize,
-    /// Grid cells (`ny × nz`).
+    /// Grid cells (`ny × nz`); 0 until the grid is built (by the first
+    /// point query, or [`Accel::build_point_grid`]).
     pub grid_cells: usize,
-    /// Triangle references held by the grid's cells.
+    /// Triangle references held by the grid's cells (0 until it is built).
     pub grid_entries: usize,
-    /// Heap bytes held by the accel.
+    /// Heap bytes held by the accel (with the grid once it is built).
     pub memory_bytes: usize,
-    /// Wall time of [`Accel::new`].
+    /// Wall time of [`Accel::new`] (triangles and BVH).
     pub build_time: Duration,
+    /// Wall time of building the point grid (zero until it is built).
+    pub grid_build_time: Duration,
 }
 
 /// One fan triangle as the queries need it: its exact corners split by
@@ -150,7 +153,8 @@ impl YzGrid {
     }
 }
 
-/// A BVH node with conservatively rounded `f32` bounds (32 bytes).
+/// A node of the binary BVH (before collapsing to [`Node4`]) with
+/// conservatively rounded `f32` bounds in the accel's [`BoxFrame`] (32 bytes).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Node {
     pub min: [f32; 3],
@@ -168,16 +172,16 @@ pub(super) const WIDTH: usize = 4;
 /// A BVH node as traversed: the boxes of up to four children in two cache
 /// lines, so that deciding where to descend touches only the parent. Made by
 /// collapsing the binary SAH tree: the tree is half as deep, so a ray waits
-/// for half as many dependent node loads.
+/// for half as many dependent node loads. Boxes are in the accel's
+/// [`BoxFrame`].
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 pub(super) struct Node4 {
-    /// Lower bounds of the children's boxes (rounded down), by axis then
-    /// child, so that all children are tested in one pass.
-    pub min: [[f32; WIDTH]; 3],
-    /// Upper bounds of the children's boxes (rounded up), by axis then
-    /// child; an empty slot has `min = +∞`, `max = −∞` (never entered).
-    pub max: [[f32; WIDTH]; 3],
+    /// The children's boxes by bound then axis then child: `bounds[a]` the
+    /// lower bounds along axis `a` (rounded down), `bounds[3 + a]` the upper
+    /// ones (rounded up), so that all children are tested in one pass. An
+    /// empty slot has lower `+∞` and upper `−∞` (never entered).
+    pub bounds: [[f32; WIDTH]; 6],
     /// Per child: the first triangle of a leaf, or the index of an inner
     /// node.
     pub child: [u32; WIDTH],
@@ -188,19 +192,89 @@ pub(super) struct Node4 {
 
 impl Node4 {
     const EMPTY: Node4 = Node4 {
-        min: [[f32::INFINITY; WIDTH]; 3],
-        max: [[f32::NEG_INFINITY; WIDTH]; 3],
+        bounds: [
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+        ],
         child: [u32::MAX; WIDTH],
         count: [0; WIDTH],
     };
 
     fn set(&mut self, k: usize, n: &Node, link: (u32, u32)) {
         for a in 0..3 {
-            self.min[a][k] = n.min[a];
-            self.max[a][k] = n.max[a];
+            self.bounds[a][k] = n.min[a];
+            self.bounds[3 + a][k] = n.max[a];
         }
         self.child[k] = link.0;
         self.count[k] = link.1;
+    }
+}
+
+/// The coordinates the BVH's `f32` boxes are stored in: `(p − centre) ·
+/// scale`, with `centre` the middle of the solid's bounding box and `scale`
+/// the power of two that brings its largest half-extent into `[½, 1)`.
+///
+/// Relative to the centre, `f32` boxes stay as tight as the solid is small,
+/// wherever it is (a solid 1e8 from the origin culls as well as one at the
+/// origin); the power-of-two scale keeps `f32` far from overflow and
+/// underflow for solids of any size (1e-12 or 1e12) and is exact.
+///
+/// # Invariants
+///
+/// Every stored bound is the exact real `(x − centre) · scale` rounded
+/// outward: [`BoxFrame::lower`] never exceeds it, [`BoxFrame::upper`] is
+/// never below it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct BoxFrame {
+    /// The middle of the solid's bounding box (any point would be correct).
+    pub centre: DVec3,
+    /// A power of two.
+    pub scale: f64,
+}
+
+impl BoxFrame {
+    /// The frame of a solid with bounding box `bounds`.
+    fn of(bounds: &Aabb) -> BoxFrame {
+        if bounds.is_empty() {
+            return BoxFrame {
+                centre: DVec3::ZERO,
+                scale: 1.0,
+            };
+        }
+        let centre = bounds.center();
+        let half = (bounds.max - centre).max(centre - bounds.min).max_element();
+        // 2^-e with 2^(e-1) <= half < 2^e; 1 for a single point.
+        let scale = if half > 0.0 && half.is_finite() {
+            let e = half.log2().floor() as i32 + 1;
+            2f64.powi(-e.clamp(-1000, 1000))
+        } else {
+            1.0
+        };
+        BoxFrame { centre, scale }
+    }
+
+    /// `(x − centre[axis]) · scale`, rounded to `f64`: within half an
+    /// `f64` ulp of the exact value (the scaling by a power of two is exact
+    /// unless the result is subnormal, where it errs by at most 2⁻¹⁰⁷⁵).
+    #[inline]
+    pub fn in_frame(&self, x: f64, axis: usize) -> f64 {
+        (x - self.centre[axis]) * self.scale
+    }
+
+    /// An `f32` at most the exact `(x − centre[axis]) · scale`: the rounded
+    /// value stepped one `f64` ulp down (covering its rounding), then rounded
+    /// down to `f32`.
+    pub fn lower(&self, x: f64, axis: usize) -> f32 {
+        f32_down(f64_below(self.in_frame(x, axis)))
+    }
+
+    /// An `f32` at least the exact `(x − centre[axis]) · scale`.
+    pub fn upper(&self, x: f64, axis: usize) -> f32 {
+        f32_up(f64_above(self.in_frame(x, axis)))
     }
 }
 
@@ -257,14 +331,21 @@ fn fill_node4(nodes: &[Node], i: usize, at: usize, out: &mut Vec<Node4>) {
 /// The acceleration structure of one solid, built once and shared by every
 /// query (it is `Send + Sync`; batch queries split work over rayon's pool).
 ///
+/// Only the work a caller's queries need is done: [`Accel::new`] builds the
+/// fan triangles and the BVH (all that rays need); the `yz` grid of point
+/// classification is built by the first point query, and the convexity
+/// verdict of [`Method::Normals`](super::Method::Normals) by the first
+/// query that needs it (each once, thread-safe).
+///
 /// # Invariants
 ///
 /// - `tris` (in BVH leaf order) is the fan triangulation of every face with at least three
 ///   vertices, `(v₀, vₖ, vₖ₊₁)` for `k = 1 .. n − 2` in the face's winding,
 ///   with `v₀` the face's lexicographically smallest corner `(x, y, z)`,
 ///   holding the exact input coordinates; `tri_face[i]` is its face.
-/// - The BVH's `f32` node boxes contain their triangles' `f64` boxes (bounds
-///   rounded outward), so culling never loses a triangle a ray touches.
+/// - The BVH's `f32` node boxes, in `frame` (see [`BoxFrame`]), contain
+///   their triangles' exact boxes (bounds rounded outward), so culling never
+///   loses a triangle a ray touches.
 /// - Every triangle whose projected `yz` box contains a point `(y, z)` is
 ///   listed in the grid cell of `(y, z)` (cell indices are monotone in the
 ///   coordinates).
@@ -273,7 +354,8 @@ pub struct Accel {
     pub(super) tris: Vec<YzTri>,
     pub(super) tri_face: Vec<FaceId>,
     pub(super) nodes: Vec<Node4>,
-    pub(super) grid: YzGrid,
+    pub(super) frame: BoxFrame,
+    grid: std::sync::OnceLock<(YzGrid, Duration)>,
     pub(super) bounds: Aabb,
     pub(super) boundary_edges: usize,
     pub(super) convexity: std::sync::OnceLock<Result<(), NotConvex>>,
@@ -292,8 +374,9 @@ const LEAF_SIZE: usize = 4;
 const BINS: usize = 16;
 
 impl Accel {
-    /// Builds the accel of `solid`: fan triangles, BVH and `yz` grid (the
-    /// convexity verdict of the normals method is computed on first use).
+    /// Builds the accel of `solid`: fan triangles and BVH (the `yz` grid of
+    /// point queries and the convexity verdict of the normals method are
+    /// computed on first use).
     ///
     /// Never fails: an open solid gets an accel too (the winding number is
     /// defined for it; parity and crossings then return
@@ -304,7 +387,7 @@ impl Accel {
         let start = Instant::now();
         let boundary_edges = solid.boundary_edges().count();
         let (tris, tri_face) = fan_triangles(solid);
-        let (binary, order) = build_bvh(&tris);
+        let (binary, order, frame) = build_bvh(&tris);
         let nodes = to_node4(&binary);
         drop(binary);
         let tris: Vec<YzTri> = order
@@ -316,25 +399,24 @@ impl Accel {
             .iter()
             .flat_map(YzTri::corners)
             .fold(Aabb::EMPTY, Aabb::grow);
-        let grid = build_grid(&tris, bounds);
         let memory_bytes = tris.capacity() * std::mem::size_of::<YzTri>()
             + tri_face.capacity() * std::mem::size_of::<FaceId>()
-            + nodes.capacity() * std::mem::size_of::<Node4>()
-            + grid.cell_start.capacity() * 4
-            + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
+            + nodes.capacity() * std::mem::size_of::<Node4>();
         let stats = AccelStats {
             triangles: tris.len(),
             bvh_nodes: nodes.len(),
-            grid_cells: grid.ny * grid.nz,
-            grid_entries: grid.entries.len(),
+            grid_cells: 0,
+            grid_entries: 0,
             memory_bytes,
             build_time: Duration::ZERO,
+            grid_build_time: Duration::ZERO,
         };
         let mut accel = Accel {
             tris,
             tri_face,
             nodes,
-            grid,
+            frame,
+            grid: std::sync::OnceLock::new(),
             bounds,
             boundary_edges,
             convexity: std::sync::OnceLock::new(),
@@ -344,10 +426,37 @@ impl Accel {
         accel
     }
 
-    /// Size and build time.
+    /// Size and build time (the grid's part once it is built).
     #[must_use]
     pub fn stats(&self) -> AccelStats {
-        self.stats
+        let mut stats = self.stats;
+        if let Some((grid, time)) = self.grid.get() {
+            stats.grid_cells = grid.ny * grid.nz;
+            stats.grid_entries = grid.entries.len();
+            stats.memory_bytes += grid.cell_start.capacity() * 4
+                + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
+            stats.grid_build_time = *time;
+        }
+        stats
+    }
+
+    /// Builds the `yz` grid of point classification now, if no point query
+    /// has yet (they build it on first use); for callers who want the cost
+    /// up front, or measured apart.
+    pub fn build_point_grid(&self) {
+        let _ = self.grid();
+    }
+
+    /// The `yz` grid, built on first use.
+    pub(super) fn grid(&self) -> &YzGrid {
+        &self
+            .grid
+            .get_or_init(|| {
+                let start = Instant::now();
+                let grid = build_grid(&self.tris, self.bounds);
+                (grid, start.elapsed())
+            })
+            .0
     }
 
     /// The bounding box of the solid's vertices.
@@ -506,25 +615,17 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
 // ---------------------------------------------------------------------------
 // BVH: binned SAH over triangle boxes.
 
-fn f32_down(x: f64) -> f32 {
+/// The largest `f32` not above `x` (`x` itself when representable; `−∞`
+/// below the `f32` range only for `x = −∞`).
+pub(super) fn f32_down(x: f64) -> f32 {
     let f = x as f32;
-    if f64::from(f) > x {
-        next_down_f32(f)
-    } else {
-        f
-    }
+    if f64::from(f) > x { f32_below(f) } else { f }
 }
 
-fn f32_up(x: f64) -> f32 {
-    let f = x as f32;
-    if f64::from(f) < x {
-        -next_down_f32(-f)
-    } else {
-        f
-    }
-}
-
-fn next_down_f32(f: f32) -> f32 {
+/// The next `f32` below `f` (`f` itself for `−∞` and NaN; below `±0` the
+/// smallest negative subnormal). `f32::next_down` is newer than the crate's
+/// minimum Rust.
+pub(super) fn f32_below(f: f32) -> f32 {
     if f.is_nan() || f == f32::NEG_INFINITY {
         return f;
     }
@@ -532,11 +633,30 @@ fn next_down_f32(f: f32) -> f32 {
         return -f32::from_bits(1);
     }
     let bits = f.to_bits();
-    if f > 0.0 {
-        f32::from_bits(bits - 1)
-    } else {
-        f32::from_bits(bits + 1)
+    f32::from_bits(if f > 0.0 { bits - 1 } else { bits + 1 })
+}
+
+/// The next `f64` below `x` (as [`f32_below`]).
+pub(super) fn f64_below(x: f64) -> f64 {
+    if x.is_nan() || x == f64::NEG_INFINITY {
+        return x;
     }
+    if x == 0.0 {
+        return -f64::from_bits(1);
+    }
+    let bits = x.to_bits();
+    f64::from_bits(if x > 0.0 { bits - 1 } else { bits + 1 })
+}
+
+/// The next `f64` above `x`.
+pub(super) fn f64_above(x: f64) -> f64 {
+    -f64_below(-x)
+}
+
+/// The smallest `f32` not below `x`.
+pub(super) fn f32_up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x { -f32_below(-f) } else { f }
 }
 
 #[derive(Clone, Copy)]
@@ -555,7 +675,7 @@ fn half_area(b: &Aabb) -> f64 {
 }
 
 /// Builds the BVH; returns the nodes and the triangle order of the leaves.
-fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>) {
+fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>, BoxFrame) {
     let boxes: Vec<Aabb> = tris.par_iter().map(|t| Aabb::from_points(*t)).collect();
     let centres: Vec<DVec3> = boxes.par_iter().map(Aabb::center).collect();
     let mut order: Vec<u32> = (0..tris.len() as u32).collect();
@@ -567,29 +687,35 @@ fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>) {
             first: 0,
             count: 0,
         });
-        return (nodes, order);
+        return (nodes, order, BoxFrame::of(&Aabb::EMPTY));
     }
     let _ = nodes;
     let ext = Extent {
         bounds: boxes.iter().fold(Aabb::EMPTY, |b, x| b.union(*x)),
         centres: centres.iter().fold(Aabb::EMPTY, |b, &c| b.grow(c)),
     };
-    let nodes = build_node_parallel(&boxes, &centres, &mut order, 0, &ext);
-    (nodes, order)
+    let frame = BoxFrame::of(&ext.bounds);
+    let build = Build {
+        boxes: &boxes,
+        centres: &centres,
+        frame,
+    };
+    let nodes = build_node_parallel(&build, &mut order, 0, &ext);
+    (nodes, order, frame)
 }
 
-fn node_of(bounds: &Aabb, order: &[u32], offset: usize) -> Node {
+/// What every step of the BVH build reads: the triangles' boxes and
+/// centroids, and the frame the node boxes are stored in.
+struct Build<'a> {
+    boxes: &'a [Aabb],
+    centres: &'a [DVec3],
+    frame: BoxFrame,
+}
+
+fn node_of(frame: &BoxFrame, bounds: &Aabb, order: &[u32], offset: usize) -> Node {
     Node {
-        min: [
-            f32_down(bounds.min.x),
-            f32_down(bounds.min.y),
-            f32_down(bounds.min.z),
-        ],
-        max: [
-            f32_up(bounds.max.x),
-            f32_up(bounds.max.y),
-            f32_up(bounds.max.z),
-        ],
+        min: [0, 1, 2].map(|a| frame.lower(bounds.min[a], a)),
+        max: [0, 1, 2].map(|a| frame.upper(bounds.max[a], a)),
         first: offset as u32,
         count: order.len() as u32,
     }
@@ -712,24 +838,17 @@ fn partition(
     )
 }
 
-fn build_node(
-    boxes: &[Aabb],
-    centres: &[DVec3],
-    order: &mut [u32],
-    offset: usize,
-    ext: &Extent,
-    nodes: &mut Vec<Node>,
-) {
+fn build_node(b: &Build, order: &mut [u32], offset: usize, ext: &Extent, nodes: &mut Vec<Node>) {
     let me = nodes.len();
-    nodes.push(node_of(&ext.bounds, order, offset));
+    nodes.push(node_of(&b.frame, &ext.bounds, order, offset));
     if order.len() <= LEAF_SIZE {
         return;
     }
-    let (mid, le, re) = partition(centres, boxes, order, ext);
+    let (mid, le, re) = partition(b.centres, b.boxes, order, ext);
     let (left, right) = order.split_at_mut(mid);
-    build_node(boxes, centres, left, offset, &le, nodes);
+    build_node(b, left, offset, &le, nodes);
     let second = nodes.len() as u32;
-    build_node(boxes, centres, right, offset + mid, &re, nodes);
+    build_node(b, right, offset + mid, &re, nodes);
     nodes[me].first = second;
     nodes[me].count = 0;
 }
@@ -739,24 +858,18 @@ const PARALLEL_BUILD: usize = 16 * 1024;
 
 /// [`build_node`] with the two halves of large subtrees built in parallel;
 /// returns the subtree's nodes with indices local to it.
-fn build_node_parallel(
-    boxes: &[Aabb],
-    centres: &[DVec3],
-    order: &mut [u32],
-    offset: usize,
-    ext: &Extent,
-) -> Vec<Node> {
+fn build_node_parallel(b: &Build, order: &mut [u32], offset: usize, ext: &Extent) -> Vec<Node> {
     let mut nodes = Vec::new();
     if order.len() < PARALLEL_BUILD {
-        build_node(boxes, centres, order, offset, ext, &mut nodes);
+        build_node(b, order, offset, ext, &mut nodes);
         return nodes;
     }
-    nodes.push(node_of(&ext.bounds, order, offset));
-    let (mid, le, re) = partition(centres, boxes, order, ext);
+    nodes.push(node_of(&b.frame, &ext.bounds, order, offset));
+    let (mid, le, re) = partition(b.centres, b.boxes, order, ext);
     let (left, right) = order.split_at_mut(mid);
     let (l, r) = rayon::join(
-        || build_node_parallel(boxes, centres, left, offset, &le),
-        || build_node_parallel(boxes, centres, right, offset + mid, &re),
+        || build_node_parallel(b, left, offset, &le),
+        || build_node_parallel(b, right, offset + mid, &re),
     );
     let shift = |n: &Node, base: u32| {
         let mut n = *n;
@@ -906,6 +1019,29 @@ mod tests {
     }
 
     #[test]
+    fn frame_bounds_round_outward() {
+        // Far from the origin, a tiny solid: `x − centre` is exact here, so
+        // the bounds must bracket it, and tightly (f32 relative to the
+        // solid's size, not to its distance from the origin).
+        let bounds = Aabb::from_points([DVec3::splat(1e8), DVec3::splat(1e8 + 1.0)]);
+        let frame = BoxFrame::of(&bounds);
+        assert_eq!(frame.scale, 1.0);
+        for x in [1e8, 1e8 + 1.0, 1e8 + 2f64.powi(-26), 1e8 + 0.75] {
+            let exact = (x - frame.centre.x) * frame.scale;
+            let (lo, hi) = (frame.lower(x, 0), frame.upper(x, 0));
+            assert!(f64::from(lo) <= exact && exact <= f64::from(hi), "{x}");
+            assert!(f64::from(hi) - f64::from(lo) < 1e-6, "{x}: {lo} {hi}");
+        }
+        // Huge and tiny solids keep the frame's coordinates near 1.
+        for size in [1e-300, 1e-12, 1e12, 1e300] {
+            let b = Aabb::from_points([DVec3::ZERO, DVec3::splat(size)]);
+            let f = BoxFrame::of(&b);
+            let top = f.upper(size, 1);
+            assert!((0.5..=1.0).contains(&top), "{size}: {top}");
+        }
+    }
+
+    #[test]
     fn accel_of_platonic_solids() {
         for solid in [
             builders::tetrahedron(),
@@ -916,6 +1052,8 @@ mod tests {
             let accel = Accel::new(&solid);
             assert!(accel.is_closed());
             assert_eq!(accel.convexity(), Ok(()));
+            assert_eq!(accel.stats().grid_entries, 0, "the grid is built lazily");
+            accel.build_point_grid();
             let s = accel.stats();
             assert!(s.triangles >= solid.face_count());
             assert!(s.grid_entries >= s.triangles);

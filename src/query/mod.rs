@@ -4,8 +4,11 @@
 //! ([`Accel::new`]) and shared (it is `Sync`) by any number of queries and
 //! threads. The accel holds a fan triangulation of every face (exact input
 //! coordinates, each triangle remembering its [`FaceId`](crate::mesh::FaceId)),
-//! a bounding-volume hierarchy for rays in any direction, and a uniform grid
-//! over the `yz` projection for the `+x` parity rays of point classification.
+//! a bounding-volume hierarchy for rays in any direction (`f32` boxes stored
+//! relative to the solid's centre, rounded outward, so culling works as well
+//! far from the origin as near it), and a uniform grid over the `yz`
+//! projection for the `+x` parity rays of point classification (built by the
+//! first point query: a scene that only casts rays never pays for it).
 //!
 //! # What "exact" means here
 //!
@@ -28,12 +31,13 @@ mod line_face;
 mod point_in_convex;
 mod point_in_solid;
 mod ray_solid;
+mod ray_stream;
 mod winding;
 
 pub use accel::{Accel, AccelStats, NotConvex};
 pub use line_face::{LineFaceHit, LineKind, intersect_line_face};
 pub use point_in_solid::Method;
-pub use ray_solid::{Crossing, RayCrossings, Transition};
+pub use ray_solid::{Crossing, RayCrossings, Transition, TraversalStats};
 
 use thiserror::Error;
 

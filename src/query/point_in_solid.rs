@@ -137,7 +137,7 @@ impl Accel {
         // sort, O(n + cells)) so that each cell's triangles are fetched from
         // memory once per group rather than once per point; answers are
         // written back in input order.
-        let g = &self.grid;
+        let g = self.grid();
         let cells: Vec<u32> = points
             .par_iter()
             .with_min_len(4096)
@@ -170,7 +170,7 @@ impl Accel {
 
     /// The `+x` ray from `p`: on the boundary, or the signed crossing count.
     pub(super) fn x_ray(&self, p: DVec3) -> XRay {
-        let g = &self.grid;
+        let g = self.grid();
         // Outside the projected box nothing can be crossed or touched.
         if !(p.y >= g.y0 && p.y <= g.y1 && p.z >= g.z0 && p.z <= g.z1) || p.x > self.bounds.max.x {
             return XRay::Winding(0);

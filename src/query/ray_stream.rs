@@ -1,0 +1,163 @@
+//! First hits of many rays on one thread, interleaved: a few rays are walked
+//! through the BVH in turn, one node each, and each step asks for the memory
+//! its next step needs before handing over to the next ray. A ray's cache
+//! misses (the BVH and its triangles are far larger than the caches on big
+//! meshes) then overlap the other rays' work instead of stalling the core.
+//!
+//! Every ray visits the same nodes and triangles in the same order as
+//! [`Accel::first_hit`] and decides each triangle with the same exact
+//! predicates, so the answers are the same.
+
+use crate::geom::Ray;
+
+use super::Accel;
+use super::accel::WIDTH;
+use super::ray_solid::{BestHit, Crossing, RayBox, prefetch};
+
+/// Rays walked in turn.
+const LANES: usize = 8;
+
+/// One ray's walk in progress.
+struct Walk {
+    /// Index of the ray in the batch.
+    ray: usize,
+    rays_box: RayBox,
+    best: BestHit,
+    /// The best crossing's `t` (`+∞` before any).
+    t_limit: f64,
+    /// `t_limit` as the slab tests see it ([`RayBox::limit`]).
+    limit: f32,
+    /// The node to open next and its entry (requested from memory).
+    next: Option<(u32, f32)>,
+    /// Leaves of the node opened last, nearest first: entry, first
+    /// triangle, count (their triangles requested from memory).
+    leaves: [(f32, u32, u32); WIDTH],
+    n_leaves: usize,
+    /// Deferred subtrees with their entries; nearer on top.
+    stack: smallvec::SmallVec<[(u32, f32); 64]>,
+}
+
+impl Walk {
+    fn new(ray: usize, r: &Ray, accel: &Accel) -> Walk {
+        let rays_box = RayBox::new(r, &accel.frame);
+        let limit = rays_box.limit(f64::INFINITY);
+        Walk {
+            ray,
+            rays_box,
+            best: None,
+            t_limit: f64::INFINITY,
+            limit,
+            next: Some((0, 0.0)),
+            leaves: [(0.0, 0, 0); WIDTH],
+            n_leaves: 0,
+            stack: smallvec::SmallVec::new(),
+        }
+    }
+}
+
+impl Accel {
+    /// The first hits of `rays` (checked valid by the caller) into `out`,
+    /// in order.
+    pub(super) fn first_hits_interleaved(&self, rays: &[Ray], out: &mut [Option<Crossing>]) {
+        debug_assert_eq!(rays.len(), out.len());
+        let mut lanes: smallvec::SmallVec<[Walk; LANES]> = (0..rays.len().min(LANES))
+            .map(|k| Walk::new(k, &rays[k], self))
+            .collect();
+        let mut fed = lanes.len();
+        while !lanes.is_empty() {
+            let mut k = 0;
+            while k < lanes.len() {
+                let w = &mut lanes[k];
+                if self.step(w, &rays[w.ray]) {
+                    out[w.ray] = w.best.map(|(t, i, s)| self.crossing(t, i, s));
+                    if fed < rays.len() {
+                        lanes[k] = Walk::new(fed, &rays[fed], self);
+                        fed += 1;
+                    } else {
+                        lanes.swap_remove(k);
+                        continue;
+                    }
+                }
+                k += 1;
+            }
+        }
+    }
+
+    /// One step of a walk: test the leaves found by the previous step, then
+    /// open the next node (or fetch the next deferred one). Returns whether
+    /// the walk is over.
+    #[inline(always)]
+    fn step(&self, w: &mut Walk, ray: &Ray) -> bool {
+        for j in 0..w.n_leaves {
+            let (t, first, count) = w.leaves[j];
+            if t > w.limit {
+                continue;
+            }
+            for i in first..first + count {
+                let t_new = self.consider_for_first_hit(ray, i, &mut w.best, w.t_limit);
+                if t_new != w.t_limit {
+                    w.t_limit = t_new;
+                    w.limit = w.rays_box.limit(t_new);
+                }
+            }
+        }
+        w.n_leaves = 0;
+        let current = match w.next.take() {
+            Some((n, t)) if t <= w.limit => n,
+            _ => {
+                // The next deferred subtree still in reach: ask for its node
+                // now and open it on the next turn.
+                while let Some((n, t)) = w.stack.pop() {
+                    if t <= w.limit {
+                        prefetch(std::slice::from_ref(&self.nodes[n as usize]));
+                        w.next = Some((n, t));
+                        return false;
+                    }
+                }
+                return true;
+            }
+        };
+        let node = &self.nodes[current as usize];
+        let (entry, mut mask) = w.rays_box.enter4(node, w.limit);
+        // The children the ray may touch, nearer first (ties by slot).
+        let mut order: [(f32, usize); WIDTH] = [(0.0, 0); WIDTH];
+        let mut len = 0;
+        while mask != 0 {
+            let k = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let t = entry[k];
+            let mut j = len;
+            while j > 0 && order[j - 1].0 > t {
+                order[j] = order[j - 1];
+                j -= 1;
+            }
+            order[j] = (t, k);
+            len += 1;
+        }
+        // Leaves wait for the next turn; the nearest inner child is opened
+        // then too; the other inner children are deferred (nearer popped
+        // first). All of them are requested from memory now.
+        let mut deferred: [(u32, f32); WIDTH] = [(0, 0.0); WIDTH];
+        let mut n_deferred = 0;
+        for &(t, k) in &order[..len] {
+            let (child, count) = (node.child[k], node.count[k]);
+            if count > 0 {
+                prefetch(&self.tris[child as usize..(child + count) as usize]);
+                w.leaves[w.n_leaves] = (t, child, count);
+                w.n_leaves += 1;
+            } else {
+                prefetch(std::slice::from_ref(&self.nodes[child as usize]));
+                if w.next.is_none() {
+                    w.next = Some((child, t));
+                } else {
+                    deferred[n_deferred] = (child, t);
+                    n_deferred += 1;
+                }
+            }
+        }
+        for &d in deferred[..n_deferred].iter().rev() {
+            w.stack.push(d);
+        }
+        false
+    }
+}
