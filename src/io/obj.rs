@@ -9,7 +9,10 @@
 //! indices, and the group and material in force; it also catches every error
 //! that tobj would report without a line (index zero or out of range, a face
 //! with fewer than three corners, binary data) so that each error names the
-//! file and the line. The two are then aligned face by face.
+//! file and the line. tobj runs only on bytes the pass accepted: the pass
+//! also checks texture and normal indices, which tobj overflows on when they
+//! are far out of range. Both split words at Unicode whitespace, so they
+//! agree on which lines are elements. The two are then aligned face by face.
 //!
 //! Welding of coincident vertices is done afterwards by [`weld`](super::weld).
 
@@ -217,11 +220,13 @@ pub fn import_obj_bytes(
     options: &ObjOptions,
 ) -> Result<ObjImport, ObjError> {
     let start = std::time::Instant::now();
-    // The line pass and tobj read the same bytes independently.
-    let (scan, models) = rayon::join(|| scan(path, bytes), || run_tobj(path, bytes));
-    let scan = scan?;
+    // The line pass runs first and tobj only on bytes it accepted: tobj
+    // overflows (a panic in debug builds, wrong indexing in release) on face
+    // indices far out of range, texture and normal indices included.
+    let scan = scan(path, bytes)?;
+    let models = run_tobj(path, bytes)?;
     let parsed = start.elapsed().as_secs_f64();
-    let positions = align_positions(path, bytes, &scan, &models?)?;
+    let positions = align_positions(path, bytes, &scan, &models)?;
     let mut soup = PolygonSoup {
         positions,
         polygons: Vec::with_capacity(scan.faces.len()),
@@ -250,7 +255,7 @@ pub fn import_obj_bytes(
         vertex_numbers,
         weld: report,
         stage_seconds: vec![
-            ("parse (tobj ∥ line pass)", parsed),
+            ("parse (line pass, then tobj)", parsed),
             ("align and assemble soup", assembled - parsed),
             ("weld", welded - assembled),
         ],
@@ -285,6 +290,40 @@ struct Scan {
     names: Vec<Arc<str>>,
 }
 
+/// The per-corner indices besides the vertex's: `v/vt/vn`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Attribute {
+    /// `vt`, a texture coordinate.
+    Texture = 0,
+    /// `vn`, a normal.
+    Normal = 1,
+}
+
+impl Attribute {
+    /// The error for a face naming an element of this kind that does not
+    /// exist (index 0, before the first, or after the last); `defined` is
+    /// how many there are before the face (for a negative index) or in the
+    /// file.
+    fn out_of_range(self, path: &Path, line: usize, index: i64, defined: usize) -> ObjError {
+        let (what, lines) = match self {
+            Attribute::Texture => ("texture coordinate", "vt"),
+            Attribute::Normal => ("normal", "vn"),
+        };
+        let known = if index == 0 {
+            "OBJ indices start at 1, or count back from -1".to_string()
+        } else if index < 0 {
+            format!("{defined} `{lines}` lines come before this face")
+        } else {
+            format!("the file has {defined} `{lines}` lines")
+        };
+        ObjError::Parse {
+            path: path.to_path_buf(),
+            line: Some(line),
+            message: format!("{what} index {index} does not exist: {known}"),
+        }
+    }
+}
+
 fn line_of_offset(bytes: &[u8], offset: usize) -> usize {
     1 + bytes[..offset].iter().filter(|&&b| b == b'\n').count()
 }
@@ -298,51 +337,62 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
             line: line_of_offset(bytes, offset),
         });
     }
-    if let Err(e) = std::str::from_utf8(bytes) {
-        return Err(ObjError::Binary {
-            path: p(),
-            line: line_of_offset(bytes, e.valid_up_to()),
-        });
-    }
+    let all = match std::str::from_utf8(bytes) {
+        Ok(all) => all,
+        Err(e) => {
+            return Err(ObjError::Binary {
+                path: p(),
+                line: line_of_offset(bytes, e.valid_up_to()),
+            });
+        }
+    };
     let mut s = Scan::default();
     let mut group: Option<usize> = None;
     let mut material: Option<usize> = None;
+    // How many `vt` and `vn` lines came before the current line, and the
+    // texture or normal indices that are 0 or name no element before their
+    // face, with that count (judged at the end, see below).
+    let mut attributes = [0usize; 2];
+    let mut suspect: Vec<(usize, Attribute, i64, usize)> = Vec::new();
     let mut offset = 0;
     let mut line = 0usize;
-    while offset < bytes.len() {
+    while offset < all.len() {
         line += 1;
         let end = memchr::memchr(b'\n', &bytes[offset..]).map_or(bytes.len(), |i| offset + i);
-        let text = &bytes[offset..end];
+        // `\n` is ASCII, so both ends are character boundaries.
+        let text = &all[offset..end];
         let start = offset;
         offset = end + 1;
-        let mut words = text
-            .split(|b| b.is_ascii_whitespace())
-            .filter(|w| !w.is_empty());
+        // Words split at Unicode whitespace, exactly as tobj splits them.
+        let mut words = text.split_whitespace();
         let Some(keyword) = words.next() else {
             continue;
         };
         // What follows the keyword (names may contain spaces).
-        let rest = |keyword: &[u8]| {
+        let rest = |keyword: &str| {
             let at = keyword.as_ptr() as usize - text.as_ptr() as usize + keyword.len();
-            String::from_utf8_lossy(&text[at..]).trim().to_string()
+            text[at..].trim().to_string()
         };
         match keyword {
-            b"v" => {
+            "v" => {
                 s.vertex_lines.push(u32::try_from(line).unwrap_or(u32::MAX));
                 s.vertex_offsets.push(start);
             }
-            b"f" | b"l" => {
-                let polyline = keyword == b"l";
+            "vt" => attributes[Attribute::Texture as usize] += 1,
+            "vn" => attributes[Attribute::Normal as usize] += 1,
+            "f" | "l" => {
+                let polyline = keyword == "l";
                 let first = s.corners.len();
                 let defined = s.vertex_lines.len();
                 for word in words {
-                    let index_text = word.split(|&b| b == b'/').next().unwrap_or_default();
                     let bad = || ObjError::BadCorner {
                         path: p(),
                         line,
-                        token: String::from_utf8_lossy(word).into_owned(),
+                        token: word.to_string(),
                     };
-                    let index = parse_index(index_text).ok_or_else(bad)?;
+                    let mut parts = word.split('/');
+                    let index_text = parts.next().unwrap_or_default();
+                    let index = parse_index(index_text.as_bytes()).ok_or_else(bad)?;
                     let resolved = match index {
                         0 => return Err(ObjError::ZeroIndex { path: p(), line }),
                         i if i < 0 => {
@@ -361,6 +411,20 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                         // are known.
                         i => usize::try_from(i - 1).unwrap_or(usize::MAX),
                     };
+                    for kind in [Attribute::Texture, Attribute::Normal] {
+                        let Some(text) = parts.next() else { break };
+                        if text.is_empty() {
+                            continue;
+                        }
+                        let index = parse_index(text.as_bytes()).ok_or_else(bad)?;
+                        let before = attributes[kind as usize];
+                        if index == 0 || index.unsigned_abs() as usize > before {
+                            suspect.push((line, kind, index, before));
+                        }
+                    }
+                    if parts.next().is_some() {
+                        return Err(bad());
+                    }
                     s.corners.push(resolved);
                 }
                 let len = s.corners.len() - first;
@@ -386,7 +450,7 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                     polyline,
                 });
             }
-            b"g" | b"o" => {
+            "g" | "o" => {
                 // As tobj: the rest of the line, trimmed, names the group.
                 let name = rest(keyword);
                 let name = if name.is_empty() {
@@ -396,7 +460,7 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                 };
                 group = Some(intern(&mut s.names, name));
             }
-            b"usemtl" => {
+            "usemtl" => {
                 let name = rest(keyword);
                 material = (!name.is_empty()).then(|| intern(&mut s.names, &name));
             }
@@ -413,6 +477,16 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                 index: i64::try_from(bad).map_or(i64::MAX, |i| i.saturating_add(1)),
                 available,
             });
+        }
+    }
+    // A file without `vt` (or `vn`) lines may carry dangling texture (or
+    // normal) indices: tobj ignores them, and so do we. Otherwise every one
+    // must exist: negative ones before their face, positive ones anywhere.
+    for (line, kind, index, before) in suspect {
+        let total = attributes[kind as usize];
+        let defined = if index < 0 { before } else { total };
+        if total > 0 && (index == 0 || index.unsigned_abs() as usize > defined) {
+            return Err(kind.out_of_range(path, line, index, defined));
         }
     }
     if !s.faces.iter().any(|f| !f.polyline) {
@@ -737,6 +811,69 @@ mod tests {
         .unwrap_err();
         assert!(matches!(junk, ObjError::Binary { line: 2, .. }), "{junk}");
         assert!(junk.to_string().starts_with("j:2:"));
+    }
+
+    #[test]
+    fn texture_and_normal_indices_that_name_nothing_are_errors() {
+        // Found by fuzzing (fixtures/fuzz/obj_validate/): a normal index
+        // counting back past the first `vn` made tobj overflow (`vn * 3`).
+        let attributes = "vt 0 0\nvn 0 0 1\n";
+        for (corner, what) in [
+            ("1/1/-125", "normal index -125"),
+            ("1/-2", "texture coordinate index -2"),
+            (
+                "1/1/6148914691236517207",
+                "normal index 6148914691236517207",
+            ),
+            ("1/2", "texture coordinate index 2"),
+            ("1/0/1", "texture coordinate index 0"),
+            ("1//0", "normal index 0"),
+        ] {
+            let text = format!("{TET}{attributes}f {corner} 2 3\n");
+            let e = read(&text).unwrap_err();
+            assert_eq!(e.line(), Some(11), "{corner}: {e}");
+            let message = e.to_string();
+            // Indices of more than 18 digits are not read as numbers.
+            if corner.len() > 20 {
+                assert!(matches!(e, ObjError::BadCorner { .. }), "{message}");
+            } else {
+                assert!(message.contains(what), "{corner}: {message}");
+            }
+        }
+        // Without any `vt` or `vn` lines, such indices are ignored (as tobj
+        // does), and in range they are accepted.
+        assert!(read(&format!("{TET}f 1/9/-9 2/9/-9 3/9/-9\n")).is_ok());
+        assert!(read(&format!("{TET}{attributes}f 1/1/1 2/-1/-1 3//1\n")).is_ok());
+        let e = read(&format!("{TET}{attributes}f 1/1/1/1 2 3\n")).unwrap_err();
+        assert!(matches!(e, ObjError::BadCorner { line: 11, .. }), "{e}");
+    }
+
+    #[test]
+    fn the_most_negative_index_is_an_error() {
+        for corner in [
+            "-9223372036854775808",
+            "9223372036854775807",
+            "-999999999999999999",
+        ] {
+            let e = read(&format!("{TET}f 1 2 {corner}\n")).unwrap_err();
+            assert_eq!(e.line(), Some(9), "{corner}: {e}");
+        }
+    }
+
+    #[test]
+    fn words_split_at_unicode_whitespace_as_tobj_splits_them() {
+        // A vertical tab or a no-break space separates words for tobj; the
+        // line pass once split at ASCII whitespace only, so it missed the
+        // `v` line and numbered the later vertices differently.
+        for space in ['\u{b}', '\u{a0}', '\u{2003}'] {
+            let text = format!("v 9 9 9\nv{space}5 5 5\n{TET}f{space}4 6 5\n");
+            let import = read(&text).unwrap();
+            assert_eq!(import.soup.positions[1], DVec3::splat(5.0));
+            assert_eq!(import.soup.positions[2], DVec3::ZERO);
+            assert_eq!(import.vertex_lines[2], 3);
+            assert_eq!(&import.soup.polygons[4].vertices[..], &[3, 5, 4]);
+            assert_eq!(import.soup.polygons[4].attributes.line, Some(11));
+        }
     }
 
     #[test]

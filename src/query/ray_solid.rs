@@ -105,6 +105,32 @@ impl RayBox {
     }
 }
 
+/// The same ray with its direction multiplied by a power of two so that its
+/// largest component lies in `[1, 2)`, and that factor. Exact: the line and
+/// the half-line `t > 0` do not change, only the unit of `t`; the exact
+/// predicates then never see a direction whose products overflow or
+/// underflow (a direction of `1e308` or `5e-324`; found by fuzzing,
+/// fixtures/fuzz/queries/).
+fn unit_scaled(ray: &Ray) -> (Ray, f64) {
+    let largest = ray.direction.abs().max_element();
+    // `largest` is finite and non-zero (a checked ray): its binary exponent
+    // lies in −1074 ..= 1023, and 2^−e is applied in two exact halves.
+    let e = largest.log2().floor() as i32;
+    let (half, rest) = (-e / 2, -e - (-e / 2));
+    let direction = ray.direction * 2f64.powi(half) * 2f64.powi(rest);
+    // `origin + t · direction·f = origin + (t·f) · direction`: a parameter
+    // along the scaled ray times `f` is the caller's parameter.
+    let factor = 2f64.powi(half) * 2f64.powi(rest);
+    (Ray::new(ray.origin, direction), factor)
+}
+
+/// A parameter along the scaled direction of [`unit_scaled`] in units of the
+/// caller's direction: monotone, and still `> 0` when it underflows.
+fn unscaled_t(t: f64, factor: f64) -> f64 {
+    let t = t * factor;
+    if t > 0.0 { t } else { f64::from_bits(1) }
+}
+
 /// How a ray meets one triangle.
 enum TriHit {
     Miss,
@@ -141,6 +167,8 @@ impl Accel {
     pub fn ray_crossings(&self, ray: &Ray) -> Result<RayCrossings, QueryError> {
         self.check_ray(ray, 0)?;
         self.require_closed()?;
+        let (ray, t_scale) = unit_scaled(ray);
+        let ray = &ray;
         let mut on_boundary = false;
         let mut hits: Vec<(f64, u32, Sign)> = Vec::new();
         self.traverse(ray, f64::INFINITY, |i, _| {
@@ -168,7 +196,7 @@ impl Accel {
         alternate(&mut hits, inside);
         let hits = hits
             .into_iter()
-            .map(|(t, i, s)| self.crossing(t, i, s))
+            .map(|(t, i, s)| self.crossing(unscaled_t(t, t_scale), i, s))
             .collect();
         Ok(RayCrossings { origin, hits })
     }
@@ -237,6 +265,8 @@ impl Accel {
     }
 
     fn first_hit_unchecked(&self, ray: &Ray) -> Option<Crossing> {
+        let (ray, t_scale) = unit_scaled(ray);
+        let ray = &ray;
         let mut best: Option<(f64, u32, Sign)> = None;
         self.traverse(ray, f64::INFINITY, |i, t_max| {
             // Once a crossing is known, a triangle whose rounded `t` is
@@ -264,7 +294,7 @@ impl Accel {
             }
             t_max
         });
-        best.map(|(t, i, s)| self.crossing(t, i, s))
+        best.map(|(t, i, s)| self.crossing(unscaled_t(t, t_scale), i, s))
     }
 
     fn check_ray(&self, ray: &Ray, index: usize) -> Result<(), QueryError> {
