@@ -513,6 +513,34 @@ mod tests {
     use crate::mesh::builders;
 
     #[test]
+    fn huge_and_tiny_directions_give_the_same_crossings() {
+        // Found by fuzzing (the queries target): a direction component of
+        // −f64::MAX overflowed the exact line tests.
+        let accel = Accel::new(&builders::l_prism());
+        let origin = DVec3::new(0.5, 0.5, 0.5);
+        let unit = DVec3::new(0.25, 1.0, -0.125);
+        let reference = accel.ray_crossings(&Ray::new(origin, unit)).unwrap();
+        assert_eq!(reference.origin, Containment::Inside);
+        for scale in [f64::MAX, 1e300, 1e-300, f64::MIN_POSITIVE] {
+            let ray = Ray::new(origin, unit * scale);
+            let answer = accel.ray_crossings(&ray).unwrap();
+            assert_eq!(answer.origin, reference.origin, "{scale}");
+            let faces = |r: &RayCrossings| -> Vec<_> {
+                r.hits.iter().map(|h| (h.face, h.transition)).collect()
+            };
+            assert_eq!(faces(&answer), faces(&reference), "{scale}");
+            let first = accel.first_hit(&ray).unwrap().unwrap();
+            assert_eq!(first.t, answer.hits[0].t);
+            assert!(answer.hits.iter().all(|h| h.t > 0.0));
+        }
+        // Along one axis the parameter is exact: 1 / f64::MAX.
+        let down = Ray::new(DVec3::ZERO, DVec3::new(0.0, 0.0, -f64::MAX));
+        let cube = Accel::new(&builders::cube());
+        let hit = cube.first_hit(&down).unwrap().unwrap();
+        assert_eq!(hit.t, 1.0 / f64::MAX);
+    }
+
+    #[test]
     fn ray_through_a_cube() {
         let accel = Accel::new(&builders::cube());
         let r = accel

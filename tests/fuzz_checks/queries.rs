@@ -7,10 +7,11 @@
 //! - on these closed solids parity, winding and (on convex ones) the face
 //!   normals classify every finite point alike, and the winding number is a
 //!   finite number;
-//! - ray crossings are ascending with `t > 0`, their transitions alternate
-//!   from the origin's class and end with an exit; within the predicates'
-//!   exact range ([`in_exact_range`]) the origin's class is the point's
-//!   class and the first hit is the first crossing;
+//! - ray crossings are ascending with `t > 0`; within the predicates' exact
+//!   range ([`in_exact_range`]) their transitions alternate from the
+//!   origin's class and end with an exit, the origin's class is the point's
+//!   class and the first hit is one of the crossings, entering or leaving as
+//!   the first does;
 //! - batch answers equal the single answers, and a batch error names the
 //!   first bad element;
 //! - the CSG trees refuse non-finite points and invalid rays (the `try_`
@@ -183,9 +184,10 @@ fn check_point(solid: &Fixed, p: DVec3) {
 /// (`geom::exact`: no product of coordinates overflows or underflows): every
 /// origin coordinate 0 or of magnitude `1e-90 ..= 1e90`, and every direction
 /// component 0 or at least `1e-90` of the largest (the direction's scale
-/// does not matter: it is normalised by a power of two). Outside it, rays
-/// must still not panic, and crossings must still be sorted, positive and
-/// alternating, but their decisions may disagree with the point queries.
+/// does not matter: it is normalised by a power of two). Outside it (a
+/// subnormal coordinate next to a unit model, found by fuzzing), products in
+/// Shewchuk's arithmetic underflow and the decisions may be wrong: rays must
+/// still not panic, and crossings must still be sorted and positive.
 fn in_exact_range(ray: &Ray) -> bool {
     let ok = |x: f64| x == 0.0 || (1e-90..=1e90).contains(&x.abs());
     let largest = ray.direction.abs().max_element();
@@ -243,23 +245,38 @@ fn check_ray(solid: &Fixed, ray: &Ray) {
         } else {
             Transition::Enter
         };
-        assert_eq!(
-            hit.transition, want,
-            "{}: {ray:?}: {crossings:?}",
-            solid.name
-        );
+        if exact {
+            assert_eq!(
+                hit.transition, want,
+                "{}: {ray:?}: {crossings:?}",
+                solid.name
+            );
+        }
         inside = !inside;
     }
     assert!(
-        !inside,
+        !exact || !inside,
         "{}: {ray:?} ends inside: {crossings:?}",
         solid.name
     );
     match (first, crossings.hits.first()) {
         (None, None) => {}
         (Some(a), Some(b)) => {
+            // Crossings whose rounded `t` are inverted are listed in the
+            // perturbed ray's order, keeping the `t` slots ascending; the
+            // first hit is chosen by rounded `t` (a fuzzing finding showed a
+            // grazing start reorders the two): the same crossing, not
+            // necessarily the same `t`.
             if exact {
-                assert_eq!(a.t, b.t, "{}: first hit on {ray:?}", solid.name);
+                assert_eq!(a.transition, b.transition, "{}: {ray:?}", solid.name);
+                assert!(
+                    crossings
+                        .hits
+                        .iter()
+                        .any(|h| h.face == a.face && h.transition == a.transition),
+                    "{}: first hit {a:?} is no crossing of {ray:?}",
+                    solid.name
+                );
             }
         }
         (Some(_), None) | (None, Some(_)) if !exact => {}
