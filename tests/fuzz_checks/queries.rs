@@ -10,8 +10,7 @@
 //! - ray crossings are ascending with `t > 0`; within the predicates' exact
 //!   range ([`in_exact_range`]) their transitions alternate from the
 //!   origin's class and end with an exit, the origin's class is the point's
-//!   class and the first hit is one of the crossings, entering or leaving as
-//!   the first does;
+//!   class and the first hit is one of the crossings;
 //! - batch answers equal the single answers, and a batch error names the
 //!   first bad element;
 //! - the CSG trees refuse non-finite points and invalid rays (the `try_`
@@ -262,13 +261,14 @@ fn check_ray(solid: &Fixed, ray: &Ray) {
     match (first, crossings.hits.first()) {
         (None, None) => {}
         (Some(a), Some(b)) => {
-            // Crossings whose rounded `t` are inverted are listed in the
+            // Crossings whose rounded `t` tie or are inverted (a ray
+            // through a vertex, or starting beside one) are listed in the
             // perturbed ray's order, keeping the `t` slots ascending; the
-            // first hit is chosen by rounded `t` (a fuzzing finding showed a
-            // grazing start reorders the two): the same crossing, not
-            // necessarily the same `t`.
+            // first hit is chosen by rounded `t`, ties by triangle order
+            // (fuzzing findings): it is one of the crossings, not
+            // necessarily the first one listed.
+            let _ = b;
             if exact {
-                assert_eq!(a.transition, b.transition, "{}: {ray:?}", solid.name);
                 assert!(
                     crossings
                         .hits
