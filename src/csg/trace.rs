@@ -245,6 +245,7 @@ impl Csg {
                 scratch.leaf.clear();
                 let primitive = &self.leaves[id.0 as usize].primitive;
                 let inside = primitive.intersect_ray(ray, &mut scratch.leaf, stats);
+                drop_instants(&mut scratch.leaf);
                 let crossings = scratch.leaf.iter().take(limit.unwrap_or(usize::MAX));
                 out.extend(crossings.map(|c| Hit {
                     t: c.t,
@@ -281,6 +282,26 @@ impl Csg {
             }
         }
     }
+}
+
+/// Removes pairs of consecutive crossings at the same `t`: a leaf may list
+/// two (a ray through a reflex edge of a polyhedron, tangent to a sphere),
+/// an instant inside or outside that a span list, strictly ascending, does
+/// not hold. Parity after each remaining crossing is unchanged. Found by
+/// fuzzing the scene loader (fixtures/fuzz/scene_load/).
+fn drop_instants(crossings: &mut Vec<Crossing>) {
+    let mut kept = 0;
+    let mut i = 0;
+    while i < crossings.len() {
+        if i + 1 < crossings.len() && crossings[i].t == crossings[i + 1].t {
+            i += 2;
+        } else {
+            crossings[kept] = crossings[i];
+            kept += 1;
+            i += 1;
+        }
+    }
+    crossings.truncate(kept);
 }
 
 thread_local! {
