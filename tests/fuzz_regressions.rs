@@ -47,6 +47,15 @@ fn obj_validate_findings_stay_fixed() {
 }
 
 #[test]
+fn scene_load_findings_stay_fixed() {
+    let base = fixtures().join("scenes");
+    let count = replay("scene_load", |bytes| {
+        fuzz_checks::scene_load::run(bytes, &base)
+    });
+    assert!(count > 0, "no pinned scene_load inputs");
+}
+
+#[test]
 fn queries_findings_stay_fixed() {
     let count = replay("queries", fuzz_checks::queries::run);
     assert!(count > 0, "no pinned queries inputs");
