@@ -96,7 +96,7 @@ impl Accel {
             Method::Normals => self.classify_convex(p),
             Method::Winding => Ok(match self.x_ray(p) {
                 XRay::OnBoundary => Containment::OnBoundary,
-                // Found by fuzzing (fixtures/fuzz/queries/): 2e-69 outside a
+                // Found by the queries fuzz check (fixtures/fuzz/queries/): 2e-69 outside a
                 // face and 5e-324 above another, the solid-angle sum was
                 // near 1.
                 XRay::Winding(w) if self.is_closed() => {
@@ -323,8 +323,8 @@ mod tests {
     #[test]
     fn far_points_are_outside_by_every_method() {
         // Points far left of the box on lines through the solid: the exact
-        // predicates overflowed on their coordinates (fuzzing,
-        // fixtures/fuzz/queries/).
+        // predicates would overflow on their coordinates (the no-panic
+        // audit, after the queries fuzz check's far points).
         for solid in [builders::cube(), builders::l_prism()] {
             let accel = Accel::new(&solid);
             for x in [-f64::MAX, -1e300, -1e154, f64::MAX] {

@@ -109,8 +109,8 @@ impl RayBox {
 /// largest component lies in `[1, 2)`, and that factor. Exact: the line and
 /// the half-line `t > 0` do not change, only the unit of `t`; the exact
 /// predicates then never see a direction whose products overflow or
-/// underflow (a direction of `1e308` or `5e-324`; found by fuzzing,
-/// fixtures/fuzz/queries/).
+/// underflow (a direction of `1e308` or `5e-324`; found by the queries
+/// fuzz check).
 fn unit_scaled(ray: &Ray) -> (Ray, f64) {
     let largest = ray.direction.abs().max_element();
     // `largest` is finite and non-zero (a checked ray): its binary exponent
@@ -514,7 +514,7 @@ mod tests {
 
     #[test]
     fn huge_and_tiny_directions_give_the_same_crossings() {
-        // Found by fuzzing (the queries target): a direction component of
+        // Found by the queries fuzz check: a direction component of
         // −f64::MAX overflowed the exact line tests.
         let accel = Accel::new(&builders::l_prism());
         let origin = DVec3::new(0.5, 0.5, 0.5);

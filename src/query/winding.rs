@@ -126,7 +126,7 @@ mod tests {
 
     #[test]
     fn far_points_get_a_number_not_nan() {
-        // Found by fuzzing (fixtures/fuzz/queries/): lengths of corner
+        // Found by the queries fuzz check (fixtures/fuzz/queries/): lengths of corner
         // vectors overflowed for a point at −1.8e308 and the sum was NaN.
         let accel = Accel::new(&builders::cube());
         for p in [
