@@ -112,8 +112,9 @@ pub enum ObjError {
         /// Its position as read.
         position: DVec3,
     },
-    /// tobj rejected the file; `line` is where our own pass found the
-    /// problem, when it could.
+    /// tobj rejected the file (`line` is where our own pass found the
+    /// problem, when it could), or a face names a texture coordinate or a
+    /// normal that does not exist.
     #[error("{}{}: {message}", .path.display(), .line.map(|l| format!(":{l}")).unwrap_or_default())]
     Parse {
         /// The file.
