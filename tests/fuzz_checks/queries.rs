@@ -260,14 +260,13 @@ fn check_ray(solid: &Fixed, ray: &Ray) {
     );
     match (first, crossings.hits.first()) {
         (None, None) => {}
-        (Some(a), Some(b)) => {
+        (Some(a), Some(_)) => {
             // Crossings whose rounded `t` tie or are inverted (a ray
             // through a vertex, or starting beside one) are listed in the
             // perturbed ray's order, keeping the `t` slots ascending; the
             // first hit is chosen by rounded `t`, ties by triangle order
             // (fuzzing findings): it is one of the crossings, not
             // necessarily the first one listed.
-            let _ = b;
             if exact {
                 assert!(
                     crossings
