@@ -19,6 +19,13 @@ fn classify_names_a_bad_line() {
     let (code, _, err) = wingedge(&["classify", DRILLED, "-"], "0 0 0\n1 2\n");
     assert_eq!(code, 2);
     assert!(err.contains("-:2:"), "{err}");
+    // Non-finite points and zero directions are refused, not answered.
+    let (code, out, err) = wingedge(&["classify", DRILLED, "-"], "0 0 0\nNaN 0 0\n");
+    assert_eq!((code, out.as_str()), (2, ""), "{err}");
+    assert!(err.contains("-:2:"), "{err}");
+    let (code, _, err) = wingedge(&["raycast", DRILLED, "-"], "0 0 0 1 0 0\n5 5 5 0 0 0\n");
+    assert_eq!(code, 2);
+    assert!(err.contains("-:2:"), "{err}");
 }
 
 #[test]

@@ -87,6 +87,8 @@ fn bad_lines_are_errors_naming_the_line() {
         ("0 0 0\n1 2\n", "-:2:"),
         ("0 0 0\n\n0 0 zero\n", "-:3:"),
         ("nan 0 0\n", "-:1:"),
+        ("0 0 -inf\n", "-:1:"),
+        ("0 1e309 0\n", "-:1:"),
         ("0 0 0 0\n", "-:1:"),
     ] {
         let o = run(&["classify", m, "-"], Some(input));

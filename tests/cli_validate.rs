@@ -190,3 +190,24 @@ fn bad_tolerances_are_refused() {
         assert!(err.contains("tolerance"), "{err}");
     }
 }
+
+#[test]
+fn indices_at_the_ends_of_i64_are_errors_naming_the_line() {
+    // The no-panic audit: `-9223372036854775808` has no positive
+    // counterpart in `i64`, and texture or normal indices far out of range
+    // once overflowed inside the OBJ parser.
+    let tetra = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvn 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n";
+    let scratch = TempDir::new("cli-validate");
+    for (name, face) in [
+        ("min.obj", "f 3 1 -9223372036854775808\n"),
+        ("max.obj", "f 3 1 9223372036854775807\n"),
+        ("vn.obj", "f 3/1/-125 1 4\n"),
+        ("vt.obj", "f 3/6148914691236517207 1 4\n"),
+    ] {
+        let path = scratch.write(name, format!("{tetra}{face}"));
+        let (code, out, err) = wingedge(&["validate", path.to_str().expect("path")]);
+        assert_eq!(code, 2, "{name}: {out}{err}");
+        let located = format!("{}:10:", path.display());
+        assert!(out.contains(&located), "{name}: {out}");
+    }
+}

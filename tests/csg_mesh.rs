@@ -186,3 +186,24 @@ fn bundled_mesh_scenes_load_and_defective_meshes_are_refused() {
     assert!(error.contains("open.obj"), "{error}");
     assert!(error.contains("not a valid closed solid"), "{error}");
 }
+
+#[test]
+fn a_ray_through_a_reflex_edge_leaves_no_zero_length_span() {
+    // Found while preparing the scene_load fuzz run
+    // (fixtures/fuzz/scene_load/): the L-prism's crossings out and back in
+    // at the reflex edge share one `t`, and a lone leaf passed both on, so
+    // the spans were not strictly ascending.
+    let text = r#"{"root": {"transform": {"scale": [-1, 1, 1]},
+                             "child": {"mesh": "../valid/prism.obj"}}}"#;
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/scenes");
+    let csg = Scene::from_json(text, "mirrored.json", &base).unwrap().csg;
+    // From beside the box to its centre, on the reflex edge x = −1, y = 1.
+    let eye = DVec3::new(2.0, 3.0, 1.5);
+    let ray = Ray::new(eye, DVec3::new(-1.0, 1.0, 0.5) - eye);
+    let spans = csg.spans(&ray, &mut Stats::default());
+    let ts: Vec<f64> = spans.hits.iter().map(|h| h.t).collect();
+    assert!(ts.windows(2).all(|w| w[0] < w[1]), "{ts:?}");
+    assert_eq!(ts.len() % 2, 0, "{ts:?}");
+    let hit = csg.first_hit(&ray, &mut Stats::default()).unwrap();
+    assert_eq!(hit.t, ts[0]);
+}

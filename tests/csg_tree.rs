@@ -491,3 +491,38 @@ fn perturbation_tie_breaks_inside_polyhedra_are_counted() {
     assert_eq!(ts(&s), vec![1.0, 3.0]);
     assert!(corner.tie_breaks >= 2, "{corner:?}");
 }
+
+#[test]
+fn non_finite_points_and_invalid_rays_are_errors_in_the_try_forms() {
+    // The no-panic audit: the plain forms answer `Outside` and an empty
+    // span list; user input goes through the `try_` forms, which refuse.
+    let csg = tree(cube([-1.0; 3], [1.0; 3]).difference(ball([0.0; 3], 0.5)));
+    let mut stats = Stats::default();
+    for p in [
+        DVec3::new(f64::NAN, 0.0, 0.0),
+        DVec3::new(0.0, f64::INFINITY, 0.0),
+        DVec3::new(0.0, 0.0, f64::NEG_INFINITY),
+    ] {
+        assert!(csg.try_classify_point(p, &mut stats).is_err(), "{p}");
+        assert_eq!(csg.classify_point(p, &mut stats), Containment::Outside);
+    }
+    assert_eq!(
+        csg.try_classify_point(DVec3::splat(0.75), &mut stats),
+        Ok(Containment::Inside)
+    );
+    for (o, d) in [
+        ([0.0; 3], [0.0; 3]),
+        ([f64::NAN, 0.0, 0.0], [1.0, 0.0, 0.0]),
+        ([0.0; 3], [1.0, f64::INFINITY, 0.0]),
+    ] {
+        let ray = Ray::new(DVec3::from(o), DVec3::from(d));
+        assert!(csg.try_spans(&ray, &mut stats).is_err(), "{ray:?}");
+        assert!(csg.try_first_hit(&ray, &mut stats).is_err(), "{ray:?}");
+        assert!(csg.spans(&ray, &mut stats).hits.is_empty());
+    }
+    let ray = Ray::new(DVec3::new(-3.0, 0.0, 0.0), DVec3::X);
+    let spans = csg.try_spans(&ray, &mut stats).unwrap();
+    assert_eq!(ts(&spans), [2.0, 2.5, 3.5, 4.0]);
+    let hit = csg.try_first_hit(&ray, &mut stats).unwrap().unwrap();
+    assert_eq!(hit.t, 2.0);
+}

@@ -6,6 +6,7 @@ use super::stats::counting_fallbacks;
 use super::tree::{NodeIndex, NodeKind};
 use super::{Containment, Csg, CsgOp, Stats, normal_alignment};
 use crate::geom::Sign;
+use crate::query::QueryError;
 
 /// What a solid looks like in an infinitesimal neighbourhood of a point:
 /// the information the tree needs to combine boundary points correctly.
@@ -97,11 +98,33 @@ impl Csg {
     /// Exact when every leaf involved is exact at `p` (half-spaces, boxes,
     /// polyhedra). Two faces are recognised as coincident when their normals
     /// are exactly parallel; faces that meet at an angle give `OnBoundary`.
+    ///
+    /// A point with a NaN or infinite coordinate is answered `Outside`;
+    /// [`Csg::try_classify_point`] refuses it instead.
     pub fn classify_point(&self, p: DVec3, stats: &mut Stats) -> Containment {
         self.neighbourhood(p, stats).containment()
     }
 
-    /// The neighbourhood of `p` in the combined solid.
+    /// [`Csg::classify_point`] for points from users: a non-finite point is
+    /// an error, not an answer.
+    ///
+    /// # Errors
+    ///
+    /// [`QueryError::NonFinitePoint`] (index 0) for a NaN or infinite
+    /// coordinate.
+    pub fn try_classify_point(
+        &self,
+        p: DVec3,
+        stats: &mut Stats,
+    ) -> Result<Containment, QueryError> {
+        if !p.is_finite() {
+            return Err(QueryError::NonFinitePoint { index: 0, point: p });
+        }
+        Ok(self.classify_point(p, stats))
+    }
+
+    /// The neighbourhood of `p` in the combined solid (`Outside` for a
+    /// non-finite point).
     pub fn neighbourhood(&self, p: DVec3, stats: &mut Stats) -> Neighbourhood {
         if !p.is_finite() {
             return Neighbourhood::Outside;

@@ -818,7 +818,13 @@ fn req<'v>(o: &'v Map<String, Value>, at: &str, key: &str) -> Result<&'v Value, 
 fn bad(at: &str, expected: &str, found: &Value) -> SceneError {
     let mut shown = found.to_string();
     if shown.len() > 60 {
-        shown.truncate(57);
+        // At a character boundary: a value may hold multi-byte characters
+        // (found by fuzzing, fixtures/fuzz/scene_load/).
+        let cut = (0..=57)
+            .rev()
+            .find(|&i| shown.is_char_boundary(i))
+            .unwrap_or(0);
+        shown.truncate(cut);
         shown.push_str("...");
     }
     SceneError::Value {
@@ -941,6 +947,14 @@ mod tests {
         );
         assert!(error(r#"{"root": {"mesh": "nowhere.obj"}}"#).starts_with("root.mesh: mesh "));
         assert!(error(r#"{"root": {"mesh": "other.json"}}"#).contains("is a scene file (JSON)"),);
+        // A long value is cut at a character boundary, not inside one
+        // (byte 57 falls inside an `é` here).
+        let long = format!(
+            r#"{{"root": {{"sphere": {{"center": [0,0,0], "radius": "a{}"}}}}}}"#,
+            "é".repeat(40)
+        );
+        let message = error(&long);
+        assert!(message.ends_with("éé..."), "{message}");
     }
 
     #[test]

@@ -7,6 +7,7 @@ use super::stats::counting_fallbacks;
 use super::tree::{NodeIndex, NodeKind};
 use super::{Crossing, Csg, CsgOp, LeafId, Stats, SurfaceId};
 use crate::geom::{Aabb, Ray};
+use crate::query::QueryError;
 
 /// The answer of a tree to a ray: the seed's `(INOUT_C, t_C1, t_C2, …)`.
 ///
@@ -107,6 +108,19 @@ pub(crate) fn ray_meets_bounds(bounds: &Aabb, ray: &Ray) -> bool {
     near <= far + SLAB_ROUNDING * near.abs().max(far.abs())
 }
 
+/// The error for a ray no query accepts ([`Ray::is_valid`]).
+fn check_ray(ray: &Ray) -> Result<(), QueryError> {
+    if ray.is_valid() {
+        Ok(())
+    } else {
+        Err(QueryError::InvalidRay {
+            index: 0,
+            origin: ray.origin,
+            direction: ray.direction,
+        })
+    }
+}
+
 impl Csg {
     /// The in/out spans of a ray through the whole solid.
     ///
@@ -121,9 +135,22 @@ impl Csg {
         }
     }
 
+    /// [`Csg::spans`] for rays from users: an invalid ray is an error, not
+    /// an empty answer.
+    ///
+    /// # Errors
+    ///
+    /// [`QueryError::InvalidRay`] (index 0) for a non-finite origin or
+    /// direction or a zero direction.
+    pub fn try_spans(&self, ray: &Ray, stats: &mut Stats) -> Result<Spans, QueryError> {
+        check_ray(ray)?;
+        Ok(self.spans(ray, stats))
+    }
+
     /// The first boundary crossing along the ray, or `None` when the ray
-    /// never meets the boundary. The root merge stops at the first crossing;
-    /// no normal is computed (see [`Csg::hit_normal`]).
+    /// never meets the boundary (or is not valid: see [`Csg::try_first_hit`]).
+    /// The root merge stops at the first crossing; no normal is computed (see
+    /// [`Csg::hit_normal`]).
     pub fn first_hit(&self, ray: &Ray, stats: &mut Stats) -> Option<FirstHit> {
         let mut out = Vec::new();
         let inside = self.trace(ray, Some(1), stats, &mut out);
@@ -134,6 +161,21 @@ impl Csg {
             surface: h.surface,
             entering: !inside,
         })
+    }
+
+    /// [`Csg::first_hit`] for rays from users: an invalid ray is an error,
+    /// not a miss.
+    ///
+    /// # Errors
+    ///
+    /// As for [`Csg::try_spans`].
+    pub fn try_first_hit(
+        &self,
+        ray: &Ray,
+        stats: &mut Stats,
+    ) -> Result<Option<FirstHit>, QueryError> {
+        check_ray(ray)?;
+        Ok(self.first_hit(ray, stats))
     }
 
     /// The unit outward normal of the combined solid at a first hit: the
@@ -203,6 +245,7 @@ impl Csg {
                 scratch.leaf.clear();
                 let primitive = &self.leaves[id.0 as usize].primitive;
                 let inside = primitive.intersect_ray(ray, &mut scratch.leaf, stats);
+                drop_instants(&mut scratch.leaf);
                 let crossings = scratch.leaf.iter().take(limit.unwrap_or(usize::MAX));
                 out.extend(crossings.map(|c| Hit {
                     t: c.t,
@@ -239,6 +282,26 @@ impl Csg {
             }
         }
     }
+}
+
+/// Removes pairs of consecutive crossings at the same `t`: a leaf may list
+/// two (a ray through a reflex edge of a polyhedron, tangent to a sphere),
+/// an instant inside or outside that a span list, strictly ascending, does
+/// not hold. Parity after each remaining crossing is unchanged. Found by
+/// fuzzing the scene loader (fixtures/fuzz/scene_load/).
+fn drop_instants(crossings: &mut Vec<Crossing>) {
+    let mut kept = 0;
+    let mut i = 0;
+    while i < crossings.len() {
+        if i + 1 < crossings.len() && crossings[i].t == crossings[i + 1].t {
+            i += 2;
+        } else {
+            crossings[kept] = crossings[i];
+            kept += 1;
+            i += 1;
+        }
+    }
+    crossings.truncate(kept);
 }
 
 thread_local! {

@@ -9,7 +9,10 @@
 //! indices, and the group and material in force; it also catches every error
 //! that tobj would report without a line (index zero or out of range, a face
 //! with fewer than three corners, binary data) so that each error names the
-//! file and the line. The two are then aligned face by face.
+//! file and the line. tobj runs only on bytes the pass accepted: the pass
+//! also checks texture and normal indices, which tobj overflows on when they
+//! are far out of range. Both split words at Unicode whitespace, so they
+//! agree on which lines are elements. The two are then aligned face by face.
 //!
 //! Welding of coincident vertices is done afterwards by [`weld`](super::weld).
 
@@ -135,8 +138,9 @@ pub enum ObjError {
         /// Its position as read.
         position: DVec3,
     },
-    /// tobj rejected the file; `line` is where our own pass found the
-    /// problem, when it could.
+    /// tobj rejected the file (`line` is where our own pass found the
+    /// problem, when it could), or a face names a texture coordinate or a
+    /// normal that does not exist.
     #[error("{}{}: {message}", .path.display(), .line.map(|l| format!(":{l}")).unwrap_or_default())]
     Parse {
         /// The file.
@@ -267,13 +271,12 @@ pub fn import_obj_bytes(
 ) -> Result<ObjImport, ObjError> {
     let start = std::time::Instant::now();
     precheck(path, bytes, options.max_face_corners)?;
-    // The line pass and tobj read the same bytes independently.
-    let (scan, models) = rayon::join(|| scan(path, bytes), || run_tobj(path, bytes));
-    let (scan, models) = match (scan, models) {
-        (Ok(scan), Ok(models)) => (scan, models),
-        (Err(ours), Err(theirs)) => return Err(earlier(ours, theirs)),
-        (Err(e), Ok(_)) | (Ok(_), Err(e)) => return Err(e),
-    };
+    // The line pass runs first and tobj only on bytes it accepted: tobj
+    // overflows (a panic in debug builds, wrong indexing in release) on face
+    // indices far out of range, texture and normal indices included (found
+    // by fuzzing).
+    let scan = scan(path, bytes).map_err(|e| earliest_error(path, bytes, e))?;
+    let models = run_tobj(path, bytes)?;
     let parsed = start.elapsed().as_secs_f64();
     let positions = align_positions(path, bytes, &scan, &models)?;
     let mut soup = PolygonSoup {
@@ -304,7 +307,7 @@ pub fn import_obj_bytes(
         vertex_numbers,
         weld: report,
         stage_seconds: vec![
-            ("parse (tobj ∥ line pass)", parsed),
+            ("parse (line pass, then tobj)", parsed),
             ("align and assemble soup", assembled - parsed),
             ("weld", welded - assembled),
         ],
@@ -341,6 +344,31 @@ struct Scan {
 
 fn line_of_offset(bytes: &[u8], offset: usize) -> usize {
     1 + bytes[..offset].iter().filter(|&&b| b == b'\n').count()
+}
+
+/// The first error of the file, given the line pass's `error`: tobj may
+/// refuse an earlier line (a `v` line whose numbers do not parse), so it
+/// reads the lines before the error — but only when the line pass accepts
+/// those lines on their own, so that tobj never sees an index it would
+/// overflow on.
+fn earliest_error(path: &Path, bytes: &[u8], error: ObjError) -> ObjError {
+    // An error without a line (no faces) comes after every line.
+    let start = match error.line() {
+        None => bytes.len(),
+        Some(line) if line <= 1 => 0,
+        Some(line) => memchr::memchr_iter(b'\n', bytes)
+            .nth(line - 2)
+            .map_or(bytes.len(), |i| i + 1),
+    };
+    let before = &bytes[..start];
+    // Those lines need not hold a face themselves.
+    if !matches!(scan(path, before), Ok(_) | Err(ObjError::Empty { .. })) {
+        return error;
+    }
+    match run_tobj(path, before) {
+        Err(theirs) => earlier(error, theirs),
+        Ok(_) => error,
+    }
 }
 
 /// Of two errors found by different passes, the one on the earlier line
@@ -421,9 +449,15 @@ fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
         let text = &bytes[offset..end];
         let start = offset;
         offset = end + 1;
-        let mut words = text
-            .split(|b| b.is_ascii_whitespace())
-            .filter(|w| !w.is_empty());
+        // The bytes are UTF-8 (checked by `precheck`) and `\n` is ASCII, so
+        // every line is too. Words split at Unicode whitespace, exactly as
+        // tobj splits them (a vertical tab or a no-break space separates
+        // words for tobj; splitting at ASCII whitespace only once numbered
+        // vertices differently from tobj; found by fuzzing).
+        let Ok(line_text) = std::str::from_utf8(text) else {
+            return Err(ObjError::Binary { path: p(), line });
+        };
+        let mut words = line_text.split_whitespace().map(str::as_bytes);
         let Some(keyword) = words.next() else {
             continue;
         };
@@ -1224,6 +1258,64 @@ mod tests {
                 .starts_with("t.obj:9: texture coordinate index 0 is invalid"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn texture_and_normal_indices_that_name_nothing_are_errors() {
+        // Found by fuzzing (fixtures/fuzz/obj_validate/): a normal index
+        // counting back past the first `vn` made tobj overflow (`vn * 3`).
+        let attributes = "vt 0 0\nvn 0 0 1\n";
+        for (corner, what) in [
+            ("1/1/-125", "normal index -125"),
+            ("1/-2", "texture coordinate index -2"),
+            (
+                "1/1/6148914691236517207",
+                "normal index 6148914691236517207",
+            ),
+            ("1/2", "texture coordinate index 2"),
+            ("1/0/1", "texture coordinate index 0"),
+            ("1//0", "normal index 0"),
+        ] {
+            let text = format!("{TET}{attributes}f {corner} 2 3\n");
+            let e = read(&text).unwrap_err();
+            assert_eq!(e.line(), Some(11), "{corner}: {e}");
+            let message = e.to_string();
+            assert!(message.contains(what), "{corner}: {message}");
+        }
+        // Without any `vt` or `vn` lines, such indices are ignored (as tobj
+        // does), and in range they are accepted.
+        assert!(read(&format!("{TET}f 1/9/-9 2/9/-9 3/9/-9\n")).is_ok());
+        assert!(read(&format!("{TET}{attributes}f 1/1/1 2/-1/-1 3//1\n")).is_ok());
+        let e = read(&format!("{TET}{attributes}f 1/1/1/1 2 3\n")).unwrap_err();
+        assert!(matches!(e, ObjError::BadCorner { line: 11, .. }), "{e}");
+    }
+
+    #[test]
+    fn the_most_negative_index_is_an_error() {
+        for corner in [
+            "-9223372036854775808",
+            "9223372036854775807",
+            "-999999999999999999",
+        ] {
+            let e = read(&format!("{TET}f 1 2 {corner}\n")).unwrap_err();
+            assert_eq!(e.line(), Some(9), "{corner}: {e}");
+        }
+    }
+
+    #[test]
+    fn words_split_at_unicode_whitespace_as_tobj_splits_them() {
+        // A vertical tab or a no-break space separates words for tobj; the
+        // line pass once split at ASCII whitespace only, so it missed the
+        // `v` line and numbered the later vertices differently.
+        for space in ['\u{b}', '\u{a0}', '\u{2003}'] {
+            let text = format!("v 9 9 9\nv{space}5 5 5\n{TET}f{space}4 6 5\n");
+            let import = read(&text).unwrap();
+            assert_eq!(import.soup.positions[1], DVec3::splat(5.0));
+            assert_eq!(import.soup.positions[2], DVec3::ZERO);
+            assert_eq!(import.vertex_lines[2], 3);
+            assert_eq!(&import.soup.polygons[4].vertices[..], &[3, 5, 4]);
+            assert_eq!(import.soup.polygons[4].attributes.line, Some(11));
+        }
     }
 
     #[test]

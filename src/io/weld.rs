@@ -181,6 +181,10 @@ fn clusters(positions: &[DVec3], mode: WeldMode) -> Option<Vec<usize>> {
             if d.is_nan() || d <= 0.0 || !d.is_finite() {
                 return clusters(positions, WeldMode::Exact);
             }
+            // `as_i64vec3` saturates, and neighbours are found with
+            // saturating steps: a tolerance so small that cells overflow
+            // `i64` (`--weld 1e-300`) only puts far-apart vertices in one
+            // cell, where the distance test still decides.
             let cell = |p: DVec3| (p / d).floor().as_i64vec3();
             let mut grid: HashMap<glam::I64Vec3, Vec<usize>> = HashMap::new();
             let mut uf = UnionFind::new(positions.len());
@@ -189,7 +193,7 @@ fn clusters(positions: &[DVec3], mode: WeldMode) -> Option<Vec<usize>> {
                 for dx in -1..=1 {
                     for dy in -1..=1 {
                         for dz in -1..=1 {
-                            let key = c + glam::I64Vec3::new(dx, dy, dz);
+                            let key = c.saturating_add(glam::I64Vec3::new(dx, dy, dz));
                             if let Some(list) = grid.get(&key) {
                                 for &j in list {
                                     if positions[j].distance(p) <= d {
@@ -481,6 +485,29 @@ mod tests {
             ..Tolerance::default()
         };
         let (s, ..) = weld(soup, (1..=24).collect(), WeldMode::Within(tolerance));
+        assert_eq!(s.positions.len(), 8);
+    }
+
+    #[test]
+    fn a_tolerance_too_small_for_the_grid_still_welds() {
+        // Regression (no-panic audit): with `--weld 1e-300` a vertex's grid
+        // cell overflows `i64` and saturates; stepping to the neighbouring
+        // cells overflowed too (a panic in debug builds).
+        let tolerance = Tolerance {
+            weld: 1e-300,
+            ..Tolerance::default()
+        };
+        let (s, _, _, r) = weld(
+            split_cube(),
+            (1..=24).collect(),
+            WeldMode::Within(tolerance),
+        );
+        assert_eq!(s.positions.len(), 8, "{r:?}");
+        let mut far = split_cube();
+        for p in &mut far.positions {
+            *p = *p * 1e300 - DVec3::splat(1e300);
+        }
+        let (s, ..) = weld(far, (1..=24).collect(), WeldMode::Within(tolerance));
         assert_eq!(s.positions.len(), 8);
     }
 

@@ -192,6 +192,12 @@ pub fn pyramid(base: &[DVec3], apex: DVec3) -> Result<Solid, BuildError> {
 /// latitude bands (at least 2) and `2 · rings` longitude segments, giving
 /// `4 · rings · (rings − 1)` triangles wound outward, with poles at `±z`.
 /// Benchmarks and tests use it as a scalable curved mesh.
+///
+/// # Panics
+///
+/// When `rings` is so large that the triangle count overflows `usize` or
+/// the soup does not fit in memory (a programmer's choice of size, not
+/// user data).
 #[must_use]
 pub fn sphere_soup(rings: usize) -> PolygonSoup {
     let rings = rings.max(2);

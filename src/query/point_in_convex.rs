@@ -32,6 +32,11 @@ impl Accel {
             return Err(QueryError::NonFinitePoint { index: 0, point: p });
         }
         self.convexity().map_err(QueryError::NotConvex)?;
+        // A convex solid lies in its box; deciding this first also keeps far
+        // points (whose differences overflow) away from the predicates.
+        if !self.bounds.contains(p) {
+            return Ok(Containment::Outside);
+        }
         let mut on_plane = false;
         for [a, b, c] in self.tris.iter().map(|t| t.corners()) {
             match orient3d(a, b, c, p) {

@@ -24,7 +24,11 @@ pub enum Method {
     /// 2). Needs a convex solid; anything else is an error.
     Normals,
     /// The generalized winding number (sum of solid angles over `4π`),
-    /// thresholded at ½; defined for open and overlapping input too.
+    /// thresholded at ½; defined for open and overlapping input too. On a
+    /// closed surface the winding number is the integer signed count of the
+    /// `+x` ray's crossings, which is used instead: exact, and right also
+    /// within rounding distance of the surface, where the solid-angle sum is
+    /// not.
     Winding,
 }
 
@@ -92,6 +96,16 @@ impl Accel {
             Method::Normals => self.classify_convex(p),
             Method::Winding => Ok(match self.x_ray(p) {
                 XRay::OnBoundary => Containment::OnBoundary,
+                // Found by the queries fuzz check (fixtures/fuzz/queries/): 2e-69 outside a
+                // face and 5e-324 above another, the solid-angle sum was
+                // near 1.
+                XRay::Winding(w) if self.is_closed() => {
+                    if w > 0 {
+                        Containment::Inside
+                    } else {
+                        Containment::Outside
+                    }
+                }
                 XRay::Winding(_) => {
                     if self.winding_number_unchecked(p) > 0.5 {
                         Containment::Inside
@@ -175,6 +189,12 @@ impl Accel {
         if !(p.y >= g.y0 && p.y <= g.y1 && p.z >= g.z0 && p.z <= g.z1) || p.x > self.bounds.max.x {
             return XRay::Winding(0);
         }
+        // Left of the box every triangle the line meets is in front of `p`,
+        // wherever `p` is: move it next to the box, so that the exact
+        // predicates see coordinates of the model's magnitude (a point at
+        // `x = −1e308` overflows their arithmetic) and decide the same.
+        let beside = self.bounds.min.x - (1.0 + self.bounds.min.x.abs());
+        let p = DVec3::new(p.x.max(beside), p.y, p.z);
         let q = DVec2::new(p.y, p.z);
         let mut winding = 0i32;
         for e in g.cell(p.y, p.z) {
@@ -298,5 +318,24 @@ mod tests {
         assert_eq!(c(-3.0, 1.0, 0.0), Containment::Outside);
         assert_eq!(c(-3.0, 0.0, 0.0), Containment::Outside);
         assert_eq!(c(0.5, 0.0, 0.0), Containment::Inside);
+    }
+
+    #[test]
+    fn far_points_are_outside_by_every_method() {
+        // Points far left of the box on lines through the solid: the exact
+        // predicates would overflow on their coordinates (the no-panic
+        // audit, after the queries fuzz check's far points).
+        for solid in [builders::cube(), builders::l_prism()] {
+            let accel = Accel::new(&solid);
+            for x in [-f64::MAX, -1e300, -1e154, f64::MAX] {
+                let p = DVec3::new(x, 0.5, 0.5);
+                for method in [Method::Parity, Method::Winding, Method::Normals] {
+                    match accel.classify_with(p, method) {
+                        Ok(c) => assert_eq!(c, Containment::Outside, "{p} {method:?}"),
+                        Err(e) => assert!(matches!(e, QueryError::NotConvex(_)), "{e}"),
+                    }
+                }
+            }
+        }
     }
 }

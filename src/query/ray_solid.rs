@@ -254,6 +254,49 @@ impl RayBox {
 /// and the sign of its crossing (`+` for an exit).
 pub(super) type BestHit = Option<(f64, u32, Sign)>;
 
+/// The same ray with its direction multiplied by a power of two so that its
+/// largest component lies in `[1, 2)`, and the factor that turns its
+/// parameters back into the caller's. Exact: the line and
+/// the half-line `t > 0` do not change, only the unit of `t`; the exact
+/// predicates then never see a direction whose products overflow or
+/// underflow (a direction of `1e308` or `5e-324`; found by the queries
+/// fuzz check).
+pub(super) fn unit_scaled(ray: &Ray) -> (Ray, f64) {
+    let largest = ray.direction.abs().max_element();
+    // `largest` is finite and non-zero (a checked ray): its binary exponent
+    // `e` lies in −1074 ..= 1023; read from the bits for normal numbers.
+    let biased = ((largest.to_bits() >> 52) & 0x7ff) as i32;
+    let e = if biased == 0 {
+        largest.log2().floor() as i32
+    } else {
+        biased - 1023
+    };
+    if e == 0 {
+        // Already in `[1, 2)`: the common case of unit-scale directions.
+        return (*ray, 1.0);
+    }
+    // 2^−e is applied in two exact halves, each a normal power of two.
+    let (half, rest) = (-e / 2, -e - (-e / 2));
+    let direction = ray.direction * pow2(half) * pow2(rest);
+    // `origin + t · direction·f = origin + (t·f) · direction`: a parameter
+    // along the scaled ray times `f` is the caller's parameter.
+    let factor = pow2(half) * pow2(rest);
+    (Ray::new(ray.origin, direction), factor)
+}
+
+/// `2^k` for `k` in −1022 ..= 1023 (a normal `f64`), built from its bits.
+fn pow2(k: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&k));
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// A parameter along the scaled direction of [`unit_scaled`] in units of the
+/// caller's direction: monotone, and still `> 0` when it underflows.
+pub(super) fn unscaled_t(t: f64, factor: f64) -> f64 {
+    let t = t * factor;
+    if t > 0.0 { t } else { f64::from_bits(1) }
+}
+
 /// How a ray meets one triangle.
 enum TriHit {
     Miss,
@@ -290,6 +333,8 @@ impl Accel {
     pub fn ray_crossings(&self, ray: &Ray) -> Result<RayCrossings, QueryError> {
         self.check_ray(ray, 0)?;
         self.require_closed()?;
+        let (ray, t_scale) = unit_scaled(ray);
+        let ray = &ray;
         let mut on_boundary = false;
         let mut hits: Vec<(f64, u32, Sign)> = Vec::new();
         self.traverse(ray, f64::INFINITY, &mut (), |i, _| {
@@ -317,7 +362,7 @@ impl Accel {
         alternate(&mut hits, inside);
         let hits = hits
             .into_iter()
-            .map(|(t, i, s)| self.crossing(t, i, s))
+            .map(|(t, i, s)| self.crossing(unscaled_t(t, t_scale), i, s))
             .collect();
         Ok(RayCrossings { origin, hits })
     }
@@ -408,11 +453,13 @@ impl Accel {
 
     #[inline(always)]
     fn first_hit_tallied(&self, ray: &Ray, tally: &mut impl Tally) -> Option<Crossing> {
+        let (ray, t_scale) = unit_scaled(ray);
+        let ray = &ray;
         let mut best: BestHit = None;
         self.traverse(ray, f64::INFINITY, tally, |i, t_max| {
             self.consider_for_first_hit(ray, i, &mut best, t_max)
         });
-        best.map(|(t, i, s)| self.crossing(t, i, s))
+        best.map(|(t, i, s)| self.crossing(unscaled_t(t, t_scale), i, s))
     }
 
     /// Tests triangle `i` for the first hit of `ray`, updating `best`;
@@ -814,6 +861,34 @@ mod tests {
             assert_eq!(mask, 1, "case {case}: entry {} vs limit {t0}", entry[0]);
         }
         assert!(entered > 5_000, "{entered}");
+    }
+
+    #[test]
+    fn huge_and_tiny_directions_give_the_same_crossings() {
+        // Found by the queries fuzz check: a direction component of
+        // −f64::MAX overflowed the exact line tests.
+        let accel = Accel::new(&builders::l_prism());
+        let origin = DVec3::new(0.5, 0.5, 0.5);
+        let unit = DVec3::new(0.25, 1.0, -0.125);
+        let reference = accel.ray_crossings(&Ray::new(origin, unit)).unwrap();
+        assert_eq!(reference.origin, Containment::Inside);
+        for scale in [f64::MAX, 1e300, 1e-300, f64::MIN_POSITIVE] {
+            let ray = Ray::new(origin, unit * scale);
+            let answer = accel.ray_crossings(&ray).unwrap();
+            assert_eq!(answer.origin, reference.origin, "{scale}");
+            let faces = |r: &RayCrossings| -> Vec<_> {
+                r.hits.iter().map(|h| (h.face, h.transition)).collect()
+            };
+            assert_eq!(faces(&answer), faces(&reference), "{scale}");
+            let first = accel.first_hit(&ray).unwrap().unwrap();
+            assert_eq!(first.t, answer.hits[0].t);
+            assert!(answer.hits.iter().all(|h| h.t > 0.0));
+        }
+        // Along one axis the parameter is exact: 1 / f64::MAX.
+        let down = Ray::new(DVec3::ZERO, DVec3::new(0.0, 0.0, -f64::MAX));
+        let cube = Accel::new(&builders::cube());
+        let hit = cube.first_hit(&down).unwrap().unwrap();
+        assert_eq!(hit.t, 1.0 / f64::MAX);
     }
 
     #[test]

@@ -12,7 +12,7 @@ use crate::geom::Ray;
 
 use super::Accel;
 use super::accel::WIDTH;
-use super::ray_solid::{BestHit, Crossing, RayBox, prefetch};
+use super::ray_solid::{BestHit, Crossing, RayBox, prefetch, unit_scaled, unscaled_t};
 
 /// Rays walked in turn.
 const LANES: usize = 8;
@@ -21,6 +21,10 @@ const LANES: usize = 8;
 struct Walk {
     /// Index of the ray in the batch.
     ray: usize,
+    /// The ray with its direction scaled by a power of two
+    /// ([`unit_scaled`]), and the factor back to the caller's `t`.
+    scaled: Ray,
+    t_scale: f64,
     rays_box: RayBox,
     best: BestHit,
     /// The best crossing's `t` (`+∞` before any).
@@ -39,10 +43,13 @@ struct Walk {
 
 impl Walk {
     fn new(ray: usize, r: &Ray, accel: &Accel) -> Walk {
-        let rays_box = RayBox::new(r, &accel.frame);
+        let (scaled, t_scale) = unit_scaled(r);
+        let rays_box = RayBox::new(&scaled, &accel.frame);
         let limit = rays_box.limit(f64::INFINITY);
         Walk {
             ray,
+            scaled,
+            t_scale,
             rays_box,
             best: None,
             t_limit: f64::INFINITY,
@@ -68,8 +75,11 @@ impl Accel {
             let mut k = 0;
             while k < lanes.len() {
                 let w = &mut lanes[k];
-                if self.step(w, &rays[w.ray]) {
-                    out[w.ray] = w.best.map(|(t, i, s)| self.crossing(t, i, s));
+                let ray = w.scaled;
+                if self.step(w, &ray) {
+                    out[w.ray] = w
+                        .best
+                        .map(|(t, i, s)| self.crossing(unscaled_t(t, w.t_scale), i, s));
                     if fed < rays.len() {
                         lanes[k] = Walk::new(fed, &rays[fed], self);
                         fed += 1;

@@ -8,6 +8,16 @@ use crate::geom::{Sign, orient3d};
 
 use super::{Accel, QueryError};
 
+/// Coordinates above this magnitude are scaled by [`FAR_SCALE`] before
+/// differences are taken.
+const FAR: f64 = 1e300;
+/// 2⁻⁶⁴: exact, and enough to keep differences of scaled coordinates finite.
+const FAR_SCALE: f64 = 1.0 / 18_446_744_073_709_551_616.0;
+/// Corner vectors whose largest component lies in this range are used as
+/// they are; others are rescaled by a power of two (2^±300: products of three
+/// lengths stay far from overflow and underflow).
+const UNIT_RANGE: (f64, f64) = (4.909_093_465_297_727e-91, 2.037_035_976_334_486e90);
+
 impl Accel {
     /// The generalized winding number of the surface around `p`:
     /// `Σ Ω(triangle) / 4π` over the fan triangles, each solid angle by Van
@@ -62,9 +72,28 @@ impl Accel {
     }
 
     pub(super) fn winding_number_unchecked(&self, p: DVec3) -> f64 {
+        // Powers of two scale exactly, and the solid angle does not change
+        // when the corners are scaled alike about `p`. Differences of
+        // coordinates near ±`f64::MAX` overflow: such a point or model is
+        // scaled down by 2⁻⁶⁴ first. Then each triangle's corner vectors are
+        // brought near unit size when the products of three lengths below
+        // could overflow or underflow (largest component outside
+        // 2^±300), so a point at 1e308 gets a number, not NaN.
+        let largest = p
+            .abs()
+            .max(self.bounds.min.abs())
+            .max(self.bounds.max.abs())
+            .max_element();
+        let pre = if largest > FAR { FAR_SCALE } else { 1.0 };
+        let q = p * pre;
         let mut total = 0.0;
         for [ta, tb, tc] in self.tris.iter().map(|t| t.corners()) {
-            let (a, b, c) = (ta - p, tb - p, tc - p);
+            let (mut a, mut b, mut c) = (ta * pre - q, tb * pre - q, tc * pre - q);
+            let size = a.abs().max(b.abs()).max(c.abs()).max_element();
+            if size > 0.0 && !(UNIT_RANGE.0..=UNIT_RANGE.1).contains(&size) {
+                let s = 2f64.powi((-size.log2().floor() as i32).clamp(-1022, 1022));
+                (a, b, c) = (a * s, b * s, c * s);
+            }
             let (la, lb, lc) = (a.length(), b.length(), c.length());
             let mut det = a.dot(b.cross(c));
             let exact = orient3d(p, ta, tb, tc);
@@ -92,6 +121,30 @@ mod tests {
         let inside = accel.winding_number(DVec3::new(0.1, 0.2, 0.3)).unwrap();
         let outside = accel.winding_number(DVec3::new(3.0, 0.2, 0.3)).unwrap();
         assert!((inside - 1.0).abs() < 1e-12, "{inside}");
+        assert!(outside.abs() < 1e-12, "{outside}");
+    }
+
+    #[test]
+    fn far_points_get_a_number_not_nan() {
+        // Found by the queries fuzz check (fixtures/fuzz/queries/): lengths of corner
+        // vectors overflowed for a point at −1.8e308 and the sum was NaN.
+        let accel = Accel::new(&builders::cube());
+        for p in [
+            DVec3::new(-f64::MAX, 1e-156, 0.0),
+            DVec3::new(f64::MAX, -f64::MAX, 1e300),
+            DVec3::new(-1e200, 0.5, 0.5),
+        ] {
+            let w = accel.winding_number(p).unwrap();
+            assert!(w.abs() < 1e-12, "{p}: {w}");
+        }
+        // A large model, seen from inside and from much farther away.
+        let large = builders::cuboid(DVec3::splat(-1e50), DVec3::splat(1e50)).unwrap();
+        let accel = Accel::new(&large);
+        let inside = accel.winding_number(DVec3::new(1e49, 2e49, -3e49)).unwrap();
+        assert!((inside - 1.0).abs() < 1e-12, "{inside}");
+        let outside = accel
+            .winding_number(DVec3::new(-f64::MAX, 0.0, 0.0))
+            .unwrap();
         assert!(outside.abs() < 1e-12, "{outside}");
     }
 }

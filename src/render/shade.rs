@@ -97,7 +97,7 @@ pub fn render(
         })
         .collect();
     let mut stats = Stats::default();
-    let mut pixels = Vec::with_capacity((width * height) as usize);
+    let mut pixels = Vec::with_capacity(width as usize * height as usize);
     for (row, s) in rows {
         pixels.extend(row);
         stats += s;

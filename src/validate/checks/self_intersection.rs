@@ -179,8 +179,12 @@ fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize,
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
         |(lo, hi), b| (lo.min(b.0), hi.max(b.1)),
     );
-    let mean_extent =
-        boxes.iter().map(|b| (b.1 - b.0).max_element()).sum::<f64>() / boxes.len() as f64;
+    // Divided before summing: a sum of extents near `f64::MAX` overflows.
+    let count = boxes.len() as f64;
+    let mean_extent = boxes
+        .iter()
+        .map(|b| (b.1 - b.0).max_element() / count)
+        .sum::<f64>();
     // At most ~2^20 cells per axis and about as many cells as triangles.
     let size = hi - lo;
     let budget = (triangles.len() as f64).cbrt().max(1.0) * 2.0;
@@ -192,7 +196,10 @@ fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize,
     } else {
         1.0
     };
-    let dims_of = |x: f64| ((x / cell) as u64 + 1).clamp(1, 1 << 20);
+    // The model's size can overflow (corners near ±`f64::MAX`) and the cell
+    // fall back to 1: the count is capped before the cast, never after.
+    let max_dim = 1u64 << 20;
+    let dims_of = |x: f64| ((x / cell).min(max_dim as f64) as u64 + 1).min(max_dim);
     let grid = Grid {
         origin: lo,
         inverse_cell: 1.0 / cell,
@@ -481,6 +488,23 @@ mod tests {
             .of(crate::validate::Rule::SelfIntersection)
             .map(|v| v.faces.clone())
             .collect()
+    }
+
+    #[test]
+    fn a_model_wider_than_f64_max_does_not_overflow_the_grid() {
+        // Found by fuzzing (fixtures/fuzz/obj_validate/): the model's size
+        // overflowed to infinity, the cell fell back to 1 and the cell count
+        // `size / cell + 1` overflowed `u64`.
+        let big = 1e308;
+        let p = vec![
+            v(-big, 0., 0.),
+            v(big, 0., 0.),
+            v(0., big, 0.),
+            v(0., 0., big),
+            v(0., 0., -big),
+        ];
+        let faces = vec![vec![0, 1, 2], vec![0, 1, 3], vec![1, 2, 4], vec![2, 0, 4]];
+        assert!(report_for(p, faces).is_empty());
     }
 
     #[test]
