@@ -173,6 +173,86 @@ pub fn line_side_filter_scalar(d: [f64; 3], u: [f64; 3], v: [f64; 3]) -> Option<
     }
 }
 
+/// The three edge determinants of a triangle seen from a line, rounded, with
+/// one error bound shared by all three (see [`triangle_edge_sides`]).
+#[derive(Clone, Copy, Debug)]
+pub struct EdgeSides {
+    /// The rounded `det[d, u, v]`, `det[d, v, w]`, `det[d, w, u]`.
+    pub det: [f64; 3],
+    /// A bound on each one's rounding error: a value above `bound` has an
+    /// exact value that is positive, one below `−bound` a negative one.
+    pub bound: f64,
+}
+
+impl EdgeSides {
+    /// Whether two of the three exact signs are certainly opposite: then the
+    /// line misses the triangle (or only grazes it, which the exact
+    /// [`line_side_sos`] also counts as a miss, since its three signs are
+    /// then not all equal).
+    #[must_use]
+    #[inline(always)]
+    pub fn certainly_mixed(&self) -> bool {
+        let b = self.bound;
+        let [e0, e1, e2] = self.det;
+        let pos = (e0 > b) | (e1 > b) | (e2 > b);
+        let neg = (-e0 > b) | (-e1 > b) | (-e2 > b);
+        pos & neg
+    }
+
+    /// The common sign when all three exact signs are certainly that sign.
+    #[must_use]
+    #[inline(always)]
+    pub fn certainly_uniform(&self) -> Option<Sign> {
+        let b = self.bound;
+        let [e0, e1, e2] = self.det;
+        if (e0 > b) & (e1 > b) & (e2 > b) {
+            Some(Sign::Positive)
+        } else if (-e0 > b) & (-e1 > b) & (-e2 > b) {
+            Some(Sign::Negative)
+        } else {
+            None
+        }
+    }
+}
+
+/// Shewchuk's bound times 2 with a margin for the rounding of the bound's
+/// own evaluation (see [`triangle_edge_sides`]).
+const SHARED_SIDE_BOUND: f64 = DET3_BOUND * 2.0 * (1.0 + 64.0 * f64::EPSILON);
+
+/// The floating-point filter of [`line_side`] for the three edges of a
+/// triangle `a, b, c` at once: `u = a − o`, `v = b − o`, `w = c − o` (rounded
+/// differences) and the line's direction `d`. Cheaper than three
+/// [`line_side_filter`]s: one bound serves all three determinants.
+///
+/// Why the bound is valid: [`line_side_filter`] certifies a sign when
+/// `|det| > DET3_BOUND · P`, `P` the permanent evaluated in floating point
+/// (Shewchuk's `o3derrboundA`, which also covers the rounding of the
+/// differences). With `m` the largest `|coordinate|` of `u, v, w` and
+/// `s = |dx| + |dy| + |dz|`, every exact permanent is at most `2·s·m²`
+/// (each term `|d_i|·(|u_j v_k| + |u_k v_j|)` is at most `|d_i|·2m²`). The
+/// floating-point `P` exceeds its exact value by at most a factor
+/// `(1 + ε)⁵`, and the floating-point `2·s·m²·DET3_BOUND` falls short of its
+/// exact value by at most `(1 − ε)⁵`; the margin `1 + 64ε` covers both. So
+/// the bound returned is at least `DET3_BOUND · P` for each determinant, and
+/// a sign it certifies is the exact sign. (As for the other filters: no
+/// overflow or underflow; an infinite or NaN bound or determinant certifies
+/// nothing.)
+#[must_use]
+#[inline(always)]
+pub fn triangle_edge_sides(d: [f64; 3], u: [f64; 3], v: [f64; 3], w: [f64; 3]) -> EdgeSides {
+    let side = |p: [f64; 3], q: [f64; 3]| {
+        d[0] * (p[1] * q[2] - p[2] * q[1])
+            + d[1] * (p[2] * q[0] - p[0] * q[2])
+            + d[2] * (p[0] * q[1] - p[1] * q[0])
+    };
+    let det = [side(u, v), side(v, w), side(w, u)];
+    let m3 = |p: [f64; 3]| p[0].abs().max(p[1].abs()).max(p[2].abs());
+    let m = m3(u).max(m3(v)).max(m3(w));
+    let s = d[0].abs() + d[1].abs() + d[2].abs();
+    let bound = SHARED_SIDE_BOUND * s * (m * m);
+    EdgeSides { det, bound }
+}
+
 /// Which side of the line through `origin` with direction `direction` the
 /// directed segment `a → b` passes: the exact sign of
 /// `det[direction, a − origin, b − origin]` (the permuted inner product of
@@ -351,6 +431,101 @@ mod tests {
             [Diff::value(0.0), Diff::value(0.0), Diff::value(1.0)],
         ];
         assert_eq!(det3_sign(rows), Sign::Zero);
+    }
+
+    /// A small deterministic generator (xorshift64*), uniform in `[-1, 1)`.
+    fn point(state: &mut u64) -> DVec3 {
+        DVec3::new(uniform(state), uniform(state), uniform(state))
+    }
+
+    fn uniform(state: &mut u64) -> f64 {
+        *state ^= *state >> 12;
+        *state ^= *state << 25;
+        *state ^= *state >> 27;
+        let bits = state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
+        bits as f64 / (1u64 << 52) as f64 - 1.0
+    }
+
+    /// Checks [`triangle_edge_sides`] against the exact [`line_side`] of each
+    /// edge: every certified sign must be the exact one.
+    fn check_shared_filter(o: DVec3, d: DVec3, tri: [DVec3; 3]) -> (bool, bool) {
+        let [a, b, c] = tri;
+        let rows = |p: DVec3| [p.x - o.x, p.y - o.y, p.z - o.z];
+        let sides = triangle_edge_sides(d.to_array(), rows(a), rows(b), rows(c));
+        let exact = [
+            line_side(o, d, a, b),
+            line_side(o, d, b, c),
+            line_side(o, d, c, a),
+        ];
+        for (det, exact) in sides.det.into_iter().zip(exact) {
+            if det > sides.bound {
+                assert_eq!(exact, Sign::Positive, "{o} {d} {tri:?}");
+            }
+            if -det > sides.bound {
+                assert_eq!(exact, Sign::Negative, "{o} {d} {tri:?}");
+            }
+        }
+        let mixed = sides.certainly_mixed();
+        if mixed {
+            assert!(exact.contains(&Sign::Positive) && exact.contains(&Sign::Negative));
+        }
+        let uniform = sides.certainly_uniform();
+        if let Some(s) = uniform {
+            assert_eq!(exact, [s; 3]);
+        }
+        (mixed, uniform.is_some())
+    }
+
+    #[test]
+    fn shared_edge_filter_certifies_only_exact_signs() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut decided = 0;
+        let mut total = 0;
+        for scale in [1e-60, 1e-9, 1.0, 1e9, 1e60] {
+            for offset in [0.0, 1.0, 1e8] {
+                for _ in 0..2000 {
+                    let shift = DVec3::splat(offset * scale);
+                    let tri = [
+                        point(&mut state) * scale + shift,
+                        point(&mut state) * scale + shift,
+                        point(&mut state) * scale + shift,
+                    ];
+                    let o = point(&mut state) * scale * 3.0 + shift;
+                    // Rays aimed at a random point of the triangle, at a
+                    // vertex, at an edge midpoint, and random ones.
+                    let (wa, wb) = (uniform(&mut state).abs(), uniform(&mut state).abs());
+                    let inside =
+                        tri[0] + (tri[1] - tri[0]) * wa * 0.5 + (tri[2] - tri[0]) * wb * 0.5;
+                    let mid = (tri[0] + tri[1]) * 0.5;
+                    let targets = [
+                        inside,
+                        tri[0],
+                        tri[2],
+                        mid,
+                        point(&mut state) * scale + shift,
+                    ];
+                    for target in targets {
+                        let d = target - o;
+                        if d == DVec3::ZERO {
+                            continue;
+                        }
+                        let (m, u) = check_shared_filter(o, d, tri);
+                        if target == inside {
+                            decided += usize::from(m || u);
+                            total += 1;
+                        }
+                        // The direction nudged by one ulp, and the line
+                        // moved to pass exactly through a corner.
+                        let d2 = DVec3::new(f64::from_bits(d.x.to_bits() + 1), d.y, d.z);
+                        check_shared_filter(o, d2, tri);
+                        check_shared_filter(tri[1], d, tri);
+                    }
+                }
+            }
+        }
+        // The filter must also be useful: rays aimed inside the triangle
+        // are nearly all decided.
+        assert!(decided * 10 > total * 9, "{decided} of {total}");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::geom::exact::line_side_filter_scalar;
+use crate::geom::exact::{line_side_filter_scalar, triangle_edge_sides};
 use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
@@ -558,9 +558,7 @@ impl Accel {
         let dd = [d.x, d.y, d.z];
         let u = [a.x - o.x, a.y - o.y, a.z - o.z];
         let v = [b.x - o.x, b.y - o.y, b.z - o.z];
-        let s0 = line_side_filter_scalar(dd, u, v).unwrap_or_else(|| line_side_sos(*o, *d, *a, *b));
         let w = [c.x - o.x, c.y - o.y, c.z - o.z];
-        let s1 = line_side_filter_scalar(dd, v, w).unwrap_or_else(|| line_side_sos(*o, *d, *b, *c));
         let origin_check = || {
             if ORIGIN {
                 self.origin_check(*a, *b, *c, *o)
@@ -568,13 +566,33 @@ impl Accel {
                 TriHit::Miss
             }
         };
-        if s0 != s1 || s0 == Sign::Zero {
+        // The three edge signs at once with a shared error bound: it
+        // certifies most misses and most crossings outright. The exact
+        // decision below is the same as the edge-by-edge one it replaces
+        // (a crossing needs three equal non-zero signs; certified signs are
+        // the exact ones).
+        let sides = triangle_edge_sides(dd, u, v, w);
+        if sides.certainly_mixed() {
             return origin_check();
         }
-        let s2 = line_side_filter_scalar(dd, w, u).unwrap_or_else(|| line_side_sos(*o, *d, *c, *a));
-        if s2 != s0 {
-            return origin_check();
-        }
+        let s0 = match sides.certainly_uniform() {
+            Some(s) => s,
+            None => {
+                let s0 = line_side_filter_scalar(dd, u, v)
+                    .unwrap_or_else(|| line_side_sos(*o, *d, *a, *b));
+                let s1 = line_side_filter_scalar(dd, v, w)
+                    .unwrap_or_else(|| line_side_sos(*o, *d, *b, *c));
+                if s0 != s1 || s0 == Sign::Zero {
+                    return origin_check();
+                }
+                let s2 = line_side_filter_scalar(dd, w, u)
+                    .unwrap_or_else(|| line_side_sos(*o, *d, *c, *a));
+                if s2 != s0 {
+                    return origin_check();
+                }
+                s0
+            }
+        };
         match orient3d(*a, *b, *c, *o) {
             Sign::Zero => origin_check(),
             side if side == -s0 => TriHit::Cross(s0),
