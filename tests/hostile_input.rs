@@ -316,3 +316,27 @@ fn scenes_that_include_themselves() {
     let scene = leaf.to_string_lossy().into_owned();
     every_scene_command_refuses(&dir, &scene, &[&scene, "root.mesh: ", "is a scene file"]);
 }
+
+/// Found by the fuzzing audit: a mesh path naming an endless device was
+/// read until memory ran out. Reads now stop at the first NUL byte (binary
+/// data, named by its line) and at `MAX_INPUT_BYTES`.
+#[cfg(target_os = "linux")]
+#[test]
+fn endless_devices_are_refused_as_binary() {
+    every_mesh_command_refuses("/dev/zero", &["/dev/zero:1: binary data"]);
+    let dir = TempDir::new("hostile-device");
+    let scene = dir.write("zero.json", r#"{"root": {"mesh": "/dev/zero"}}"#);
+    every_scene_command_refuses(
+        &dir,
+        scene.to_str().expect("path"),
+        &["/dev/zero:1: binary data"],
+    );
+    let o = run(
+        &["classify", "fixtures/valid/cube.obj", "/dev/zero"],
+        "",
+        &[],
+    );
+    assert_eq!(o.code, 2, "{}", o.stderr);
+    assert!(o.stderr.contains("/dev/zero:1:"), "{}", o.stderr);
+    assert_memory_bounded();
+}

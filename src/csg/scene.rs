@@ -304,17 +304,22 @@ fn read_scene_file(
             "is a directory, not a scene file",
         )));
     }
-    let bytes = std::fs::read(path).map_err(read_error)?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
-        let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
-        SceneError::Json {
-            file: path.display().to_string(),
-            line: 1 + valid.iter().filter(|&&b| b == b'\n').count(),
-            column: 1 + valid.len() - line_start,
-            message: "binary data (not UTF-8 text)".into(),
-        }
-    })?;
+    let bytes = crate::io::read_input(path).map_err(read_error)?;
+    // The text ends at the first invalid UTF-8 or NUL byte (`read_input`
+    // stops at a NUL): anything after it is binary data, named by position.
+    let text_len = crate::io::text_len(&bytes);
+    let valid = &bytes[..text_len];
+    let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    let binary = SceneError::Json {
+        file: path.display().to_string(),
+        line: 1 + valid.iter().filter(|&&b| b == b'\n').count(),
+        column: 1 + valid.len() - line_start,
+        message: "binary data (not UTF-8 text)".into(),
+    };
+    if text_len < bytes.len() {
+        return Err(binary);
+    }
+    let text = String::from_utf8(bytes).map_err(|_| binary)?;
     files.push(std::fs::canonicalize(path).map_err(read_error)?);
     let value = parse_json(&text, &path.display().to_string())?;
     let reader = Reader {

@@ -3,6 +3,7 @@
 
 mod obj;
 mod obj_write;
+mod read;
 mod weld;
 
 pub use crate::mesh::PolygonSoup;
@@ -11,4 +12,5 @@ pub use obj::{
     read_obj,
 };
 pub use obj_write::{to_obj_string, write_obj};
+pub use read::{MAX_INPUT_BYTES, read_input, read_input_from, text_len};
 pub use weld::{WeldMode, WeldRefusal, WeldReport};

@@ -255,7 +255,7 @@ pub fn import_obj(path: &Path, options: &ObjOptions) -> Result<ObjImport, ObjErr
             path: path.to_path_buf(),
         });
     }
-    let bytes = std::fs::read(path).map_err(io)?;
+    let bytes = super::read_input(path).map_err(io)?;
     import_obj_bytes(path, &bytes, options)
 }
 

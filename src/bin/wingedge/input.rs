@@ -1,7 +1,6 @@
 //! Shared input handling for the query subcommands: loading a mesh and
 //! reading numeric lines from a file or standard input.
 
-use std::io::Read;
 use std::path::Path;
 
 use wingedge::io::read_obj;
@@ -20,19 +19,24 @@ pub fn load_mesh(path: &Path) -> Result<(Solid, Accel), String> {
 /// Reads all of `source` (`-` for standard input) as text; bytes that are
 /// not UTF-8 are an error naming the first line that holds one.
 pub fn read_source(source: &str) -> Result<String, String> {
-    let mut bytes = Vec::new();
-    if source == "-" {
-        std::io::stdin()
-            .read_to_end(&mut bytes)
-            .map_err(|e| format!("standard input: cannot read: {e}"))?;
+    // Bounded reads: endless input (`/dev/zero`, `yes |`) stops at its
+    // first NUL byte or at the size limit.
+    let bytes = if source == "-" {
+        wingedge::io::read_input_from(std::io::stdin().lock())
+            .map_err(|e| format!("standard input: cannot read: {e}"))?
     } else {
-        bytes = std::fs::read(source).map_err(|e| format!("{source}: cannot read: {e}"))?;
+        wingedge::io::read_input(std::path::Path::new(source))
+            .map_err(|e| format!("{source}: cannot read: {e}"))?
+    };
+    // The text ends at the first invalid UTF-8 or NUL byte (reads stop at
+    // a NUL): binary data, named by its line.
+    let text_len = wingedge::io::text_len(&bytes);
+    let line = 1 + bytes[..text_len].iter().filter(|&&b| b == b'\n').count();
+    let binary = format!("{source}:{line}: binary data (not UTF-8 text)");
+    if text_len < bytes.len() {
+        return Err(binary);
     }
-    String::from_utf8(bytes).map_err(|e| {
-        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
-        let line = 1 + valid.iter().filter(|&&b| b == b'\n').count();
-        format!("{source}:{line}: binary data (not UTF-8 text)")
-    })
+    String::from_utf8(bytes).map_err(|_| binary)
 }
 
 /// Parses lines of exactly `N` finite numbers separated by whitespace.

@@ -1,0 +1,104 @@
+//! Reading an input file whole, without trusting what the path names.
+//!
+//! A path may name a device or a pipe that never ends (`/dev/zero`,
+//! `/dev/urandom`, `yes |`): [`read_input`] stops at the first NUL byte
+//! (every input format here is text, so the caller reports binary data at
+//! that line) and refuses input beyond [`MAX_INPUT_BYTES`], so memory stays
+//! bounded whatever the path names.
+
+use std::fs::File;
+use std::io::{self, Read};
+use std::path::Path;
+
+/// The largest input file read: 2 GiB, about 50 million triangles of OBJ
+/// text, whose winged-edge solid would need some 35 GB of memory.
+pub const MAX_INPUT_BYTES: usize = 1 << 31;
+
+/// The bytes of the file at `path`, up to and including its first NUL byte
+/// if it has one.
+///
+/// # Errors
+///
+/// What opening or reading the file gives, and [`io::ErrorKind::InvalidData`]
+/// for input longer than [`MAX_INPUT_BYTES`].
+pub fn read_input(path: &Path) -> io::Result<Vec<u8>> {
+    read_bounded(File::open(path)?, MAX_INPUT_BYTES)
+}
+
+/// [`read_input`] on any reader (standard input, say).
+///
+/// # Errors
+///
+/// As [`read_input`].
+pub fn read_input_from(reader: impl Read) -> io::Result<Vec<u8>> {
+    read_bounded(reader, MAX_INPUT_BYTES)
+}
+
+/// How many leading bytes of `bytes` are text: up to the first NUL byte or
+/// invalid UTF-8 sequence (all of them for text). Every input format here
+/// is text; what follows is binary data, reported at its line.
+pub fn text_len(bytes: &[u8]) -> usize {
+    let utf8 = std::str::from_utf8(bytes).map_or_else(|e| e.valid_up_to(), str::len);
+    memchr::memchr(0, bytes).map_or(utf8, |nul| nul.min(utf8))
+}
+
+/// [`read_input`] on any reader, with the size limit given.
+fn read_bounded(mut reader: impl Read, limit: usize) -> io::Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    let mut chunk = vec![0u8; 1 << 16];
+    loop {
+        let n = match reader.read(&mut chunk) {
+            Ok(0) => return Ok(bytes),
+            Ok(n) => n,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(e),
+        };
+        if let Some(nul) = memchr::memchr(0, &chunk[..n]) {
+            bytes.extend_from_slice(&chunk[..=nul]);
+            return Ok(bytes);
+        }
+        if bytes.len() + n > limit {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!("the input is larger than the limit of {limit} bytes"),
+            ));
+        }
+        bytes.extend_from_slice(&chunk[..n]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn endless_zeros_stop_at_the_first_nul() {
+        let bytes = read_bounded(io::repeat(0), 1 << 20).unwrap();
+        assert_eq!(bytes, vec![0]);
+        let bytes = read_bounded(b"v 1 2 3\n\0rest".as_slice(), 1 << 20).unwrap();
+        assert_eq!(bytes, b"v 1 2 3\n\0");
+    }
+
+    #[test]
+    fn endless_text_is_refused_at_the_limit() {
+        let e = read_bounded(io::repeat(b'v'), 1 << 20).unwrap_err();
+        assert_eq!(e.kind(), io::ErrorKind::InvalidData);
+        assert!(e.to_string().contains("limit of 1048576 bytes"), "{e}");
+        let text = b"v 0 0 0\n".repeat(1000);
+        assert_eq!(read_bounded(text.as_slice(), 1 << 20).unwrap(), text);
+    }
+
+    #[test]
+    fn text_ends_at_a_nul_or_invalid_utf8() {
+        assert_eq!(text_len(b"v 1 2 3\n"), 8);
+        assert_eq!(text_len(b"v 1\0 2"), 3);
+        assert_eq!(text_len(b"v \xff\0"), 2);
+        assert_eq!(text_len("é\0".as_bytes()), 2);
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn dev_zero_is_read_as_one_nul() {
+        assert_eq!(read_input(Path::new("/dev/zero")).unwrap(), vec![0]);
+    }
+}
