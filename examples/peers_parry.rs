@@ -28,14 +28,16 @@
 //! vertex, or two triangles using an edge in the same direction. Open
 //! boundaries and self-intersections are not checked. One JSON line.
 
-use std::error::Error;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use rayon::prelude::*;
 use serde_json::json;
 
-type Result<T> = std::result::Result<T, Box<dyn Error>>;
+#[path = "common/peers_io.rs"]
+mod peers_io;
+
+use peers_io::{Result, peak_rss_mib, read_f64s, write_answers};
 
 const USAGE: &str = "usage: peers_parry queries DIR POINTS NAME... | peers_parry validate FILE.obj";
 
@@ -74,22 +76,6 @@ fn load_obj(path: &Path) -> Result<TriangleSoup> {
     Ok(soup)
 }
 
-fn read_f64s(path: &Path, width: usize) -> Result<Vec<f64>> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    if bytes.len() % (8 * width) != 0 {
-        return Err(format!(
-            "{}: {} bytes is not a whole number of {width}-component f64 records",
-            path.display(),
-            bytes.len()
-        )
-        .into());
-    }
-    Ok(bytes
-        .chunks_exact(8)
-        .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-        .collect())
-}
-
 /// Best wall time of up to three calls (one if a call takes longer than
 /// [`REPEAT_BELOW_S`]) and the last result.
 fn best_of_3<T>(mut f: impl FnMut() -> T) -> (f64, T) {
@@ -105,17 +91,6 @@ fn best_of_3<T>(mut f: impl FnMut() -> T) -> (f64, T) {
         }
     }
     (best, out.expect("at least one run"))
-}
-
-fn peak_rss_mib() -> Option<f64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib / 1024.0)
-}
-
-fn write_answers(path: &Path, bytes: Vec<u8>) -> Result<()> {
-    std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()).into())
 }
 
 /// One precision's queries: the same body for `parry3d` and `parry3d_f64`.

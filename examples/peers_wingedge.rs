@@ -34,7 +34,6 @@
 //! Run with `RAYON_NUM_THREADS=1` for single-thread rates.
 
 use std::collections::HashMap;
-use std::error::Error;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -46,28 +45,13 @@ use wingedge::mesh::{FaceId, Solid};
 use wingedge::query::{Accel, Containment, Method, Transition};
 use wingedge::validate::{Options, validate_and_build};
 
-type Result<T> = std::result::Result<T, Box<dyn Error>>;
+#[path = "common/peers_io.rs"]
+mod peers_io;
+
+use peers_io::{Result, peak_rss_mib, read_f64s, write_answers};
 
 const USAGE: &str =
     "usage: peers_wingedge queries DIR NAME... | peers_wingedge validate FILE.obj [REPEATS]";
-
-/// Reads a raw little-endian `f64` file whose length is a multiple of
-/// `8 * width` bytes.
-fn read_f64s(path: &Path, width: usize) -> Result<Vec<f64>> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    if bytes.len() % (8 * width) != 0 {
-        return Err(format!(
-            "{}: {} bytes is not a whole number of {width}-component f64 records",
-            path.display(),
-            bytes.len()
-        )
-        .into());
-    }
-    Ok(bytes
-        .chunks_exact(8)
-        .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-        .collect())
-}
 
 /// CPU time of the whole process (every thread), seconds.
 fn process_cpu() -> f64 {
@@ -94,18 +78,6 @@ fn best_of<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
         eprintln!("    wall {best:.4} s, process cpu {best_cpu:.4} s");
     }
     (best, out.expect("runs.max(1) >= 1"))
-}
-
-/// Peak resident memory of this process, MiB (Linux).
-fn peak_rss_mib() -> Option<f64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib / 1024.0)
-}
-
-fn write_answers(path: &Path, bytes: Vec<u8>) -> Result<()> {
-    std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()).into())
 }
 
 fn queries(dir: &Path, name: &str) -> Result<()> {

@@ -637,22 +637,8 @@ impl Accel {
         loop {
             let node = &nodes[current as usize];
             tally.node();
-            let (entry, mut mask) = rb.enter4(node, limit);
-            // The children the ray may touch, nearer first (ties by slot).
-            let mut order: [(f32, usize); WIDTH] = [(0.0, 0); WIDTH];
-            let mut len = 0;
-            while mask != 0 {
-                let k = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                let t = entry[k];
-                let mut j = len;
-                while j > 0 && order[j - 1].0 > t {
-                    order[j] = order[j - 1];
-                    j -= 1;
-                }
-                order[j] = (t, k);
-                len += 1;
-            }
+            let (entry, mask) = rb.enter4(node, limit);
+            let (order, len) = nearest_first(entry, mask);
             // Every child the ray may enter is requested from memory now, so
             // that its cache misses overlap the work on the nearer ones.
             for &(_, k) in &order[..len] {
@@ -772,6 +758,29 @@ fn coherent_order(rays: &[Ray]) -> Vec<u32> {
         .collect();
     keyed.par_sort_unstable();
     keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// The children a ray enters (`mask` of [`RayBox::enter4`]) with their
+/// entries, nearer first, ties by slot; and how many there are.
+#[inline(always)]
+pub(super) fn nearest_first(entry: [f32; WIDTH], mut mask: u32) -> ([(f32, usize); WIDTH], usize) {
+    let mut order: [(f32, usize); WIDTH] = [(0.0, 0); WIDTH];
+    let mut len = 0;
+    while mask != 0 {
+        let k = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        let t = entry[k];
+        // Insertion sort: at most four children (a branch-free rank count
+        // measured about 1.4× slower).
+        let mut j = len;
+        while j > 0 && order[j - 1].0 > t {
+            order[j] = order[j - 1];
+            j -= 1;
+        }
+        order[j] = (t, k);
+        len += 1;
+    }
+    (order, len)
 }
 
 /// Orders crossings whose rounded `t` coincide (or are inverted by

@@ -12,7 +12,9 @@ use crate::geom::Ray;
 
 use super::Accel;
 use super::accel::WIDTH;
-use super::ray_solid::{BestHit, Crossing, RayBox, prefetch, unit_scaled, unscaled_t};
+use super::ray_solid::{
+    BestHit, Crossing, RayBox, nearest_first, prefetch, unit_scaled, unscaled_t,
+};
 
 /// Rays walked in turn.
 const LANES: usize = 8;
@@ -128,22 +130,8 @@ impl Accel {
             }
         };
         let node = &self.nodes[current as usize];
-        let (entry, mut mask) = w.rays_box.enter4(node, w.limit);
-        // The children the ray may touch, nearer first (ties by slot).
-        let mut order: [(f32, usize); WIDTH] = [(0.0, 0); WIDTH];
-        let mut len = 0;
-        while mask != 0 {
-            let k = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            let t = entry[k];
-            let mut j = len;
-            while j > 0 && order[j - 1].0 > t {
-                order[j] = order[j - 1];
-                j -= 1;
-            }
-            order[j] = (t, k);
-            len += 1;
-        }
+        let (entry, mask) = w.rays_box.enter4(node, w.limit);
+        let (order, len) = nearest_first(entry, mask);
         // Leaves wait for the next turn; the nearest inner child is opened
         // then too; the other inner children are deferred (nearer popped
         // first). All of them are requested from memory now.
