@@ -242,9 +242,13 @@ impl RayBox {
                 t1[k] = if tf < t1[k] { tf } else { t1[k] };
             }
         }
+        // An empty slot (`child == u32::MAX`) is never entered: its inverted
+        // box is refused by the comparisons above except when the origin is
+        // beyond the `f32` range (no constraint, NaN bounds left unchanged);
+        // found by the queries fuzz target.
         let mut mask = 0;
         for k in 0..WIDTH {
-            mask |= u32::from(t0[k] <= t1[k]) << k;
+            mask |= u32::from(t0[k] <= t1[k] && n.child[k] != u32::MAX) << k;
         }
         (t0, mask)
     }
