@@ -10,6 +10,8 @@ use crate::geom::polygon::{Axis, Projection};
 use crate::geom::{Aabb, Sign, orient2d, orient3d};
 use crate::mesh::{FaceId, Solid};
 
+use super::tri_packet::{LANES, TriPacket};
+
 /// Why a solid is not convex (the normals method refuses it).
 ///
 /// Decided exactly on the fan triangles: every edge of the triangulation
@@ -182,7 +184,7 @@ pub(super) struct Node4 {
     /// ones (rounded up), so that all children are tested in one pass. An
     /// empty slot has lower `+∞` and upper `−∞` (never entered).
     pub bounds: [[f32; WIDTH]; 6],
-    /// Per child: the first triangle of a leaf, or the index of an inner
+    /// Per child: the [`TriPacket`] of a leaf, or the index of an inner
     /// node.
     pub child: [u32; WIDTH],
     /// Per child: the number of triangles of a leaf; 0 for an inner node
@@ -328,6 +330,21 @@ fn fill_node4(nodes: &[Node], i: usize, at: usize, out: &mut Vec<Node4>) {
     }
 }
 
+/// Gives every leaf of `nodes` its [`TriPacket`]: the leaf slots' first
+/// triangle is replaced by the index of the packet holding its triangles.
+fn leaf_packets(nodes: &mut [Node4], tris: &[YzTri], frame: &BoxFrame) -> Vec<TriPacket> {
+    let mut packets = Vec::new();
+    for node in nodes {
+        for k in 0..WIDTH {
+            if node.count[k] > 0 {
+                packets.push(TriPacket::new(tris, node.child[k], node.count[k], frame));
+                node.child[k] = (packets.len() - 1) as u32;
+            }
+        }
+    }
+    packets
+}
+
 /// The acceleration structure of one solid, built once and shared by every
 /// query (it is `Send + Sync`; batch queries split work over rayon's pool).
 ///
@@ -354,6 +371,11 @@ pub struct Accel {
     pub(super) tris: Vec<YzTri>,
     pub(super) tri_face: Vec<FaceId>,
     pub(super) nodes: Vec<Node4>,
+    /// One per BVH leaf, the leaf's triangles in `f32` for the rays' miss
+    /// filter; leaves of `nodes` index it.
+    pub(super) packets: Vec<TriPacket>,
+    /// The largest magnitude of a coordinate stored in `packets`.
+    pub(super) packet_extent: f32,
     pub(super) frame: BoxFrame,
     grid: std::sync::OnceLock<(YzGrid, Duration)>,
     pub(super) bounds: Aabb,
@@ -368,8 +390,8 @@ const CELLS_PER_TRIANGLE: f64 = 1.0;
 /// that is flat in one of them still gets a grid of sensible shape. A layout
 /// choice, not a tolerance: it decides no answer.
 const MAX_GRID_ASPECT: f64 = 1e6;
-/// Largest number of triangles in a BVH leaf.
-const LEAF_SIZE: usize = 4;
+/// Largest number of triangles in a BVH leaf: one [`TriPacket`].
+const LEAF_SIZE: usize = LANES;
 /// SAH bins per split.
 const BINS: usize = 16;
 
@@ -388,12 +410,17 @@ impl Accel {
         let boundary_edges = solid.boundary_edges().count();
         let (tris, tri_face) = fan_triangles(solid);
         let (binary, order, frame) = build_bvh(&tris);
-        let nodes = to_node4(&binary);
+        let mut nodes = to_node4(&binary);
         drop(binary);
         let tris: Vec<YzTri> = order
             .par_iter()
             .map(|&i| yz_tri(&tris[i as usize]))
             .collect();
+        let packets = leaf_packets(&mut nodes, &tris, &frame);
+        let packet_extent = packets
+            .par_iter()
+            .map(TriPacket::extent)
+            .reduce(|| 0.0, f32::max);
         let tri_face: Vec<FaceId> = order.par_iter().map(|&i| tri_face[i as usize]).collect();
         let bounds = tris
             .iter()
@@ -401,7 +428,8 @@ impl Accel {
             .fold(Aabb::EMPTY, Aabb::grow);
         let memory_bytes = tris.capacity() * std::mem::size_of::<YzTri>()
             + tri_face.capacity() * std::mem::size_of::<FaceId>()
-            + nodes.capacity() * std::mem::size_of::<Node4>();
+            + nodes.capacity() * std::mem::size_of::<Node4>()
+            + packets.capacity() * std::mem::size_of::<TriPacket>();
         let stats = AccelStats {
             triangles: tris.len(),
             bvh_nodes: nodes.len(),
@@ -415,6 +443,8 @@ impl Accel {
             tris,
             tri_face,
             nodes,
+            packets,
+            packet_extent,
             frame,
             grid: std::sync::OnceLock::new(),
             bounds,

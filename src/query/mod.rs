@@ -27,11 +27,13 @@
 //!   *listed* in order of their rounded `t`.
 
 mod accel;
+mod lanes;
 mod line_face;
 mod point_in_convex;
 mod point_in_solid;
 mod ray_solid;
 mod ray_stream;
+mod tri_packet;
 mod winding;
 
 pub use accel::{Accel, AccelStats, NotConvex};

@@ -9,6 +9,8 @@ use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
 
 use super::accel::{BoxFrame, Node4, WIDTH};
+use super::lanes::F32x4;
+use super::tri_packet::PacketRay;
 use super::{Accel, Containment, QueryError};
 
 /// Whether the ray enters or leaves the solid at a crossing.
@@ -95,10 +97,11 @@ impl Tally for TraversalStats {
 /// [`BoxFrame`], with its parameter rescaled and every constant rounded so
 /// that the tests can only err towards entering a box.
 ///
-/// In the frame, the ray is `o' + s · d'` with `o' = (o − centre) · scale`,
-/// `d' = d · 2⁻ᵏ` (`k` such that the largest `|d'ₐ|` is in `[1, 2)`) and
-/// `s = t · 2ᵏ · scale`: the same points, with `s` a power-of-two multiple of
-/// `t`, so comparisons of `s` are comparisons of `t`.
+/// The ray's direction `d'` is already scaled by [`unit_scaled`] (largest
+/// `|d'ₐ|` in `[1, 2)`). In the frame, the ray is `o' + s · d'` with
+/// `o' = (o − centre) · scale` and `s = t · scale`: the same points, with
+/// `s` a power-of-two multiple of `t`, so comparisons of `s` are
+/// comparisons of `t`.
 ///
 /// # Why the test is conservative
 ///
@@ -123,20 +126,20 @@ impl Tally for TraversalStats {
 pub(super) struct RayBox {
     /// The origin in the frame, rounded (per axis) away from the near
     /// planes: used for entries.
-    o_near: [f32; 3],
+    o_near: [F32x4; 3],
     /// The origin in the frame, rounded towards the near planes: used for
     /// exits.
-    o_far: [f32; 3],
+    o_far: [F32x4; 3],
     /// `1/d'ₐ` rounded towards zero (exactly `±∞` when `d'ₐ = 0`).
-    inv_near: [f32; 3],
+    inv_near: [F32x4; 3],
     /// `1/d'ₐ · (1 + 2⁻²⁰)` rounded away from zero.
-    inv_far: [f32; 3],
+    inv_far: [F32x4; 3],
     /// Per axis, the row of [`Node4::bounds`] holding the near planes
     /// (lower bounds when the ray runs up the axis).
     near_row: [usize; 3],
     /// Per axis, the row holding the far planes.
     far_row: [usize; 3],
-    /// `2ᵏ · scale`: the factor from `t` to `s`.
+    /// `scale`: the factor from `t` to `s`.
     t_to_s: f64,
 }
 
@@ -151,23 +154,14 @@ const INV_SHRINK: f32 = 1.0 - ORIGIN_WIDEN;
 const INV_GROW: f32 = 1.0 + 2.0 / (1u32 << 20) as f32;
 
 impl RayBox {
+    /// The slab-test form of `ray`, whose direction is already scaled by
+    /// [`unit_scaled`] (largest component in `[1, 2)`, so `d' = d`, `k = 0`).
     pub(super) fn new(ray: &Ray, frame: &BoxFrame) -> RayBox {
         let d = ray.direction;
-        // 2^-k with the largest |d'| in [1, 2), read off the exponent bits;
-        // `k` clamped so that 2^-k is a normal `f64` (a subnormal direction
-        // keeps |d'| ≥ 2^-74, whose reciprocal is still an `f32`).
-        let biased = ((d.abs().max_element().to_bits() >> 52) & 0x7ff) as i64;
-        let k = (biased - 1023).clamp(-1000, 1000);
-        let d_scale = f64::from_bits(((1023 - k) as u64) << 52);
-        let mut rb = RayBox {
-            o_near: [0.0; 3],
-            o_far: [0.0; 3],
-            inv_near: [0.0; 3],
-            inv_far: [0.0; 3],
-            near_row: [0; 3],
-            far_row: [0; 3],
-            t_to_s: frame.scale / d_scale,
-        };
+        debug_assert!((1.0..2.0).contains(&d.abs().max_element()), "{d}");
+        let (mut o_near, mut o_far) = ([0.0f32; 3], [0.0f32; 3]);
+        let (mut inv_near, mut inv_far) = ([0.0f32; 3], [0.0f32; 3]);
+        let (mut near_row, mut far_row) = ([0; 3], [0; 3]);
         for a in 0..3 {
             let o = frame.in_frame(ray.origin[a], a);
             // The origin widened by `|f|·2⁻²² + 2⁻¹²⁶` either way (see
@@ -182,7 +176,7 @@ impl RayBox {
             } else {
                 (f32::NEG_INFINITY, f32::INFINITY)
             };
-            let da = d[a] * d_scale;
+            let da = d[a];
             let neg = da.is_sign_negative();
             let recip = (1.0 / da.abs()) as f32;
             let (inv_lo, inv_hi) = if da == 0.0 {
@@ -193,22 +187,30 @@ impl RayBox {
             if neg {
                 // Entry through the upper plane: (hi_plane − o) · (−|inv|)
                 // is smallest for the smallest origin.
-                rb.o_near[a] = lo;
-                rb.o_far[a] = hi;
-                rb.inv_near[a] = -inv_lo;
-                rb.inv_far[a] = -inv_hi;
-                rb.near_row[a] = 3 + a;
-                rb.far_row[a] = a;
+                o_near[a] = lo;
+                o_far[a] = hi;
+                inv_near[a] = -inv_lo;
+                inv_far[a] = -inv_hi;
+                near_row[a] = 3 + a;
+                far_row[a] = a;
             } else {
-                rb.o_near[a] = hi;
-                rb.o_far[a] = lo;
-                rb.inv_near[a] = inv_lo;
-                rb.inv_far[a] = inv_hi;
-                rb.near_row[a] = a;
-                rb.far_row[a] = 3 + a;
+                o_near[a] = hi;
+                o_far[a] = lo;
+                inv_near[a] = inv_lo;
+                inv_far[a] = inv_hi;
+                near_row[a] = a;
+                far_row[a] = 3 + a;
             }
         }
-        rb
+        RayBox {
+            o_near: o_near.map(F32x4::splat),
+            o_far: o_far.map(F32x4::splat),
+            inv_near: inv_near.map(F32x4::splat),
+            inv_far: inv_far.map(F32x4::splat),
+            near_row,
+            far_row,
+            t_to_s: frame.scale,
+        }
     }
 
     /// The limit in `s` for a best crossing at `t` (grown by the margin,
@@ -228,29 +230,27 @@ impl RayBox {
     /// them in one vector register.
     #[inline(always)]
     pub(super) fn enter4(&self, n: &Node4, limit: f32) -> ([f32; WIDTH], u32) {
-        let mut t0 = [0.0f32; WIDTH];
-        let mut t1 = [limit; WIDTH];
+        let mut t0 = F32x4::splat(0.0);
+        let mut t1 = F32x4::splat(limit);
         for a in 0..3 {
-            let near = &n.bounds[self.near_row[a]];
-            let far = &n.bounds[self.far_row[a]];
-            for k in 0..WIDTH {
-                let tn = (near[k] - self.o_near[a]) * self.inv_near[a];
-                let tf = (far[k] - self.o_far[a]) * self.inv_far[a];
-                // NaN (0 · ∞: origin on the slab plane of a parallel ray)
-                // leaves the bound unchanged.
-                t0[k] = if tn > t0[k] { tn } else { t0[k] };
-                t1[k] = if tf < t1[k] { tf } else { t1[k] };
-            }
+            let near = F32x4::load(&n.bounds[self.near_row[a]]);
+            let far = F32x4::load(&n.bounds[self.far_row[a]]);
+            let tn = near.sub(self.o_near[a]).mul(self.inv_near[a]);
+            let tf = far.sub(self.o_far[a]).mul(self.inv_far[a]);
+            // NaN (0 · ∞: origin on the slab plane of a parallel ray)
+            // leaves the bound unchanged.
+            t0 = tn.max_or(t0);
+            t1 = tf.min_or(t1);
         }
         // An empty slot (`child == u32::MAX`) is never entered: its inverted
         // box is refused by the comparisons above except when the origin is
         // beyond the `f32` range (no constraint, NaN bounds left unchanged);
         // found by the queries fuzz target.
-        let mut mask = 0;
+        let mut slots = 0;
         for k in 0..WIDTH {
-            mask |= u32::from(t0[k] <= t1[k] && n.child[k] != u32::MAX) << k;
+            slots |= u32::from(n.child[k] != u32::MAX) << k;
         }
-        (t0, mask)
+        (t0.to_array(), t0.le(t1).bits() & slots)
     }
 }
 
@@ -620,8 +620,9 @@ impl Accel {
     }
 
     /// Visits the triangles of every leaf whose box the ray may touch before
-    /// the current limit, near child first. `visit(i, t_max)` returns the new
-    /// limit (a `t`). Deferred subtrees are kept with their entry parameter,
+    /// the current limit, near child first, except those its
+    /// [`TriPacket`](super::tri_packet::TriPacket) proves missed.
+    /// `visit(i, t_max)` returns the new limit (a `t`). Deferred subtrees are kept with their entry parameter,
     /// so that a subtree beyond the limit is dropped without touching its
     /// node.
     #[inline(always)]
@@ -633,6 +634,7 @@ impl Accel {
         mut visit: impl FnMut(u32, f64) -> f64,
     ) {
         let rb = RayBox::new(ray, &self.frame);
+        let pr = PacketRay::new(ray, &self.frame, self.packet_extent);
         let mut t_limit = t_max;
         let mut limit = rb.limit(t_limit);
         let mut stack: smallvec::SmallVec<[(u32, f32); 64]> = smallvec::SmallVec::new();
@@ -643,16 +645,6 @@ impl Accel {
             tally.node();
             let (entry, mask) = rb.enter4(node, limit);
             let (order, len) = nearest_first(entry, mask);
-            // Every child the ray may enter is requested from memory now, so
-            // that its cache misses overlap the work on the nearer ones.
-            for &(_, k) in &order[..len] {
-                let (child, count) = (node.child[k] as usize, node.count[k] as usize);
-                if count > 0 {
-                    prefetch(&self.tris[child..child + count]);
-                } else {
-                    prefetch(std::slice::from_ref(&nodes[child]));
-                }
-            }
             // Leaves are tested at once, nearer first; the nearest inner
             // child is descended into, the others deferred (nearer popped
             // first).
@@ -665,8 +657,14 @@ impl Accel {
                 }
                 let (child, count) = (node.child[k], node.count[k]);
                 if count > 0 {
-                    for i in child..child + count {
+                    let packet = &self.packets[child as usize];
+                    let mut undecided = packet.undecided(&pr);
+                    for _ in 0..count {
                         tally.triangle();
+                    }
+                    while undecided != 0 {
+                        let i = packet.first + undecided.trailing_zeros();
+                        undecided &= undecided - 1;
                         let t_new = visit(i, t_limit);
                         if t_new != t_limit {
                             t_limit = t_new;
@@ -884,11 +882,14 @@ mod tests {
                 continue;
             }
             entered += 1;
-            let rb = RayBox::new(&ray, &frame);
+            // The slab test sees rays scaled as every query passes them;
+            // `t` along the scaled ray is `t / factor`, exactly.
+            let (scaled, factor) = unit_scaled(&ray);
+            let rb = RayBox::new(&scaled, &frame);
             let (entry, mask) = rb.enter4(&node, rb.limit(f64::INFINITY));
             assert_eq!(mask, 1, "case {case}: {ray:?} misses [{lo}, {hi}]");
             // And with the limit at the exact entry, the box still counts.
-            let (_, mask) = rb.enter4(&node, rb.limit(t0));
+            let (_, mask) = rb.enter4(&node, rb.limit(t0 / factor));
             assert_eq!(mask, 1, "case {case}: entry {} vs limit {t0}", entry[0]);
         }
         assert!(entered > 5_000, "{entered}");

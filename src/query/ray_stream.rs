@@ -15,6 +15,7 @@ use super::accel::WIDTH;
 use super::ray_solid::{
     BestHit, Crossing, RayBox, nearest_first, prefetch, unit_scaled, unscaled_t,
 };
+use super::tri_packet::PacketRay;
 
 /// Rays walked in turn.
 const LANES: usize = 8;
@@ -28,6 +29,8 @@ struct Walk {
     scaled: Ray,
     t_scale: f64,
     rays_box: RayBox,
+    /// The ray as the leaves' miss filter sees it.
+    packet_ray: PacketRay,
     best: BestHit,
     /// The best crossing's `t` (`+∞` before any).
     t_limit: f64,
@@ -35,9 +38,9 @@ struct Walk {
     limit: f32,
     /// The node to open next and its entry (requested from memory).
     next: Option<(u32, f32)>,
-    /// Leaves of the node opened last, nearest first: entry, first
-    /// triangle, count (their triangles requested from memory).
-    leaves: [(f32, u32, u32); WIDTH],
+    /// Leaves of the node opened last, nearest first: entry and packet
+    /// (requested from memory).
+    leaves: [(f32, u32); WIDTH],
     n_leaves: usize,
     /// Deferred subtrees with their entries; nearer on top.
     stack: smallvec::SmallVec<[(u32, f32); 64]>,
@@ -47,17 +50,19 @@ impl Walk {
     fn new(ray: usize, r: &Ray, accel: &Accel) -> Walk {
         let (scaled, t_scale) = unit_scaled(r);
         let rays_box = RayBox::new(&scaled, &accel.frame);
+        let packet_ray = PacketRay::new(&scaled, &accel.frame, accel.packet_extent);
         let limit = rays_box.limit(f64::INFINITY);
         Walk {
             ray,
             scaled,
             t_scale,
             rays_box,
+            packet_ray,
             best: None,
             t_limit: f64::INFINITY,
             limit,
             next: Some((0, 0.0)),
-            leaves: [(0.0, 0, 0); WIDTH],
+            leaves: [(0.0, 0); WIDTH],
             n_leaves: 0,
             stack: smallvec::SmallVec::new(),
         }
@@ -101,11 +106,15 @@ impl Accel {
     #[inline(always)]
     fn step(&self, w: &mut Walk, ray: &Ray) -> bool {
         for j in 0..w.n_leaves {
-            let (t, first, count) = w.leaves[j];
+            let (t, packet) = w.leaves[j];
             if t > w.limit {
                 continue;
             }
-            for i in first..first + count {
+            let packet = &self.packets[packet as usize];
+            let mut undecided = packet.undecided(&w.packet_ray);
+            while undecided != 0 {
+                let i = packet.first + undecided.trailing_zeros();
+                undecided &= undecided - 1;
                 let t_new = self.consider_for_first_hit(ray, i, &mut w.best, w.t_limit);
                 if t_new != w.t_limit {
                     w.t_limit = t_new;
@@ -140,8 +149,10 @@ impl Accel {
         for &(t, k) in &order[..len] {
             let (child, count) = (node.child[k], node.count[k]);
             if count > 0 {
-                prefetch(&self.tris[child as usize..(child + count) as usize]);
-                w.leaves[w.n_leaves] = (t, child, count);
+                let packet = &self.packets[child as usize];
+                prefetch(std::slice::from_ref(packet));
+                prefetch(&self.tris[packet.first as usize..(packet.first + count) as usize]);
+                w.leaves[w.n_leaves] = (t, child);
                 w.n_leaves += 1;
             } else {
                 prefetch(std::slice::from_ref(&self.nodes[child as usize]));
