@@ -42,6 +42,10 @@ struct Walk {
     /// (requested from memory).
     leaves: [(f32, u32); WIDTH],
     n_leaves: usize,
+    /// Leaves filtered by the last step: entry, first triangle and the
+    /// mask of triangles still to decide (requested from memory).
+    pending: [(f32, u32, u32); WIDTH],
+    n_pending: usize,
     /// Deferred subtrees with their entries; nearer on top.
     stack: smallvec::SmallVec<[(u32, f32); 64]>,
 }
@@ -64,6 +68,8 @@ impl Walk {
             next: Some((0, 0.0)),
             leaves: [(0.0, 0); WIDTH],
             n_leaves: 0,
+            pending: [(0.0, 0, 0); WIDTH],
+            n_pending: 0,
             stack: smallvec::SmallVec::new(),
         }
     }
@@ -100,26 +106,45 @@ impl Accel {
         }
     }
 
-    /// One step of a walk: test the leaves found by the previous step, then
-    /// open the next node (or fetch the next deferred one). Returns whether
-    /// the walk is over.
+    /// One step of a walk: decide exactly the triangles the previous step's
+    /// filter left undecided, filter the leaves found by the previous step
+    /// (requesting their undecided triangles from memory for the next
+    /// step), then open the next node (or fetch the next deferred one).
+    /// Returns whether the walk is over.
     #[inline(always)]
     fn step(&self, w: &mut Walk, ray: &Ray) -> bool {
-        for j in 0..w.n_leaves {
-            let (t, packet) = w.leaves[j];
+        for j in 0..w.n_pending {
+            let (t, first, mut undecided) = w.pending[j];
             if t > w.limit {
                 continue;
             }
-            let packet = &self.packets[packet as usize];
-            let mut undecided = packet.undecided(&w.packet_ray);
             while undecided != 0 {
-                let i = packet.first + undecided.trailing_zeros();
+                let i = first + undecided.trailing_zeros();
                 undecided &= undecided - 1;
                 let t_new = self.consider_for_first_hit(ray, i, &mut w.best, w.t_limit);
                 if t_new != w.t_limit {
                     w.t_limit = t_new;
                     w.limit = w.rays_box.limit(t_new);
                 }
+            }
+        }
+        w.n_pending = 0;
+        for j in 0..w.n_leaves {
+            let (t, packet) = w.leaves[j];
+            if t > w.limit {
+                continue;
+            }
+            let packet = &self.packets[packet as usize];
+            let undecided = packet.undecided(&w.packet_ray);
+            if undecided != 0 {
+                let mut lanes = undecided;
+                while lanes != 0 {
+                    let i = (packet.first + lanes.trailing_zeros()) as usize;
+                    lanes &= lanes - 1;
+                    prefetch(std::slice::from_ref(&self.tris[i]));
+                }
+                w.pending[w.n_pending] = (t, packet.first, undecided);
+                w.n_pending += 1;
             }
         }
         w.n_leaves = 0;
@@ -135,7 +160,7 @@ impl Accel {
                         return false;
                     }
                 }
-                return true;
+                return w.n_pending == 0;
             }
         };
         let node = &self.nodes[current as usize];
@@ -149,9 +174,7 @@ impl Accel {
         for &(t, k) in &order[..len] {
             let (child, count) = (node.child[k], node.count[k]);
             if count > 0 {
-                let packet = &self.packets[child as usize];
-                prefetch(std::slice::from_ref(packet));
-                prefetch(&self.tris[packet.first as usize..(packet.first + count) as usize]);
+                prefetch(std::slice::from_ref(&self.packets[child as usize]));
                 w.leaves[w.n_leaves] = (t, child);
                 w.n_leaves += 1;
             } else {
