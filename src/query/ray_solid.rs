@@ -504,6 +504,8 @@ impl Accel {
             };
             if better {
                 *best = Some((t, i, s));
+                // The answer will name its face: ask for it now.
+                prefetch(std::slice::from_ref(&self.tri_face[i as usize]));
                 return t;
             }
         }
@@ -644,34 +646,40 @@ impl Accel {
             let node = &nodes[current as usize];
             tally.node();
             let (entry, mask) = rb.enter4(node, limit);
-            let (order, len) = nearest_first(entry, mask);
-            // Leaves are tested at once, nearer first; the nearest inner
-            // child is descended into, the others deferred (nearer popped
-            // first).
+            let (mut leaves, order) = split_children(node, &entry, mask);
+            // Leaves are tested at once; the nearest inner child is
+            // descended into, the others deferred (nearer popped first).
+            while leaves != 0 {
+                let k = leaves.trailing_zeros() as usize;
+                leaves &= leaves - 1;
+                if entry[k] > limit {
+                    continue;
+                }
+                let packet = &self.packets[node.child[k] as usize];
+                for _ in 0..packet.count {
+                    tally.triangle();
+                }
+                let mut undecided = packet.undecided(&pr);
+                while undecided != 0 {
+                    let i = packet.first + undecided.trailing_zeros();
+                    undecided &= undecided - 1;
+                    let t_new = visit(i, t_limit);
+                    if t_new != t_limit {
+                        t_limit = t_new;
+                        limit = rb.limit(t_limit);
+                    }
+                }
+            }
             let mut next: Option<u32> = None;
             let mut deferred: [(u32, f32); WIDTH] = [(0, 0.0); WIDTH];
             let mut n_deferred = 0;
-            for &(t, k) in &order[..len] {
+            for j in 0..order.len {
+                let k = order.get(j);
+                let (child, t) = (node.child[k], entry[k]);
                 if t > limit {
                     continue;
                 }
-                let (child, count) = (node.child[k], node.count[k]);
-                if count > 0 {
-                    let packet = &self.packets[child as usize];
-                    let mut undecided = packet.undecided(&pr);
-                    for _ in 0..count {
-                        tally.triangle();
-                    }
-                    while undecided != 0 {
-                        let i = packet.first + undecided.trailing_zeros();
-                        undecided &= undecided - 1;
-                        let t_new = visit(i, t_limit);
-                        if t_new != t_limit {
-                            t_limit = t_new;
-                            limit = rb.limit(t_limit);
-                        }
-                    }
-                } else if next.is_none() {
+                if next.is_none() {
                     next = Some(child);
                 } else {
                     deferred[n_deferred] = (child, t);
@@ -762,27 +770,48 @@ fn coherent_order(rays: &[Ray]) -> Vec<u32> {
     keyed.into_iter().map(|(_, i)| i).collect()
 }
 
-/// The children a ray enters (`mask` of [`RayBox::enter4`]) with their
-/// entries, nearer first, ties by slot; and how many there are.
+/// The children a ray enters (`mask` of [`RayBox::enter4`]) split by kind:
+/// the mask of the leaves among them, and the inner nodes nearest first
+/// (ties by slot). Only the inner nodes are ordered: they decide the walk's
+/// order, while a node's leaves are all tested at once.
 #[inline(always)]
-pub(super) fn nearest_first(entry: [f32; WIDTH], mut mask: u32) -> ([(f32, usize); WIDTH], usize) {
-    let mut order: [(f32, usize); WIDTH] = [(0.0, 0); WIDTH];
-    let mut len = 0;
-    while mask != 0 {
-        let k = mask.trailing_zeros() as usize;
-        mask &= mask - 1;
-        let t = entry[k];
-        // Insertion sort: at most four children (a branch-free rank count
-        // measured about 1.4× slower).
-        let mut j = len;
-        while j > 0 && order[j - 1].0 > t {
-            order[j] = order[j - 1];
+pub(super) fn split_children(node: &Node4, entry: &[f32; WIDTH], mask: u32) -> (u32, InnerOrder) {
+    let mut leaf_slots = 0;
+    for k in 0..WIDTH {
+        leaf_slots |= u32::from(node.count[k] > 0) << k;
+    }
+    let mut inner = mask & !leaf_slots;
+    let mut order = InnerOrder { slots: 0, len: 0 };
+    while inner != 0 {
+        let k = inner.trailing_zeros();
+        inner &= inner - 1;
+        // Insertion sort: at most four, kept in a register.
+        let mut j = order.len;
+        while j > 0 && entry[order.get(j - 1)] > entry[k as usize] {
             j -= 1;
         }
-        order[j] = (t, k);
-        len += 1;
+        let below = order.slots & ((1u32 << (8 * j)) - 1);
+        order.slots = below | ((order.slots & !below) << 8) | (k << (8 * j));
+        order.len += 1;
     }
-    (order, len)
+    (mask & leaf_slots, order)
+}
+
+/// Up to [`WIDTH`] slot numbers in order, one per byte of a `u32` (a
+/// register, not an array: the walk reads it right after it is made).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct InnerOrder {
+    slots: u32,
+    /// How many slots are listed.
+    pub len: u32,
+}
+
+impl InnerOrder {
+    /// The `j`-th slot.
+    #[inline(always)]
+    pub(super) fn get(&self, j: u32) -> usize {
+        ((self.slots >> (8 * j)) & 0xff) as usize
+    }
 }
 
 /// Orders crossings whose rounded `t` coincide (or are inverted by

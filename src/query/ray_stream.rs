@@ -13,7 +13,7 @@ use crate::geom::Ray;
 use super::Accel;
 use super::accel::WIDTH;
 use super::ray_solid::{
-    BestHit, Crossing, RayBox, nearest_first, prefetch, unit_scaled, unscaled_t,
+    BestHit, Crossing, RayBox, prefetch, split_children, unit_scaled, unscaled_t,
 };
 use super::tri_packet::PacketRay;
 
@@ -165,26 +165,29 @@ impl Accel {
         };
         let node = &self.nodes[current as usize];
         let (entry, mask) = w.rays_box.enter4(node, w.limit);
-        let (order, len) = nearest_first(entry, mask);
-        // Leaves wait for the next turn; the nearest inner child is opened
-        // then too; the other inner children are deferred (nearer popped
-        // first). All of them are requested from memory now.
+        let (mut leaves, order) = split_children(node, &entry, mask);
+        // Leaves wait for the next turn's filter; the nearest inner child
+        // is opened then too; the other inner children are deferred (nearer
+        // popped first). All of them are requested from memory now.
+        while leaves != 0 {
+            let k = leaves.trailing_zeros() as usize;
+            leaves &= leaves - 1;
+            let packet = node.child[k];
+            prefetch(std::slice::from_ref(&self.packets[packet as usize]));
+            w.leaves[w.n_leaves] = (entry[k], packet);
+            w.n_leaves += 1;
+        }
         let mut deferred: [(u32, f32); WIDTH] = [(0, 0.0); WIDTH];
         let mut n_deferred = 0;
-        for &(t, k) in &order[..len] {
-            let (child, count) = (node.child[k], node.count[k]);
-            if count > 0 {
-                prefetch(std::slice::from_ref(&self.packets[child as usize]));
-                w.leaves[w.n_leaves] = (t, child);
-                w.n_leaves += 1;
+        for j in 0..order.len {
+            let k = order.get(j);
+            let (child, t) = (node.child[k], entry[k]);
+            prefetch(std::slice::from_ref(&self.nodes[child as usize]));
+            if w.next.is_none() {
+                w.next = Some((child, t));
             } else {
-                prefetch(std::slice::from_ref(&self.nodes[child as usize]));
-                if w.next.is_none() {
-                    w.next = Some((child, t));
-                } else {
-                    deferred[n_deferred] = (child, t);
-                    n_deferred += 1;
-                }
+                deferred[n_deferred] = (child, t);
+                n_deferred += 1;
             }
         }
         for &d in deferred[..n_deferred].iter().rev() {
