@@ -30,7 +30,8 @@
 //! prints the wall and whole-process CPU time of each measurement to stderr
 //! (CPU seconds are what other jobs on a shared machine inflate least);
 //! `WINGEDGE_TRACE=1` prints the mean BVH nodes and triangles a first-hit ray
-//! visits (over the first 100,000 rays).
+//! visits, and how many of those triangles the `f32` filter left to the
+//! exact test (over the first 100,000 rays).
 //! Run with `RAYON_NUM_THREADS=1` for single-thread rates.
 
 use std::collections::HashMap;
@@ -120,17 +121,19 @@ fn queries(dir: &Path, name: &str) -> Result<()> {
     };
     if std::env::var_os("WINGEDGE_TRACE").is_some() {
         let sample = &rays[..rays.len().min(100_000)];
-        let (mut nodes, mut triangles) = (0u64, 0u64);
+        let (mut nodes, mut triangles, mut exact) = (0u64, 0u64, 0u64);
         for ray in sample {
             let (_, s) = accel.first_hit_traced(ray)?;
             nodes += s.nodes;
             triangles += s.triangles;
+            exact += s.exact_tests;
         }
         let k = sample.len().max(1) as f64;
         eprintln!(
-            "    {name}: per first-hit ray {:.1} nodes, {:.1} triangles",
+            "    {name}: per first-hit ray {:.1} nodes, {:.1} triangles, {:.1} of them tested exactly",
             nodes as f64 / k,
-            triangles as f64 / k
+            triangles as f64 / k,
+            exact as f64 / k
         );
     }
     let (rays_s, hits) = if runs("rays") > 0 {

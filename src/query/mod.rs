@@ -6,7 +6,9 @@
 //! coordinates, each triangle remembering its [`FaceId`](crate::mesh::FaceId)),
 //! a bounding-volume hierarchy for rays in any direction (`f32` boxes stored
 //! relative to the solid's centre, rounded outward, so culling works as well
-//! far from the origin as near it), and a uniform grid over the `yz`
+//! far from the origin as near it; each leaf's triangles also in `f32`,
+//! four side by side, for a filter that proves most misses before the exact
+//! test), and a uniform grid over the `yz`
 //! projection for the `+x` parity rays of point classification (built by the
 //! first point query: a scene that only casts rays never pays for it).
 //!
