@@ -337,7 +337,12 @@ fn leaf_packets(nodes: &mut [Node4], tris: &[YzTri], frame: &BoxFrame) -> Vec<Tr
     for node in nodes {
         for k in 0..WIDTH {
             if node.count[k] > 0 {
-                packets.push(TriPacket::new(tris, node.child[k], node.count[k], frame));
+                packets.push(TriPacket::new(
+                    tris,
+                    node.child[k],
+                    node.count[k],
+                    frame.scale,
+                ));
                 node.child[k] = (packets.len() - 1) as u32;
             }
         }
@@ -374,8 +379,6 @@ pub struct Accel {
     /// One per BVH leaf, the leaf's triangles in `f32` for the rays' miss
     /// filter; leaves of `nodes` index it.
     pub(super) packets: Vec<TriPacket>,
-    /// The largest magnitude of a coordinate stored in `packets`.
-    pub(super) packet_extent: f32,
     pub(super) frame: BoxFrame,
     grid: std::sync::OnceLock<(YzGrid, Duration)>,
     pub(super) bounds: Aabb,
@@ -417,10 +420,6 @@ impl Accel {
             .map(|&i| yz_tri(&tris[i as usize]))
             .collect();
         let packets = leaf_packets(&mut nodes, &tris, &frame);
-        let packet_extent = packets
-            .par_iter()
-            .map(TriPacket::extent)
-            .reduce(|| 0.0, f32::max);
         let tri_face: Vec<FaceId> = order.par_iter().map(|&i| tri_face[i as usize]).collect();
         let bounds = tris
             .iter()
@@ -444,7 +443,6 @@ impl Accel {
             tri_face,
             nodes,
             packets,
-            packet_extent,
             frame,
             grid: std::sync::OnceLock::new(),
             bounds,

@@ -647,7 +647,7 @@ impl Accel {
         mut visit: impl FnMut(u32, f64) -> f64,
     ) {
         let rb = RayBox::new(ray, &self.frame);
-        let pr = PacketRay::new(ray, &self.frame, self.packet_extent);
+        let pr = PacketRay::new(ray, self.frame.scale);
         let mut t_limit = t_max;
         let mut limit = rb.limit(t_limit);
         let mut stack: smallvec::SmallVec<[(u32, f32); 64]> = smallvec::SmallVec::new();

@@ -54,7 +54,7 @@ impl Walk {
     fn new(ray: usize, r: &Ray, accel: &Accel) -> Walk {
         let (scaled, t_scale) = unit_scaled(r);
         let rays_box = RayBox::new(&scaled, &accel.frame);
-        let packet_ray = PacketRay::new(&scaled, &accel.frame, accel.packet_extent);
+        let packet_ray = PacketRay::new(&scaled, accel.frame.scale);
         let limit = rays_box.limit(f64::INFINITY);
         Walk {
             ray,
