@@ -97,10 +97,25 @@ impl YzTri {
     fn max_x(&self) -> f64 {
         self.x[0].max(self.x[1]).max(self.x[2])
     }
+
+    fn min_x(&self) -> f64 {
+        self.x[0].min(self.x[1]).min(self.x[2])
+    }
 }
 
 /// A uniform grid over the `yz` projection of the solid's bounding box; each
-/// cell lists the triangles whose projected bounding box overlaps it.
+/// cell lists the triangles whose projected bounding box overlaps it, twice:
+/// by ascending lower bound of `x` and by descending upper bound of `x`, so
+/// that the triangles a `−x` or a `+x` ray from a point can meet are a prefix
+/// of one list or the other.
+///
+/// # Invariants
+///
+/// - Cell `c` owns `cell_start[c] .. cell_start[c + 1]` of both lists; both
+///   hold the same triangles.
+/// - Within a cell, `by_min_x` is sorted by ascending [`GridEntry::x`] (the
+///   triangle's smallest `x` rounded down to `f32`), `by_max_x` by descending
+///   [`GridEntry::x`] (the largest `x` rounded up), ties by record.
 #[derive(Clone, Debug)]
 pub(super) struct YzGrid {
     pub y0: f64,
@@ -112,16 +127,18 @@ pub(super) struct YzGrid {
     pub ny: usize,
     pub nz: usize,
     pub cell_start: Vec<u32>,
-    pub entries: Vec<GridEntry>,
+    pub by_min_x: Vec<GridEntry>,
+    pub by_max_x: Vec<GridEntry>,
 }
 
-/// One triangle listed in a grid cell: its `yz` record and its largest `x`
-/// rounded up to `f32`, so that triangles behind a query point are skipped
-/// without touching their record (8 bytes).
+/// One triangle listed in a grid cell: its `yz` record and one end of its
+/// `x` extent rounded outward to `f32`, so that the triangles wholly behind a
+/// ray are never visited (8 bytes).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct GridEntry {
-    /// An upper bound on the triangle's largest `x`.
-    pub max_x: f32,
+    /// A bound on the triangle's `x`: below its smallest `x` in
+    /// [`YzGrid::by_min_x`], above its largest in [`YzGrid::by_max_x`].
+    pub x: f32,
     /// Index into the accel's triangles.
     pub record: u32,
 }
@@ -145,11 +162,30 @@ impl YzGrid {
         self.row(z) * self.ny + self.col(y)
     }
 
-    /// The triangles listed in the cell holding `(y, z)`.
+    /// The triangles of cell `c` (an index from [`YzGrid::cell_index`]):
+    /// `(by ascending min x, by descending max x)`.
     #[inline]
-    pub fn cell(&self, y: f64, z: f64) -> &[GridEntry] {
-        let c = self.cell_index(y, z);
-        &self.entries[self.cell_start[c] as usize..self.cell_start[c + 1] as usize]
+    pub fn cell_lists(&self, c: usize) -> (&[GridEntry], &[GridEntry]) {
+        let range = self.cell_start[c] as usize..self.cell_start[c + 1] as usize;
+        (&self.by_min_x[range.clone()], &self.by_max_x[range])
+    }
+
+    /// The number of cells, `ny · nz`.
+    #[inline]
+    pub fn cell_count(&self) -> usize {
+        self.ny * self.nz
+    }
+
+    /// Triangle references held by the cells (each listed in both orders).
+    pub fn entries(&self) -> usize {
+        self.by_min_x.len()
+    }
+
+    /// Heap bytes.
+    pub fn memory_bytes(&self) -> usize {
+        self.cell_start.capacity() * std::mem::size_of::<u32>()
+            + (self.by_min_x.capacity() + self.by_max_x.capacity())
+                * std::mem::size_of::<GridEntry>()
     }
 }
 
@@ -432,9 +468,8 @@ impl Accel {
         let mut stats = self.stats;
         if let Some((grid, time)) = self.grid.get() {
             stats.grid_cells = grid.ny * grid.nz;
-            stats.grid_entries = grid.entries.len();
-            stats.memory_bytes += grid.cell_start.capacity() * 4
-                + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
+            stats.grid_entries = grid.entries();
+            stats.memory_bytes += grid.memory_bytes();
             stats.grid_build_time = *time;
         }
         stats
@@ -573,7 +608,8 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         ny,
         nz,
         cell_start: vec![0; ny * nz + 1],
-        entries: Vec::new(),
+        by_min_x: Vec::new(),
+        by_max_x: Vec::new(),
     };
     let range = |g: &YzGrid, t: &YzTri| {
         let ymin = t.y[0].min(t.y[1]).min(t.y[2]);
@@ -594,22 +630,72 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         grid.cell_start[i + 1] += grid.cell_start[i];
     }
     let mut fill: Vec<u32> = grid.cell_start[..ny * nz].to_vec();
-    grid.entries = vec![GridEntry::default(); grid.cell_start[ny * nz] as usize];
+    let mut by_min_x = vec![GridEntry::default(); grid.cell_start[ny * nz] as usize];
+    let mut by_max_x = by_min_x.clone();
     for (i, t) in yz.iter().enumerate() {
         let (c0, c1, r0, r1) = range(&grid, t);
-        let entry = GridEntry {
-            max_x: f32_up(t.max_x()),
-            record: i as u32,
-        };
+        let (lo, hi) = (f32_down(t.min_x()), f32_up(t.max_x()));
         for r in r0..=r1 {
             for c in c0..=c1 {
                 let cell = r * ny + c;
-                grid.entries[fill[cell] as usize] = entry;
+                let at = fill[cell] as usize;
+                by_min_x[at] = GridEntry {
+                    x: lo,
+                    record: i as u32,
+                };
+                by_max_x[at] = GridEntry {
+                    x: hi,
+                    record: i as u32,
+                };
                 fill[cell] += 1;
             }
         }
     }
+    drop(fill);
+    sort_cells(&grid.cell_start, &mut by_min_x, |a, b| {
+        a.x.total_cmp(&b.x).then(a.record.cmp(&b.record))
+    });
+    sort_cells(&grid.cell_start, &mut by_max_x, |a, b| {
+        b.x.total_cmp(&a.x).then(a.record.cmp(&b.record))
+    });
+    grid.by_min_x = by_min_x;
+    grid.by_max_x = by_max_x;
     grid
+}
+
+/// Sorts each cell's part (`cell_start[c] .. cell_start[c + 1]`) of
+/// `entries` by `order`, in parallel over runs of cells.
+fn sort_cells(
+    cell_start: &[u32],
+    entries: &mut [GridEntry],
+    order: impl Fn(&GridEntry, &GridEntry) -> std::cmp::Ordering + Sync,
+) {
+    const ENTRIES_PER_TASK: usize = 1 << 15;
+    let mut runs: Vec<(usize, &mut [GridEntry])> = Vec::new();
+    let mut rest = entries;
+    let mut first = 0;
+    let cells = cell_start.len() - 1;
+    for c in 0..cells {
+        let taken = (cell_start[c + 1] - cell_start[first]) as usize;
+        if taken >= ENTRIES_PER_TASK || c + 1 == cells {
+            let (head, tail) = std::mem::take(&mut rest).split_at_mut(taken);
+            runs.push((first, head));
+            rest = tail;
+            first = c + 1;
+        }
+    }
+    runs.into_par_iter().for_each(|(c0, run)| {
+        let base = cell_start[c0] as usize;
+        let mut c = c0;
+        while base + run.len() > cell_start[c] as usize {
+            let (s, e) = (
+                cell_start[c] as usize - base,
+                cell_start[c + 1] as usize - base,
+            );
+            run[s..e].sort_unstable_by(&order);
+            c += 1;
+        }
+    });
 }
 
 // ---------------------------------------------------------------------------

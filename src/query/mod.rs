@@ -28,6 +28,7 @@
 
 mod accel;
 mod line_face;
+mod point_batch;
 mod point_in_convex;
 mod point_in_solid;
 mod ray_solid;
