@@ -7,8 +7,9 @@
 //! a bounding-volume hierarchy for rays in any direction (`f32` boxes stored
 //! relative to the solid's centre, rounded outward, so culling works as well
 //! far from the origin as near it), and a uniform grid over the `yz`
-//! projection for the `+x` parity rays of point classification (built by the
-//! first point query: a scene that only casts rays never pays for it).
+//! projection for the `±x` parity rays of point classification, each cell's
+//! triangles sorted by their smallest `x` (built by the first point query: a
+//! scene that only casts rays never pays for it).
 //!
 //! # What "exact" means here
 //!

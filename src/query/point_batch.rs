@@ -30,20 +30,48 @@ impl Accel {
             .with_min_len(4096)
             .map(|p| g.cell_index(p.y, p.z) as u32)
             .collect();
-        let mut fill = vec![0u32; g.cell_count() + 1];
+        let mut start = vec![0u32; g.cell_count() + 1];
         for &c in &cells {
-            fill[c as usize + 1] += 1;
+            start[c as usize + 1] += 1;
         }
         for i in 0..g.cell_count() {
-            fill[i + 1] += fill[i];
+            start[i + 1] += start[i];
         }
+        // The scatter, in parallel: each task owns a run of cells and so a
+        // disjoint part of `order`, and picks its points out of `cells`.
         let mut order = vec![0u32; points.len()];
-        for (i, &c) in cells.iter().enumerate() {
-            let slot = &mut fill[c as usize];
-            order[*slot as usize] = i as u32;
-            *slot += 1;
+        let tasks = rayon::current_num_threads().clamp(1, 16);
+        let mut runs: Vec<(usize, usize, &mut [u32])> = Vec::with_capacity(tasks);
+        let mut rest: &mut [u32] = &mut order;
+        let mut first = 0;
+        for k in 1..=tasks {
+            let last = if k == tasks {
+                g.cell_count()
+            } else {
+                start
+                    .partition_point(|&s| (s as usize) < points.len() * k / tasks)
+                    .saturating_sub(1)
+            }
+            .max(first);
+            let taken = (start[last] - start[first]) as usize;
+            let (head, tail) = std::mem::take(&mut rest).split_at_mut(taken);
+            runs.push((first, last, head));
+            rest = tail;
+            first = last;
         }
-        drop(fill);
+        runs.into_par_iter().for_each(|(c0, c1, out)| {
+            let base = start[c0];
+            let mut fill: Vec<u32> = start[c0..c1].iter().map(|&s| s - base).collect();
+            for (i, &c) in cells.iter().enumerate() {
+                let c = c as usize;
+                if (c0..c1).contains(&c) {
+                    let slot = &mut fill[c - c0];
+                    out[*slot as usize] = i as u32;
+                    *slot += 1;
+                }
+            }
+        });
+        drop(start);
         drop(cells);
         // The answers in that order, a run of points at a time: each run is
         // first gathered into a small buffer (a loop without branches keeps

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Sign, orient2d, orient3d};
 
-use super::accel::YzTri;
+use super::accel::{YzTri, f32_down, f32_up, f64_below};
 use super::{Accel, Containment, QueryError};
 
 /// Batches at least this large are classified in grid-cell order.
@@ -16,8 +16,10 @@ const SORTED_BATCH: usize = 8192;
 /// How to decide inside/outside.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Method {
-    /// Parity of the crossings of a `+x` ray (the seed's method 1), exact,
-    /// ties broken by symbolic perturbation. Needs a closed surface.
+    /// Parity of the crossings of a ray along `x` (the seed's method 1),
+    /// exact, ties broken by symbolic perturbation: the `+x` ray, or the `−x`
+    /// ray when that meets fewer triangles, which has the same parity.
+    /// Needs a closed surface.
     #[default]
     Parity,
     /// Inside iff strictly on the inner side of every face (the seed's method
@@ -57,7 +59,8 @@ impl Accel {
 
     /// Classifies `p` as inside, outside or on the boundary of the solid.
     ///
-    /// **Parity** casts the ray `p + t·(1, 0, 0)`, `t > 0`. A triangle is
+    /// **Parity** casts the ray `p + t·(1, 0, 0)`, `t > 0` (or its opposite,
+    /// see below). A triangle is
     /// crossed when the projection of `p` onto the `yz` plane is inside the
     /// triangle's projection (three exact `orient2d`) and the triangle is in
     /// front of `p` (one exact `orient3d`). When the projected point lies
@@ -70,7 +73,16 @@ impl Accel {
     /// crosses that face 0 times. If `p` lies on a triangle (exact
     /// `orient3d = 0` and inside the closed triangle) the answer is
     /// [`Containment::OnBoundary`]. The generic case pays only the filtered
-    /// predicates; only triangles whose `yz` grid cell holds `p` are tested.
+    /// predicates; only triangles whose `yz` grid cell holds `p` and whose
+    /// `x` extent reaches `p.x` from the ray's side are tested.
+    ///
+    /// On a closed surface the moved line crosses the triangles an even
+    /// number of times in all, so the crossings behind `p` have the parity of
+    /// those in front; parity therefore casts `p + t·(−1, 0, 0)` instead
+    /// when fewer of the cell's triangles reach `p.x` from `−x`, with the
+    /// same perturbation and the same answer, `OnBoundary` included (the
+    /// proof is at `XDirection` in the source). The winding method always
+    /// counts towards `+x`.
     ///
     /// **Normals** and **Winding** are described at [`Method`],
     /// [`Accel::classify_convex`] and [`Accel::winding_number`].
@@ -129,7 +141,7 @@ impl Accel {
         points: &[DVec3],
         method: Method,
     ) -> Result<Vec<Containment>, QueryError> {
-        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+        if let Some(index) = points.par_iter().position_first(|p| !p.is_finite()) {
             return Err(QueryError::NonFinitePoint {
                 index,
                 point: points[index],
@@ -199,20 +211,31 @@ impl Accel {
             return XRay::Winding(0);
         };
         let g = self.grid();
-        let (by_min_x, by_max_x) = g.cell_lists(g.cell_index(p.y, p.z));
-        // The triangles that can meet the ray: those whose `x` extent reaches
-        // `p.x` from the ray's side, a prefix of the cell's list for that side.
-        let behind = || by_min_x.partition_point(|e| f64::from(e.x) <= p.x);
-        let ahead = || by_max_x.partition_point(|e| f64::from(e.x) >= p.x);
+        let (entries, extent) = g.cell_at(g.cell_index(p.y, p.z));
+        // The triangles that can meet the ray. Towards `−x`: those with
+        // smallest `x` at most `p.x`, a prefix of the cell's list. Towards
+        // `+x`: those with largest `x` at least `p.x`, whose listed `x` is at
+        // least `p.x − extent` (see `YzGrid`) and so at least `reach`, a
+        // suffix (which may also hold triangles wholly behind `p`; the exact
+        // tests reject them); `reach` is the next `f64` below the rounded
+        // `p.x − extent`, so not above the exact difference (`−∞` for an
+        // infinite extent: every triangle is a candidate). Both are counted
+        // rather than searched (no branches), in `f32`: for an `f32` value
+        // `v`, `v ≤ p.x` exactly when `v ≤ f32_down(p.x)` (the largest `f32`
+        // not above `p.x`), and `v < reach` exactly when `v < f32_up(reach)`.
+        let x_down = f32_down(p.x);
+        let reach = f32_up(f64_below(p.x - f64::from(extent)));
+        let behind = || entries.iter().filter(|e| e.x <= x_down).count();
+        let before_ahead = || entries.iter().filter(|e| e.x < reach).count();
         let (direction, candidates) = match choice {
-            RayChoice::Always(XDirection::Plus) => (XDirection::Plus, &by_max_x[..ahead()]),
-            RayChoice::Always(XDirection::Minus) => (XDirection::Minus, &by_min_x[..behind()]),
+            RayChoice::Always(XDirection::Plus) => (XDirection::Plus, &entries[before_ahead()..]),
+            RayChoice::Always(XDirection::Minus) => (XDirection::Minus, &entries[..behind()]),
             RayChoice::Fewer => {
-                let (behind, ahead) = (behind(), ahead());
-                if behind < ahead {
-                    (XDirection::Minus, &by_min_x[..behind])
+                let (behind, before_ahead) = (behind(), before_ahead());
+                if behind < entries.len() - before_ahead {
+                    (XDirection::Minus, &entries[..behind])
                 } else {
-                    (XDirection::Plus, &by_max_x[..ahead])
+                    (XDirection::Plus, &entries[before_ahead..])
                 }
             }
         };
@@ -495,6 +518,161 @@ mod tests {
         assert_eq!(c(-3.0, 1.0, 0.0), Containment::Outside);
         assert_eq!(c(-3.0, 0.0, 0.0), Containment::Outside);
         assert_eq!(c(0.5, 0.0, 0.0), Containment::Inside);
+    }
+
+    /// A xorshift generator of uniform numbers in `[0, 1)`.
+    fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut s = seed;
+        move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// Points that stress both ray directions: random points in and around
+    /// the box, points next to both ends of it in `x`, every vertex and edge
+    /// midpoint (on the boundary, or on the `x` line through one), the
+    /// vertices moved along `x` to both sides (rays through vertices), and
+    /// points just inside and outside the box's `x` ends on those lines.
+    fn stress_points(solid: &crate::mesh::Solid, seed: u64) -> Vec<DVec3> {
+        let accel = Accel::new(solid);
+        let (min, max) = (accel.bounds().min, accel.bounds().max);
+        let size = max - min;
+        let mut u = uniform(seed);
+        let mut points: Vec<DVec3> = (0..3000)
+            .map(|_| min - size * 0.1 + DVec3::new(u(), u(), u()) * size * 1.2)
+            .collect();
+        for _ in 0..500 {
+            let (y, z) = (min.y + u() * size.y, min.z + u() * size.z);
+            for x in [min.x, max.x, min.x + 1e-9 * size.x, max.x - 1e-9 * size.x] {
+                points.push(DVec3::new(x, y, z));
+            }
+        }
+        let corners: Vec<DVec3> = solid.vertices().map(|(_, v)| v.position).collect();
+        for (k, &v) in corners.iter().enumerate() {
+            let w = corners[(k * 7 + 3) % corners.len()];
+            for p in [v, (v + w) * 0.5] {
+                points.push(p);
+                for x in [
+                    min.x - 1.0,
+                    max.x + 1.0,
+                    min.x,
+                    max.x,
+                    (min.x + max.x) * 0.5,
+                ] {
+                    points.push(DVec3::new(x, p.y, p.z));
+                }
+            }
+        }
+        points
+    }
+
+    fn closed_solids() -> Vec<crate::mesh::Solid> {
+        vec![
+            builders::cube(),
+            builders::l_prism(),
+            builders::icosahedron(),
+            builders::dodecahedron(),
+            builders::sphere(9),
+        ]
+    }
+
+    #[test]
+    fn minus_x_rays_answer_as_plus_x_rays_on_closed_solids() {
+        for (k, solid) in closed_solids().iter().enumerate() {
+            let accel = Accel::new(solid);
+            for p in stress_points(solid, 11 + k as u64) {
+                let plus = accel.x_ray_towards(p, RayChoice::Always(XDirection::Plus));
+                let minus = accel.x_ray_towards(p, RayChoice::Always(XDirection::Minus));
+                let fewer = accel.x_ray_towards(p, RayChoice::Fewer);
+                // Oriented closed solids: even the signed counts agree.
+                assert_eq!(plus, minus, "solid {k}, {p}");
+                assert_eq!(plus, fewer, "solid {k}, {p}");
+            }
+        }
+    }
+
+    #[test]
+    fn boundary_points_are_found_from_either_side() {
+        let accel = Accel::new(&builders::cube());
+        let mut points = Vec::new();
+        for a in [-1.0, -0.5, 0.0, 0.5, 1.0] {
+            for b in [-1.0, -0.25, 0.0, 0.75, 1.0] {
+                for side in [-1.0, 1.0] {
+                    points.push(DVec3::new(side, a, b));
+                    points.push(DVec3::new(a, side, b));
+                    points.push(DVec3::new(a, b, side));
+                }
+            }
+        }
+        for p in points {
+            for choice in [
+                RayChoice::Always(XDirection::Plus),
+                RayChoice::Always(XDirection::Minus),
+                RayChoice::Fewer,
+            ] {
+                assert_eq!(accel.x_ray_towards(p, choice), XRay::OnBoundary, "{p}");
+            }
+        }
+    }
+
+    #[test]
+    fn cell_prefix_and_suffix_hold_every_triangle_a_ray_can_meet() {
+        let solid = builders::sphere(24);
+        let accel = Accel::new(&solid);
+        let g = accel.grid();
+        let mut u = uniform(5);
+        for _ in 0..4000 {
+            let b = accel.bounds();
+            let p = b.min + DVec3::new(u(), u(), u()) * (b.max - b.min);
+            let (entries, extent) = g.cell_at(g.cell_index(p.y, p.z));
+            let reach = f32_up(f64_below(p.x - f64::from(extent)));
+            for (i, e) in entries.iter().enumerate() {
+                let t = &accel.tris[e.record as usize];
+                assert!(f64::from(e.x) <= t.x[0].min(t.x[1]).min(t.x[2]));
+                if i > 0 {
+                    assert!(entries[i - 1].x <= e.x);
+                }
+                // Every triangle reaching `p.x` from `+x` is in the suffix.
+                if t.x[0].max(t.x[1]).max(t.x[2]) >= p.x {
+                    assert!(e.x >= reach, "{p}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn large_batches_match_single_queries_for_every_method() {
+        // Above the grouped-batch threshold, on a closed solid and on an open
+        // one (a sphere missing one face), where the winding method must not
+        // take a parity shortcut.
+        let closed = builders::sphere(24);
+        let mut soup = builders::sphere_soup(24);
+        soup.polygons.pop();
+        let open = crate::mesh::Solid::try_from_soup(&soup).unwrap();
+        for (solid, methods) in [
+            (&closed, &[Method::Parity, Method::Winding][..]),
+            (&open, &[Method::Winding][..]),
+        ] {
+            let accel = Accel::new(solid);
+            let mut points = stress_points(solid, 3);
+            while points.len() < SORTED_BATCH + 100 {
+                let more = stress_points(solid, points.len() as u64);
+                points.extend(more);
+            }
+            for &method in methods {
+                let batch = accel.classify_batch(&points, method).unwrap();
+                for (p, got) in points.iter().zip(&batch) {
+                    assert_eq!(
+                        accel.classify_with(*p, method).unwrap(),
+                        *got,
+                        "{p} {method:?}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
