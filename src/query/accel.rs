@@ -99,10 +99,25 @@ impl YzTri {
     fn max_x(&self) -> f64 {
         self.x[0].max(self.x[1]).max(self.x[2])
     }
+
+    fn min_x(&self) -> f64 {
+        self.x[0].min(self.x[1]).min(self.x[2])
+    }
 }
 
 /// A uniform grid over the `yz` projection of the solid's bounding box; each
-/// cell lists the triangles whose projected bounding box overlaps it.
+/// cell lists the triangles whose projected bounding box overlaps it, by
+/// ascending lower bound of `x`, and a bound on their `x` extents: so the
+/// triangles a `−x` ray from a point can meet are a prefix of the cell's list
+/// and those a `+x` ray can meet are within a suffix.
+///
+/// # Invariants
+///
+/// - Cell `c` owns `entries[cell_start[c] .. cell_start[c + 1]]`, sorted by
+///   ascending [`GridEntry::x`], ties by record.
+/// - `extent[c] ≥ max x − entry.x` for every triangle listed in cell `c`
+///   (exactly, not only as rounded), so a triangle whose largest `x` is at
+///   least `x` has `entry.x ≥ x − extent[c]`.
 #[derive(Clone, Debug)]
 pub(super) struct YzGrid {
     pub y0: f64,
@@ -115,15 +130,15 @@ pub(super) struct YzGrid {
     pub nz: usize,
     pub cell_start: Vec<u32>,
     pub entries: Vec<GridEntry>,
+    pub extent: Vec<f32>,
 }
 
-/// One triangle listed in a grid cell: its `yz` record and its largest `x`
-/// rounded up to `f32`, so that triangles behind a query point are skipped
-/// without touching their record (8 bytes).
+/// One triangle listed in a grid cell: its `yz` record and its smallest `x`
+/// rounded down to `f32` (8 bytes).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct GridEntry {
-    /// An upper bound on the triangle's largest `x`.
-    pub max_x: f32,
+    /// A lower bound on the triangle's smallest `x`.
+    pub x: f32,
     /// Index into the accel's triangles.
     pub record: u32,
 }
@@ -147,11 +162,29 @@ impl YzGrid {
         self.row(z) * self.ny + self.col(y)
     }
 
-    /// The triangles listed in the cell holding `(y, z)`.
+    /// The triangles of cell `c` (an index from [`YzGrid::cell_index`]) and
+    /// the bound on their `x` extents (see [`YzGrid`]).
     #[inline]
-    pub fn cell(&self, y: f64, z: f64) -> &[GridEntry] {
-        let c = self.cell_index(y, z);
-        &self.entries[self.cell_start[c] as usize..self.cell_start[c + 1] as usize]
+    pub fn cell_at(&self, c: usize) -> (&[GridEntry], f32) {
+        let range = self.cell_start[c] as usize..self.cell_start[c + 1] as usize;
+        (&self.entries[range], self.extent[c])
+    }
+
+    /// The number of cells, `ny · nz`.
+    #[inline]
+    pub fn cell_count(&self) -> usize {
+        self.ny * self.nz
+    }
+
+    /// Triangle references held by the cells.
+    pub fn entries(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Heap bytes.
+    pub fn memory_bytes(&self) -> usize {
+        (self.cell_start.capacity() + self.extent.capacity()) * std::mem::size_of::<u32>()
+            + self.entries.capacity() * std::mem::size_of::<GridEntry>()
     }
 }
 
@@ -460,9 +493,8 @@ impl Accel {
         let mut stats = self.stats;
         if let Some((grid, time)) = self.grid.get() {
             stats.grid_cells = grid.ny * grid.nz;
-            stats.grid_entries = grid.entries.len();
-            stats.memory_bytes += grid.cell_start.capacity() * 4
-                + grid.entries.capacity() * std::mem::size_of::<GridEntry>();
+            stats.grid_entries = grid.entries();
+            stats.memory_bytes += grid.memory_bytes();
             stats.grid_build_time = *time;
         }
         stats
@@ -589,6 +621,7 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
     );
     let cells = (yz.len() as f64 * CELLS_PER_TRIANGLE).clamp(1.0, 64.0e6);
     let aspect = (wy / wz).clamp(1.0 / MAX_GRID_ASPECT, MAX_GRID_ASPECT);
+    // At most 2¹⁴ cells either way (so a cell index fits `u16`).
     let ny = ((cells * aspect).sqrt().round() as usize).clamp(1, 1 << 14);
     let nz = ((cells / ny as f64).round() as usize).clamp(1, 1 << 14);
     let mut grid = YzGrid {
@@ -602,42 +635,135 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         nz,
         cell_start: vec![0; ny * nz + 1],
         entries: Vec::new(),
+        extent: vec![0.0; ny * nz],
     };
-    let range = |g: &YzGrid, t: &YzTri| {
-        let ymin = t.y[0].min(t.y[1]).min(t.y[2]);
-        let ymax = t.y[0].max(t.y[1]).max(t.y[2]);
-        let zmin = t.z[0].min(t.z[1]).min(t.z[2]);
-        let zmax = t.z[0].max(t.z[1]).max(t.z[2]);
-        (g.col(ymin), g.col(ymax), g.row(zmin), g.row(zmax))
+    // Each triangle's cells: columns `c0..=c1`, rows `r0..=r1` (its
+    // projected box mapped by the monotone `col` and `row`).
+    let spans: Vec<[u16; 4]> = yz
+        .par_iter()
+        .with_min_len(4096)
+        .map(|t| {
+            let ymin = t.y[0].min(t.y[1]).min(t.y[2]);
+            let ymax = t.y[0].max(t.y[1]).max(t.y[2]);
+            let zmin = t.z[0].min(t.z[1]).min(t.z[2]);
+            let zmax = t.z[0].max(t.z[1]).max(t.z[2]);
+            [
+                grid.col(ymin),
+                grid.col(ymax),
+                grid.row(zmin),
+                grid.row(zmax),
+            ]
+            .map(|k| k as u16)
+        })
+        .collect();
+    // Rows are split into bands; a band's cells are a contiguous range (row
+    // major), so each band counts, fills and sorts its own part in parallel.
+    let bands = (4 * rayon::current_num_threads()).clamp(1, nz);
+    let band_rows = |b: usize| (b * nz / bands, (b + 1) * nz / bands);
+    let rows_of = |span: &[u16; 4], (lo, hi): (usize, usize)| {
+        usize::from(span[2]).max(lo)..(usize::from(span[3]) + 1).min(hi)
     };
-    for t in yz {
-        let (c0, c1, r0, r1) = range(&grid, t);
-        for r in r0..=r1 {
-            for c in c0..=c1 {
-                grid.cell_start[r * ny + c + 1] += 1;
-            }
+    {
+        let mut counts: Vec<&mut [u32]> = Vec::with_capacity(bands);
+        let mut rest: &mut [u32] = &mut grid.cell_start[1..];
+        for b in 0..bands {
+            let (lo, hi) = band_rows(b);
+            let (head, tail) = std::mem::take(&mut rest).split_at_mut((hi - lo) * ny);
+            counts.push(head);
+            rest = tail;
         }
+        counts.into_par_iter().enumerate().for_each(|(b, count)| {
+            let (lo, hi) = band_rows(b);
+            for span in &spans {
+                for r in rows_of(span, (lo, hi)) {
+                    for c in usize::from(span[0])..=usize::from(span[1]) {
+                        count[(r - lo) * ny + c] += 1;
+                    }
+                }
+            }
+        });
     }
     for i in 0..ny * nz {
         grid.cell_start[i + 1] += grid.cell_start[i];
     }
-    let mut fill: Vec<u32> = grid.cell_start[..ny * nz].to_vec();
-    grid.entries = vec![GridEntry::default(); grid.cell_start[ny * nz] as usize];
-    for (i, t) in yz.iter().enumerate() {
-        let (c0, c1, r0, r1) = range(&grid, t);
-        let entry = GridEntry {
-            max_x: f32_up(t.max_x()),
-            record: i as u32,
-        };
-        for r in r0..=r1 {
-            for c in c0..=c1 {
-                let cell = r * ny + c;
-                grid.entries[fill[cell] as usize] = entry;
-                fill[cell] += 1;
-            }
-        }
+    let total = grid.cell_start[ny * nz] as usize;
+    // Initialised in parallel: for a large mesh this is mostly page faults.
+    let mut entries: Vec<GridEntry> = (0..total)
+        .into_par_iter()
+        .with_min_len(1 << 16)
+        .map(|_| GridEntry::default())
+        .collect();
+    let mut parts = Vec::with_capacity(bands);
+    let mut rest: &mut [GridEntry] = &mut entries;
+    let mut extent_rest: &mut [f32] = &mut grid.extent;
+    for b in 0..bands {
+        let (lo, hi) = band_rows(b);
+        let len = (grid.cell_start[hi * ny] - grid.cell_start[lo * ny]) as usize;
+        let (head, tail) = std::mem::take(&mut rest).split_at_mut(len);
+        let (extent_head, extent_tail) =
+            std::mem::take(&mut extent_rest).split_at_mut((hi - lo) * ny);
+        parts.push((head, extent_head));
+        rest = tail;
+        extent_rest = extent_tail;
     }
+    let cell_start = &grid.cell_start;
+    parts
+        .into_par_iter()
+        .enumerate()
+        .for_each(|(b, (part, extent))| {
+            let (lo, hi) = band_rows(b);
+            let base = cell_start[lo * ny];
+            let mut fill: Vec<u32> = cell_start[lo * ny..hi * ny]
+                .iter()
+                .map(|&s| s - base)
+                .collect();
+            for (i, (t, span)) in yz.iter().zip(&spans).enumerate() {
+                let rows = rows_of(span, (lo, hi));
+                if rows.is_empty() {
+                    continue;
+                }
+                let min_x = f32_down(t.min_x());
+                // At least `max x − min_x` exactly: the rounded difference
+                // is within half an ulp of it, the next `f64` above it is not
+                // below it, and rounding up to `f32` keeps that.
+                let reach = f32_up(f64_above(t.max_x() - f64::from(min_x)));
+                for r in rows {
+                    for c in usize::from(span[0])..=usize::from(span[1]) {
+                        let cell = (r - lo) * ny + c;
+                        part[fill[cell] as usize] = GridEntry {
+                            x: min_x,
+                            record: i as u32,
+                        };
+                        fill[cell] += 1;
+                        extent[cell] = extent[cell].max(reach);
+                    }
+                }
+            }
+            // Each cell's list by ascending `x`: filled in record order, so a
+            // stable sort breaks ties by record.
+            for cell in lo * ny..hi * ny {
+                let s = (cell_start[cell] - base) as usize;
+                let e = (cell_start[cell + 1] - base) as usize;
+                sort_by_x(&mut part[s..e]);
+            }
+        });
+    grid.entries = entries;
     grid
+}
+
+/// Stable insertion sort of a cell's entries by ascending [`GridEntry::x`]:
+/// cells hold a handful of entries, for which this is the fastest sort. The
+/// bounds are never NaN (rounded from finite coordinates).
+fn sort_by_x(entries: &mut [GridEntry]) {
+    for i in 1..entries.len() {
+        let e = entries[i];
+        let mut j = i;
+        while j > 0 && e.x < entries[j - 1].x {
+            entries[j] = entries[j - 1];
+            j -= 1;
+        }
+        entries[j] = e;
+    }
 }
 
 // ---------------------------------------------------------------------------

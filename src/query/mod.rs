@@ -8,9 +8,10 @@
 //! relative to the solid's centre, rounded outward, so culling works as well
 //! far from the origin as near it; each leaf's triangles also in `f32`,
 //! four side by side, for a filter that proves most misses before the exact
-//! test), and a uniform grid over the `yz`
-//! projection for the `+x` parity rays of point classification (built by the
-//! first point query: a scene that only casts rays never pays for it).
+//! test), and a uniform grid over the `yz` projection for the `±x` parity
+//! rays of point classification, each cell's triangles sorted by their
+//! smallest `x` (built by the first point query: a scene that only casts
+//! rays never pays for it).
 //!
 //! # What "exact" means here
 //!
@@ -31,6 +32,7 @@
 mod accel;
 mod lanes;
 mod line_face;
+mod point_batch;
 mod point_in_convex;
 mod point_in_solid;
 mod ray_solid;
