@@ -951,7 +951,11 @@ fn partition(
             if cnt == 0 || right_count[k + 1] == 0 {
                 continue;
             }
-            let cost = half_area(&acc) * cnt as f64 + right_area[k + 1] * right_count[k + 1] as f64;
+            // A leaf's triangles are tested a packet of four at a time:
+            // count packets, not triangles, so that splits fill them.
+            let packets = |c: usize| c.div_ceil(LEAF_SIZE) as f64;
+            let cost =
+                half_area(&acc) * packets(cnt) + right_area[k + 1] * packets(right_count[k + 1]);
             if cost < best.0 {
                 best = (cost, k);
             }
