@@ -256,17 +256,24 @@ impl Accel {
     /// projected box, or right of the box: winding 0, not on the boundary).
     ///
     /// Left of the box every triangle the line meets is in front of `p`,
-    /// wherever `p` is: such a point is moved next to the box, so that the
-    /// exact predicates see coordinates of the model's magnitude (a point at
-    /// `x = −1e308` overflows their arithmetic) and decide the same.
+    /// wherever `p` is, and `p` is on none: every such point is moved to
+    /// one fixed `x` next to the box, so that the exact predicates see
+    /// coordinates of the model's magnitude and decide the same (a point at
+    /// `x = −1e308` overflows their arithmetic; one at `x = −5e-324` beside
+    /// a face at `x = 0` underflows it, and `orient3d` called it on that
+    /// face — found by the queries fuzz target once parity could look
+    /// along `−x` and see no such face).
     #[inline]
     pub(super) fn probe_point(&self, p: DVec3) -> Option<DVec3> {
         let g = self.grid();
         if !(p.y >= g.y0 && p.y <= g.y1 && p.z >= g.z0 && p.z <= g.z1) || p.x > self.bounds.max.x {
             return None;
         }
-        let beside = self.bounds.min.x - (1.0 + self.bounds.min.x.abs());
-        Some(DVec3::new(p.x.max(beside), p.y, p.z))
+        if p.x < self.bounds.min.x {
+            let beside = self.bounds.min.x - (1.0 + self.bounds.min.x.abs());
+            return Some(DVec3::new(beside, p.y, p.z));
+        }
+        Some(p)
     }
 }
 
