@@ -99,33 +99,32 @@ impl Accel {
         match method {
             Method::Parity => {
                 self.require_closed()?;
-                Ok(match self.x_ray_towards(p, RayChoice::Fewer) {
-                    XRay::OnBoundary => Containment::OnBoundary,
-                    XRay::Winding(w) if w % 2 != 0 => Containment::Inside,
-                    XRay::Winding(_) => Containment::Outside,
-                })
+                let ray = self.x_ray_towards(p, RayChoice::Fewer);
+                Ok(self.containment_from(p, method, ray))
             }
             Method::Normals => self.classify_convex(p),
-            Method::Winding => Ok(match self.x_ray(p) {
-                XRay::OnBoundary => Containment::OnBoundary,
-                // Found by the queries fuzz check (fixtures/fuzz/queries/): 2e-69 outside a
-                // face and 5e-324 above another, the solid-angle sum was
-                // near 1.
-                XRay::Winding(w) if self.is_closed() => {
-                    if w > 0 {
-                        Containment::Inside
-                    } else {
-                        Containment::Outside
-                    }
-                }
-                XRay::Winding(_) => {
-                    if self.winding_number_unchecked(p) > 0.5 {
-                        Containment::Inside
-                    } else {
-                        Containment::Outside
-                    }
-                }
-            }),
+            Method::Winding => Ok(self.containment_from(p, method, self.x_ray(p))),
+        }
+    }
+
+    /// What `method` (parity or winding) answers for `p` from the ray cast
+    /// from it.
+    fn containment_from(&self, p: DVec3, method: Method, ray: XRay) -> Containment {
+        let inside = |yes: bool| {
+            if yes {
+                Containment::Inside
+            } else {
+                Containment::Outside
+            }
+        };
+        match ray {
+            XRay::OnBoundary => Containment::OnBoundary,
+            XRay::Winding(w) if method == Method::Parity => inside(w % 2 != 0),
+            // Found by the queries fuzz check (fixtures/fuzz/queries/): 2e-69
+            // outside a face and 5e-324 above another, the solid-angle sum
+            // was near 1. On a closed surface the exact count decides.
+            XRay::Winding(w) if self.is_closed() => inside(w > 0),
+            XRay::Winding(_) => inside(self.winding_number_unchecked(p) > 0.5),
         }
     }
 
@@ -163,34 +162,12 @@ impl Accel {
         // casts each point's ray whichever way meets fewer triangles (the
         // same answer, see `XDirection`); the winding method needs the `+x`
         // count itself.
-        let closed = self.is_closed();
         let choice = match method {
             Method::Parity => RayChoice::Fewer,
             _ => RayChoice::Always(XDirection::Plus),
         };
-        Ok(self.x_ray_batch(points, choice, |p, ray| match ray {
-            XRay::OnBoundary => Containment::OnBoundary,
-            XRay::Winding(w) if method == Method::Parity => {
-                if w % 2 != 0 {
-                    Containment::Inside
-                } else {
-                    Containment::Outside
-                }
-            }
-            XRay::Winding(w) if closed => {
-                if w > 0 {
-                    Containment::Inside
-                } else {
-                    Containment::Outside
-                }
-            }
-            XRay::Winding(_) => {
-                if self.winding_number_unchecked(p) > 0.5 {
-                    Containment::Inside
-                } else {
-                    Containment::Outside
-                }
-            }
+        Ok(self.x_ray_batch(points, choice, |p, ray| {
+            self.containment_from(p, method, ray)
         }))
     }
 
