@@ -29,6 +29,8 @@ pub mod io;
 pub mod mesh;
 pub mod query;
 pub mod render;
+#[cfg(test)]
+mod test_rng;
 pub mod validate;
 
 pub use glam;

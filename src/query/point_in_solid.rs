@@ -505,16 +505,6 @@ mod tests {
     }
 
     /// A xorshift generator of uniform numbers in `[0, 1)`.
-    fn uniform(seed: u64) -> impl FnMut() -> f64 {
-        let mut s = seed;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
     /// Points that stress both ray directions: random points in and around
     /// the box, points next to both ends of it in `x`, every vertex and edge
     /// midpoint (on the boundary, or on the `x` line through one), the
@@ -524,7 +514,7 @@ mod tests {
         let accel = Accel::new(solid);
         let (min, max) = (accel.bounds().min, accel.bounds().max);
         let size = max - min;
-        let mut u = uniform(seed);
+        let mut u = crate::test_rng::uniform(seed);
         let mut points: Vec<DVec3> = (0..3000)
             .map(|_| min - size * 0.1 + DVec3::new(u(), u(), u()) * size * 1.2)
             .collect();
@@ -607,7 +597,7 @@ mod tests {
         let solid = builders::sphere(24);
         let accel = Accel::new(&solid);
         let g = accel.grid();
-        let mut u = uniform(5);
+        let mut u = crate::test_rng::uniform(5);
         for _ in 0..4000 {
             let b = accel.bounds();
             let p = b.min + DVec3::new(u(), u(), u()) * (b.max - b.min);

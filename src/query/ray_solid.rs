@@ -864,13 +864,7 @@ mod tests {
     /// `f32` margins).
     #[test]
     fn f32_slab_test_is_conservative() {
-        let mut state = 0x9E37_79B9_7F4A_7C15u64;
-        let mut uniform = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut uniform = crate::test_rng::uniform(0x9E37_79B9_7F4A_7C15u64);
         let mut entered = 0;
         for case in 0..20_000 {
             let centre = DVec3::new(uniform(), uniform(), uniform()) * 2e8 - DVec3::splat(1e8);

@@ -212,13 +212,7 @@ mod tests {
     /// within a few ulps, where the `f32` values are pure noise.
     #[test]
     fn a_dropped_triangle_is_an_exact_miss() {
-        let mut state = 0x2545_F491_4F6C_DD1Du64;
-        let mut uniform = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut uniform = crate::test_rng::uniform(0x2545_F491_4F6C_DD1Du64);
         let (mut dropped, mut kept) = (0, 0);
         for case in 0..20_000 {
             let centre = DVec3::new(uniform(), uniform(), uniform()) * 2e6 - DVec3::splat(1e6);
