@@ -401,7 +401,7 @@ fn leaf_packets(nodes: &mut [Node4], tris: &[YzTri], frame: &BoxFrame) -> Vec<Tr
 /// - The BVH's `f32` node boxes, in `frame` (see [`BoxFrame`]), contain
 ///   their triangles' exact boxes (bounds rounded outward), so culling never
 ///   loses a triangle a ray touches.
-/// - Every leaf slot of a node indexes the [`TriPacket`] of its triangles
+/// - Every leaf slot of a node indexes the `TriPacket` of its triangles
 ///   (`first .. first + count` of `tris`, in order); a packet only ever
 ///   drops a triangle the exact line provably misses.
 /// - Every triangle whose projected `yz` box contains a point `(y, z)` is
