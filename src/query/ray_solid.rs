@@ -236,9 +236,8 @@ impl RayBox {
 
     /// The entry parameters `s` of a node's children's boxes, and a bit
     /// mask of the children the ray (`s ≥ 0`) may touch no later than
-    /// `limit`; conservative (see [`RayBox`]). The children are computed
-    /// side by side with the same operations, so that the compiler keeps
-    /// them in one vector register.
+    /// `limit`; conservative (see [`RayBox`]). The four children are
+    /// computed side by side in [`F32x4`] lanes.
     #[inline(always)]
     pub(super) fn enter4(&self, n: &Node4, limit: f32) -> ([f32; WIDTH], u32) {
         let mut t0 = F32x4::splat(0.0);
@@ -635,9 +634,9 @@ impl Accel {
     /// Visits the triangles of every leaf whose box the ray may touch before
     /// the current limit, near child first, except those its
     /// [`TriPacket`](super::tri_packet::TriPacket) proves missed.
-    /// `visit(i, t_max)` returns the new limit (a `t`). Deferred subtrees are kept with their entry parameter,
-    /// so that a subtree beyond the limit is dropped without touching its
-    /// node.
+    /// `visit(i, t_max)` returns the new limit (a `t`). Deferred subtrees
+    /// are kept with their entry parameter, so that a subtree beyond the
+    /// limit is dropped without touching its node.
     #[inline(always)]
     fn traverse(
         &self,

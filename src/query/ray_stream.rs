@@ -38,7 +38,7 @@ struct Walk {
     limit: f32,
     /// The node to open next and its entry (requested from memory).
     next: Option<(u32, f32)>,
-    /// Leaves of the node opened last, nearest first: entry and packet
+    /// Leaves of the node opened last, in slot order: entry and packet
     /// (requested from memory).
     leaves: [(f32, u32); WIDTH],
     n_leaves: usize,
