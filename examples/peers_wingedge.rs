@@ -31,7 +31,8 @@
 //! (CPU seconds are what other jobs on a shared machine inflate least);
 //! `WINGEDGE_TRACE=1` prints the mean BVH nodes and triangles a first-hit ray
 //! visits, and how many of those triangles the `f32` filter left to the
-//! exact test (over the first 100,000 rays).
+//! exact test (over the first 100,000 rays); `WINGEDGE_RUNS=N` times each
+//! query batch `N` times (3 by default) and keeps the best.
 //! Run with `RAYON_NUM_THREADS=1` for single-thread rates.
 
 use std::collections::HashMap;
@@ -83,9 +84,13 @@ fn best_of<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
 
 fn queries(dir: &Path, name: &str) -> Result<()> {
     let only = std::env::var("WINGEDGE_ONLY").unwrap_or_default();
+    let repeats = std::env::var("WINGEDGE_RUNS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(3);
     let runs = |what: &str| {
         if only.is_empty() || only == what {
-            3
+            repeats
         } else {
             0
         }

@@ -204,6 +204,10 @@ pub(super) struct Node {
 /// Slots of a [`Node4`].
 pub(super) const WIDTH: usize = 4;
 
+/// The bit of [`Node4::child`] that marks a leaf slot (the rest is the index
+/// of its [`TriPacket`]).
+pub(super) const LEAF: u32 = 1 << 31;
+
 /// A BVH node as traversed: the boxes of up to four children in two cache
 /// lines, so that deciding where to descend touches only the parent. Made by
 /// collapsing the binary SAH tree: the tree is half as deep, so a ray waits
@@ -217,8 +221,8 @@ pub(super) struct Node4 {
     /// ones (rounded up), so that all children are tested in one pass. An
     /// empty slot has lower `+∞` and upper `−∞` (never entered).
     pub bounds: [[f32; WIDTH]; 6],
-    /// Per child: the [`TriPacket`] of a leaf, or the index of an inner
-    /// node.
+    /// Per child: [`LEAF`] plus the index of a leaf's [`TriPacket`], or the
+    /// index of an inner node; `u32::MAX` for an empty slot.
     pub child: [u32; WIDTH],
     /// Per child: the number of triangles of a leaf; 0 for an inner node
     /// (and for an empty slot).
@@ -316,25 +320,27 @@ impl BoxFrame {
 /// Turns the binary BVH (one box per node) into [`Node4`]s, root first:
 /// each binary inner node becomes a node whose slots hold up to four of its
 /// descendants (the inner descendant with the largest box opened first).
-fn to_node4(nodes: &[Node]) -> Vec<Node4> {
+/// Also returns the depth of the new tree (nodes on its longest path from
+/// the root).
+fn to_node4(nodes: &[Node]) -> (Vec<Node4>, usize) {
     let mut out = vec![Node4::EMPTY];
     let has_triangles = nodes
         .first()
         .is_some_and(|n| n.count > 0 || nodes.len() > 1);
     if !has_triangles {
-        return out;
+        return (out, 1);
     }
     if nodes[0].count > 0 {
         out[0].set(0, &nodes[0], (nodes[0].first, nodes[0].count));
-        return out;
+        return (out, 1);
     }
-    fill_node4(nodes, 0, 0, &mut out);
-    out
+    let depth = fill_node4(nodes, 0, 0, &mut out);
+    (out, depth)
 }
 
 /// Fills `out[at]` from the binary inner node `i`, appending the nodes of
-/// its inner descendants.
-fn fill_node4(nodes: &[Node], i: usize, at: usize, out: &mut Vec<Node4>) {
+/// its inner descendants; returns the depth of the subtree at `out[at]`.
+fn fill_node4(nodes: &[Node], i: usize, at: usize, out: &mut Vec<Node4>) -> usize {
     let area = |n: &Node| {
         let s = [0, 1, 2].map(|a| f64::from(n.max[a]) - f64::from(n.min[a]));
         s[0] * s[1] + s[1] * s[2] + s[2] * s[0]
@@ -350,6 +356,7 @@ fn fill_node4(nodes: &[Node], i: usize, at: usize, out: &mut Vec<Node4>) {
         slots[k] = j + 1;
         slots.insert(k + 1, nodes[j].first as usize);
     }
+    let mut depth = 1;
     for (k, &j) in slots.iter().enumerate() {
         let n = &nodes[j];
         if n.count > 0 {
@@ -358,9 +365,10 @@ fn fill_node4(nodes: &[Node], i: usize, at: usize, out: &mut Vec<Node4>) {
             let child = out.len();
             out.push(Node4::EMPTY);
             out[at].set(k, n, (child as u32, 0));
-            fill_node4(nodes, j, child, out);
+            depth = depth.max(1 + fill_node4(nodes, j, child, out));
         }
     }
+    depth
 }
 
 /// Gives every leaf of `nodes` its [`TriPacket`]: the leaf slots' first
@@ -376,7 +384,7 @@ fn leaf_packets(nodes: &mut [Node4], tris: &[YzTri], frame: &BoxFrame) -> Vec<Tr
                     node.count[k],
                     frame.scale,
                 ));
-                node.child[k] = (packets.len() - 1) as u32;
+                node.child[k] = (packets.len() - 1) as u32 | LEAF;
             }
         }
     }
@@ -401,7 +409,7 @@ fn leaf_packets(nodes: &mut [Node4], tris: &[YzTri], frame: &BoxFrame) -> Vec<Tr
 /// - The BVH's `f32` node boxes, in `frame` (see [`BoxFrame`]), contain
 ///   their triangles' exact boxes (bounds rounded outward), so culling never
 ///   loses a triangle a ray touches.
-/// - Every leaf slot of a node indexes the `TriPacket` of its triangles
+/// - Every leaf slot of a node indexes (with the [`LEAF`] bit) the `TriPacket` of its triangles
 ///   (`first .. first + count` of `tris`, in order); a packet only ever
 ///   drops a triangle the exact line provably misses.
 /// - Every triangle whose projected `yz` box contains a point `(y, z)` is
@@ -416,6 +424,10 @@ pub struct Accel {
     /// filter; leaves of `nodes` index it.
     pub(super) packets: Vec<TriPacket>,
     pub(super) frame: BoxFrame,
+    /// A length of traversal stack that never overflows: the stack holds
+    /// at most `WIDTH − 1` deferred children per level above the node being
+    /// opened, which then pushes at most `WIDTH` more.
+    pub(super) stack_len: usize,
     grid: std::sync::OnceLock<(YzGrid, Duration)>,
     pub(super) bounds: Aabb,
     pub(super) boundary_edges: usize,
@@ -449,7 +461,7 @@ impl Accel {
         let boundary_edges = solid.boundary_edges().count();
         let (tris, tri_face) = fan_triangles(solid);
         let (binary, order, frame) = build_bvh(&tris);
-        let mut nodes = to_node4(&binary);
+        let (mut nodes, depth) = to_node4(&binary);
         drop(binary);
         let tris: Vec<YzTri> = order
             .par_iter()
@@ -480,6 +492,7 @@ impl Accel {
             nodes,
             packets,
             frame,
+            stack_len: (WIDTH - 1) * depth + WIDTH,
             grid: std::sync::OnceLock::new(),
             bounds,
             boundary_edges,

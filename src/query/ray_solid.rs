@@ -8,7 +8,7 @@ use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
 
-use super::accel::{BoxFrame, Node4, WIDTH};
+use super::accel::{BoxFrame, LEAF, Node4, WIDTH};
 use super::lanes::F32x4;
 use super::tri_packet::PacketRay;
 use super::{Accel, Containment, QueryError};
@@ -409,7 +409,15 @@ impl Accel {
             let mut out = vec![None; rays.len()];
             rays.par_chunks(STREAM_CHUNK)
                 .zip(out.par_chunks_mut(STREAM_CHUNK))
-                .for_each(|(r, o)| self.first_hits_interleaved(r, o));
+                .for_each(|(r, o)| {
+                    if *PLAIN {
+                        for (x, y) in r.iter().zip(o.iter_mut()) {
+                            *y = self.first_hit_unchecked(x);
+                        }
+                    } else {
+                        self.first_hits_interleaved(r, o)
+                    }
+                });
             out
         };
         // Small meshes fit in cache: sorting would cost more than it saves.
@@ -632,11 +640,11 @@ impl Accel {
     }
 
     /// Visits the triangles of every leaf whose box the ray may touch before
-    /// the current limit, near child first, except those its
+    /// the current limit, nearest box first, except those its
     /// [`TriPacket`](super::tri_packet::TriPacket) proves missed.
-    /// `visit(i, t_max)` returns the new limit (a `t`). Deferred subtrees
-    /// are kept with their entry parameter, so that a subtree beyond the
-    /// limit is dropped without touching its node.
+    /// `visit(i, t_max)` returns the new limit (a `t`). Deferred children
+    /// are kept with their entry parameter, so that one beyond the limit is
+    /// dropped without touching its node or packet.
     #[inline(always)]
     fn traverse(
         &self,
@@ -649,72 +657,106 @@ impl Accel {
         let pr = PacketRay::new(ray, self.frame.scale);
         let mut t_limit = t_max;
         let mut limit = rb.limit(t_limit);
-        let mut stack: smallvec::SmallVec<[(u32, f32); 64]> = smallvec::SmallVec::new();
-        let nodes = &self.nodes;
-        let mut current = 0u32;
-        loop {
-            let node = &nodes[current as usize];
-            tally.node();
-            let (entry, mask) = rb.enter4(node, limit);
-            let (mut leaves, order) = split_children(node, &entry, mask);
-            // Leaves are tested at once; the nearest inner child is
-            // descended into, the others deferred (nearer popped first).
-            while leaves != 0 {
-                let k = leaves.trailing_zeros() as usize;
-                leaves &= leaves - 1;
-                if entry[k] > limit {
-                    continue;
-                }
-                let packet = &self.packets[node.child[k] as usize];
-                for _ in 0..packet.count {
-                    tally.triangle();
-                }
-                let mut undecided = packet.undecided(&pr);
-                while undecided != 0 {
-                    let i = packet.first + undecided.trailing_zeros();
-                    undecided &= undecided - 1;
-                    tally.exact_test();
-                    let t_new = visit(i, t_limit);
-                    if t_new != t_limit {
-                        t_limit = t_new;
-                        limit = rb.limit(t_limit);
-                    }
-                }
-            }
-            let mut next: Option<u32> = None;
-            let mut deferred: [(u32, f32); WIDTH] = [(0, 0.0); WIDTH];
-            let mut n_deferred = 0;
-            for j in 0..order.len {
-                let k = order.get(j);
-                let (child, t) = (node.child[k], entry[k]);
-                if t > limit {
-                    continue;
-                }
-                if next.is_none() {
-                    next = Some(child);
-                } else {
-                    deferred[n_deferred] = (child, t);
-                    n_deferred += 1;
-                }
-            }
-            for &d in deferred[..n_deferred].iter().rev() {
-                stack.push(d);
-            }
-            if let Some(n) = next {
-                current = n;
+        let mut local = [(0, 0.0); LOCAL_STACK];
+        let mut heap = Vec::new();
+        let stack: &mut [Deferred] = if self.stack_len <= LOCAL_STACK {
+            &mut local
+        } else {
+            heap.resize(self.stack_len, (0, 0.0));
+            &mut heap
+        };
+        let mut sp = 1;
+        while sp > 0 {
+            sp -= 1;
+            let (child, entry) = stack[sp];
+            if entry > limit {
                 continue;
             }
-            loop {
-                let Some((n, t)) = stack.pop() else {
-                    return;
-                };
-                if t <= limit {
-                    current = n;
-                    break;
+            if child & LEAF == 0 {
+                tally.node();
+                sp = self.open_node(&rb, child, limit, stack, sp);
+                continue;
+            }
+            let packet = &self.packets[(child & !LEAF) as usize];
+            for _ in 0..packet.count {
+                tally.triangle();
+            }
+            let mut undecided = packet.undecided(&pr);
+            while undecided != 0 {
+                let i = packet.first + undecided.trailing_zeros();
+                undecided &= undecided - 1;
+                tally.exact_test();
+                let t_new = visit(i, t_limit);
+                if t_new != t_limit {
+                    t_limit = t_new;
+                    limit = rb.limit(t_limit);
                 }
             }
         }
     }
+
+    /// Tests the children of inner node `node` against the ray and pushes
+    /// those it may touch no later than `limit` onto `stack` above `sp`,
+    /// nearest on top; returns the new top. `stack` has room for
+    /// [`WIDTH`] entries above `sp` (see `Accel::stack_len`); the slots
+    /// above the new top are left overwritten.
+    #[inline(always)]
+    pub(super) fn open_node(
+        &self,
+        rb: &RayBox,
+        node: u32,
+        limit: f32,
+        stack: &mut [Deferred],
+        sp: usize,
+    ) -> usize {
+        let node = &self.nodes[node as usize];
+        let (entry, mask) = rb.enter4(node, limit);
+        let keys = farthest_first(&entry, mask);
+        let above = &mut stack[sp..sp + WIDTH];
+        for (slot, key) in above.iter_mut().zip(keys) {
+            *slot = (node.child[(key & 3) as usize], f32::from_bits(key & !7));
+        }
+        sp + mask.count_ones() as usize
+    }
+}
+
+// The sort network and the two slot bits of a key are for four slots.
+const _: () = assert!(WIDTH == 4);
+
+/// A child waiting on a traversal's stack: its [`Node4::child`] entry and
+/// a lower bound of the ray's entry `s` into its box.
+pub(super) type Deferred = (u32, f32);
+
+/// Traversal stacks at most this long live on the call stack; longer ones
+/// (trees deeper than 20 levels) on the heap.
+const LOCAL_STACK: usize = 64;
+
+/// Sort keys of the children a node's test entered (`mask`), farthest
+/// first, then 0 for the others. A key holds the bits of the child's entry
+/// (a non-negative `f32`, clamped to finite, so that its bits order as the
+/// values do) with the low three bits replaced by `4 | slot`: read as an
+/// `f32`, `key & !7` is at most the entry (culling with it stays
+/// conservative), and `key & 3` is the slot. Branch-free (five
+/// compare-exchanges): a ray's walk is too irregular for branches on the
+/// children's order to be predicted.
+#[inline(always)]
+fn farthest_first(entry: &[f32; WIDTH], mask: u32) -> [u32; WIDTH] {
+    let mut key = [0u32; WIDTH];
+    for (k, (key, e)) in key.iter_mut().zip(entry).enumerate() {
+        let bits = e.min(f32::MAX).to_bits();
+        *key = ((bits & !7) | 4 | k as u32) * ((mask >> k) & 1);
+    }
+    let mut exchange = |i: usize, j: usize| {
+        let (a, b) = (key[i], key[j]);
+        key[i] = a.max(b);
+        key[j] = a.min(b);
+    };
+    exchange(0, 1);
+    exchange(2, 3);
+    exchange(0, 2);
+    exchange(1, 3);
+    exchange(1, 2);
+    key
 }
 
 /// Asks the processor to start loading the cache lines of `items` (a hint:
@@ -779,50 +821,6 @@ fn coherent_order(rays: &[Ray]) -> Vec<u32> {
         .collect();
     keyed.par_sort_unstable();
     keyed.into_iter().map(|(_, i)| i).collect()
-}
-
-/// The children a ray enters (`mask` of [`RayBox::enter4`]) split by kind:
-/// the mask of the leaves among them, and the inner nodes nearest first
-/// (ties by slot). Only the inner nodes are ordered: they decide the walk's
-/// order, while a node's leaves are all tested at once.
-#[inline(always)]
-pub(super) fn split_children(node: &Node4, entry: &[f32; WIDTH], mask: u32) -> (u32, InnerOrder) {
-    let mut leaf_slots = 0;
-    for k in 0..WIDTH {
-        leaf_slots |= u32::from(node.count[k] > 0) << k;
-    }
-    let mut inner = mask & !leaf_slots;
-    let mut order = InnerOrder { slots: 0, len: 0 };
-    while inner != 0 {
-        let k = inner.trailing_zeros();
-        inner &= inner - 1;
-        // Insertion sort: at most four, kept in a register.
-        let mut j = order.len;
-        while j > 0 && entry[order.get(j - 1)] > entry[k as usize] {
-            j -= 1;
-        }
-        let below = order.slots & ((1u32 << (8 * j)) - 1);
-        order.slots = below | ((order.slots & !below) << 8) | (k << (8 * j));
-        order.len += 1;
-    }
-    (mask & leaf_slots, order)
-}
-
-/// Up to [`WIDTH`] slot numbers in order, one per byte of a `u32` (a
-/// register, not an array: the walk reads it right after it is made).
-#[derive(Clone, Copy, Debug)]
-pub(super) struct InnerOrder {
-    slots: u32,
-    /// How many slots are listed.
-    pub len: u32,
-}
-
-impl InnerOrder {
-    /// The `j`-th slot.
-    #[inline(always)]
-    pub(super) fn get(&self, j: u32) -> usize {
-        ((self.slots >> (8 * j)) & 0xff) as usize
-    }
 }
 
 /// Orders crossings whose rounded `t` coincide (or are inverted by
@@ -999,3 +997,6 @@ mod tests {
         assert!(4 * exact < triangles, "{exact} exact of {triangles}");
     }
 }
+
+static PLAIN: std::sync::LazyLock<bool> =
+    std::sync::LazyLock::new(|| std::env::var_os("PLAIN").is_some());

@@ -129,7 +129,7 @@ impl TriPacket {
     /// the bound `+∞` or NaN, which proves nothing.
     #[inline(always)]
     pub(super) fn undecided(&self, r: &PacketRay) -> u32 {
-        let v = [0, 1, 2].map(|a| ((r.origin[a] - self.centre[a]) * r.scale) as f32);
+        let v = ((r.origin - self.centre) * r.scale).as_vec3().to_array();
         let reach = self.extent + v[0].abs().max(v[1].abs()).max(v[2].abs());
         let bound = SIDE_BOUND * r.length * reach * self.extent
             + TINY * (1.0 + r.length * (reach + self.extent));
