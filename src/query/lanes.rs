@@ -81,6 +81,66 @@ mod imp {
         pub(in super::super) fn le(self, o: F32x4) -> Mask4 {
             Mask4(unsafe { arch::_mm_cmple_ps(self.0, o.0) })
         }
+        #[inline(always)]
+        pub(in super::super) fn and_bits(self, bits: [u32; 4]) -> F32x4 {
+            F32x4(unsafe { arch::_mm_and_ps(self.0, bits_of(&bits)) })
+        }
+        #[inline(always)]
+        pub(in super::super) fn or_bits(self, bits: [u32; 4]) -> F32x4 {
+            F32x4(unsafe { arch::_mm_or_ps(self.0, bits_of(&bits)) })
+        }
+        #[inline(always)]
+        pub(in super::super) fn keep(self, m: Mask4) -> F32x4 {
+            F32x4(unsafe { arch::_mm_and_ps(self.0, m.0) })
+        }
+        /// Three rounds of compare-exchange: lane pairs (0,1) (2,3), then
+        /// the two maxima and the two minima, then the middle pair; each
+        /// round is a shuffle, a `min`, a `max` and a shuffle.
+        #[inline(always)]
+        pub(in super::super) fn sorted_descending(self) -> F32x4 {
+            // `_MM_SHUFFLE(d, c, b, a)` picks lanes `a, b` of the first
+            // operand and `c, d` of the second.
+            const SWAP_PAIRS: i32 = 0b10_11_00_01; // [1, 0, 3, 2]
+            const FIRSTS: i32 = 0b11_01_10_00; // [x0, x2, y1, y3]
+            const MIDDLE: i32 = 0b11_01_10_00; // [x0, x2, y1, y3] of [A, C, B, D]
+            unsafe {
+                let v = self.0;
+                // [max(0,1), max(2,3), min(0,1), min(2,3)]
+                let s = arch::_mm_shuffle_ps::<SWAP_PAIRS>(v, v);
+                let v =
+                    arch::_mm_shuffle_ps::<FIRSTS>(arch::_mm_max_ps(v, s), arch::_mm_min_ps(v, s));
+                // [largest, max of minima, min of maxima, smallest]
+                let s = arch::_mm_shuffle_ps::<SWAP_PAIRS>(v, v);
+                let v =
+                    arch::_mm_shuffle_ps::<MIDDLE>(arch::_mm_max_ps(v, s), arch::_mm_min_ps(v, s));
+                // Order the middle two: lanes 1 and 2.
+                const SWAP_MIDDLE: i32 = 0b11_01_10_00; // [0, 2, 1, 3]
+                const KEEP: i32 = 0b11_10_01_00; // [x0, x1, y2, y3]
+                let s = arch::_mm_shuffle_ps::<SWAP_MIDDLE>(v, v);
+                F32x4(arch::_mm_shuffle_ps::<KEEP>(
+                    arch::_mm_max_ps(v, s),
+                    arch::_mm_min_ps(v, s),
+                ))
+            }
+        }
+        /// Per lane `(x, bits of the lane)`.
+        #[inline(always)]
+        pub(in super::super) fn after(self, x: u32) -> [(u32, u32); 4] {
+            let mut out = [(0u32, 0u32); 4];
+            unsafe {
+                let x = arch::_mm_castsi128_ps(arch::_mm_set1_epi32(x as i32));
+                let p = out.as_mut_ptr().cast::<f32>();
+                arch::_mm_storeu_ps(p, arch::_mm_unpacklo_ps(x, self.0));
+                arch::_mm_storeu_ps(p.add(4), arch::_mm_unpackhi_ps(x, self.0));
+            }
+            out
+        }
+    }
+
+    /// The 16 bytes of `bits` as four `f32` lanes.
+    #[inline(always)]
+    fn bits_of(bits: &[u32; 4]) -> arch::__m128 {
+        unsafe { arch::_mm_loadu_ps(bits.as_ptr().cast::<f32>()) }
     }
 
     impl Mask4 {
@@ -96,6 +156,15 @@ mod imp {
         #[inline(always)]
         pub(in super::super) fn bits(self) -> u32 {
             (unsafe { arch::_mm_movemask_ps(self.0) }) as u32
+        }
+        /// Lanes where `self` holds and `values[k] != v`.
+        #[inline(always)]
+        pub(in super::super) fn and_not_equal(self, values: &[u32; 4], v: u32) -> Mask4 {
+            unsafe {
+                let lanes = arch::_mm_loadu_si128(values.as_ptr().cast());
+                let equal = arch::_mm_cmpeq_epi32(lanes, arch::_mm_set1_epi32(v as i32));
+                Mask4(arch::_mm_andnot_ps(arch::_mm_castsi128_ps(equal), self.0))
+            }
         }
     }
 }
@@ -159,6 +228,32 @@ mod imp {
         pub(in super::super) fn le(self, o: F32x4) -> Mask4 {
             self.test(o, |a, b| a <= b)
         }
+        #[inline(always)]
+        fn bitwise(self, bits: [u32; 4], f: impl Fn(u32, u32) -> u32) -> F32x4 {
+            F32x4([0, 1, 2, 3].map(|k| f32::from_bits(f(self.0[k].to_bits(), bits[k]))))
+        }
+        #[inline(always)]
+        pub(in super::super) fn and_bits(self, bits: [u32; 4]) -> F32x4 {
+            self.bitwise(bits, |a, b| a & b)
+        }
+        #[inline(always)]
+        pub(in super::super) fn or_bits(self, bits: [u32; 4]) -> F32x4 {
+            self.bitwise(bits, |a, b| a | b)
+        }
+        #[inline(always)]
+        pub(in super::super) fn keep(self, m: Mask4) -> F32x4 {
+            self.bitwise(m.0.map(|b| if b { u32::MAX } else { 0 }), |a, b| a & b)
+        }
+        #[inline(always)]
+        pub(in super::super) fn sorted_descending(self) -> F32x4 {
+            let mut v = self.0;
+            v.sort_by(|a, b| b.total_cmp(a));
+            F32x4(v)
+        }
+        #[inline(always)]
+        pub(in super::super) fn after(self, x: u32) -> [(u32, u32); 4] {
+            self.0.map(|v| (x, v.to_bits()))
+        }
     }
 
     impl Mask4 {
@@ -174,6 +269,11 @@ mod imp {
         #[inline(always)]
         pub(in super::super) fn bits(self) -> u32 {
             (0..4).map(|k| u32::from(self.0[k]) << k).sum()
+        }
+        /// Lanes where `self` holds and `values[k] != v`.
+        #[inline(always)]
+        pub(in super::super) fn and_not_equal(self, values: &[u32; 4], v: u32) -> Mask4 {
+            Mask4([0, 1, 2, 3].map(|k| self.0[k] && values[k] != v))
         }
     }
 }

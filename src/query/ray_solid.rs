@@ -9,7 +9,7 @@ use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
 
 use super::accel::{BoxFrame, LEAF, Node4, WIDTH};
-use super::lanes::F32x4;
+use super::lanes::{F32x4, Mask4};
 use super::tri_packet::PacketRay;
 use super::{Accel, Containment, QueryError};
 
@@ -188,30 +188,25 @@ impl RayBox {
                 (f32::NEG_INFINITY, f32::INFINITY)
             };
             let da = d[a];
-            let neg = da.is_sign_negative();
             let recip = (1.0 / da.abs()) as f32;
             let (inv_lo, inv_hi) = if da == 0.0 {
                 (f32::INFINITY, f32::INFINITY)
             } else {
                 ((recip * INV_SHRINK).min(f32::MAX), recip * INV_GROW)
             };
-            if neg {
-                // Entry through the upper plane: (hi_plane − o) · (−|inv|)
-                // is smallest for the smallest origin.
-                o_near[a] = lo;
-                o_far[a] = hi;
-                inv_near[a] = -inv_lo;
-                inv_far[a] = -inv_hi;
-                near_row[a] = 3 + a;
-                far_row[a] = a;
-            } else {
-                o_near[a] = hi;
-                o_far[a] = lo;
-                inv_near[a] = inv_lo;
-                inv_far[a] = inv_hi;
-                near_row[a] = a;
-                far_row[a] = 3 + a;
-            }
+            // Going down the axis (`d'ₐ` negative, or −0), the ray enters
+            // through the upper plane: `(upper − o) · (−|inv|)` is smallest
+            // for the smallest origin. Selected by index, without branches:
+            // the signs of random directions are not predictable.
+            let down = usize::from(da.is_sign_negative());
+            let origin = [hi, lo];
+            o_near[a] = origin[down];
+            o_far[a] = origin[1 - down];
+            let sign = da as f32;
+            inv_near[a] = inv_lo.copysign(sign);
+            inv_far[a] = inv_hi.copysign(sign);
+            near_row[a] = a + 3 * down;
+            far_row[a] = a + 3 * (1 - down);
         }
         RayBox {
             o_near: o_near.map(F32x4::splat),
@@ -239,7 +234,7 @@ impl RayBox {
     /// `limit`; conservative (see [`RayBox`]). The four children are
     /// computed side by side in [`F32x4`] lanes.
     #[inline(always)]
-    pub(super) fn enter4(&self, n: &Node4, limit: f32) -> ([f32; WIDTH], u32) {
+    pub(super) fn enter4(&self, n: &Node4, limit: f32) -> (F32x4, Mask4) {
         let mut t0 = F32x4::splat(0.0);
         let mut t1 = F32x4::splat(limit);
         for a in 0..3 {
@@ -256,11 +251,7 @@ impl RayBox {
         // box is refused by the comparisons above except when the origin is
         // beyond the `f32` range (no constraint, NaN bounds left unchanged);
         // found by the queries fuzz target.
-        let mut slots = 0;
-        for k in 0..WIDTH {
-            slots |= u32::from(n.child[k] != u32::MAX) << k;
-        }
-        (t0.to_array(), t0.le(t1).bits() & slots)
+        (t0, t0.le(t1).and_not_equal(&n.child, u32::MAX))
     }
 }
 
@@ -657,21 +648,21 @@ impl Accel {
         let pr = PacketRay::new(ray, self.frame.scale);
         let mut t_limit = t_max;
         let mut limit = rb.limit(t_limit);
-        let mut local = [(0, 0.0); LOCAL_STACK];
+        let mut local = [(0, 0); LOCAL_STACK];
         let mut heap = Vec::new();
         let stack: &mut [Deferred] = if self.stack_len <= LOCAL_STACK {
             &mut local
         } else {
-            heap.resize(self.stack_len, (0, 0.0));
+            heap.resize(self.stack_len, (0, 0));
             &mut heap
         };
-        let mut sp = 1;
+        tally.node();
+        let mut sp = self.open_node(&rb, 0, limit, stack, 0);
         while sp > 0 {
             sp -= 1;
-            let (child, entry) = stack[sp];
-            if entry > limit {
+            let Some(child) = self.reached(stack[sp], limit) else {
                 continue;
-            }
+            };
             if child & LEAF == 0 {
                 tally.node();
                 sp = self.open_node(&rb, child, limit, stack, sp);
@@ -700,6 +691,13 @@ impl Accel {
     /// nearest on top; returns the new top. `stack` has room for
     /// [`WIDTH`] entries above `sp` (see `Accel::stack_len`); the slots
     /// above the new top are left overwritten.
+    ///
+    /// Branch-free: a ray's walk is too irregular for branches on the
+    /// children's order to be predicted. Each child is keyed by the bits of
+    /// its entry (a non-negative `f32`, clamped to finite, whose bits order
+    /// as the values do) with the low three bits replaced by `4 | slot`, or
+    /// by 0 when not entered; the keys are sorted as `f32` lanes, farthest
+    /// first, and pushed with their node.
     #[inline(always)]
     pub(super) fn open_node(
         &self,
@@ -709,80 +707,77 @@ impl Accel {
         stack: &mut [Deferred],
         sp: usize,
     ) -> usize {
-        let node = &self.nodes[node as usize];
-        let (entry, mask) = rb.enter4(node, limit);
-        let keys = farthest_first(&entry, mask);
-        let above = &mut stack[sp..sp + WIDTH];
-        for (slot, key) in above.iter_mut().zip(keys) {
-            *slot = (node.child[(key & 3) as usize], f32::from_bits(key & !7));
+        let (entry, entered) = rb.enter4(&self.nodes[node as usize], limit);
+        let keys = entry
+            .min_or(F32x4::splat(f32::MAX))
+            .and_bits([!7; WIDTH])
+            .or_bits([4, 5, 6, 7])
+            .keep(entered)
+            .sorted_descending();
+        stack[sp..sp + WIDTH].copy_from_slice(&keys.after(node));
+        sp + ENTERED_COUNT[entered.bits() as usize] as usize
+    }
+
+    /// The child a stack entry names, unless its box is entered beyond
+    /// `limit`. `key & !7`, read as an `f32`, is at most the child's entry
+    /// (so culling with it stays conservative); `key & 3` is its slot.
+    #[inline(always)]
+    pub(super) fn reached(&self, (node, key): Deferred, limit: f32) -> Option<u32> {
+        if f32::from_bits(key & !7) > limit {
+            return None;
         }
-        sp + mask.count_ones() as usize
+        Some(self.nodes[node as usize].child[(key & 3) as usize])
     }
 }
 
-// The sort network and the two slot bits of a key are for four slots.
+// The keys' two slot bits and the lane constants are for four slots.
 const _: () = assert!(WIDTH == 4);
 
-/// A child waiting on a traversal's stack: its [`Node4::child`] entry and
-/// a lower bound of the ray's entry `s` into its box.
-pub(super) type Deferred = (u32, f32);
+/// The number of bits set in each 4-bit mask (`count_ones` without the
+/// `popcnt` instruction, which is not in the `x86_64` baseline).
+const ENTERED_COUNT: [u8; 16] = [0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4];
+
+/// A child waiting on a traversal's stack: the inner node holding it and
+/// its key (see [`Accel::open_node`]).
+pub(super) type Deferred = (u32, u32);
 
 /// Traversal stacks at most this long live on the call stack; longer ones
 /// (trees deeper than 20 levels) on the heap.
 const LOCAL_STACK: usize = 64;
 
-/// Sort keys of the children a node's test entered (`mask`), farthest
-/// first, then 0 for the others. A key holds the bits of the child's entry
-/// (a non-negative `f32`, clamped to finite, so that its bits order as the
-/// values do) with the low three bits replaced by `4 | slot`: read as an
-/// `f32`, `key & !7` is at most the entry (culling with it stays
-/// conservative), and `key & 3` is the slot. Branch-free (five
-/// compare-exchanges): a ray's walk is too irregular for branches on the
-/// children's order to be predicted.
-#[inline(always)]
-fn farthest_first(entry: &[f32; WIDTH], mask: u32) -> [u32; WIDTH] {
-    let mut key = [0u32; WIDTH];
-    for (k, (key, e)) in key.iter_mut().zip(entry).enumerate() {
-        let bits = e.min(f32::MAX).to_bits();
-        *key = ((bits & !7) | 4 | k as u32) * ((mask >> k) & 1);
-    }
-    let mut exchange = |i: usize, j: usize| {
-        let (a, b) = (key[i], key[j]);
-        key[i] = a.max(b);
-        key[j] = a.min(b);
-    };
-    exchange(0, 1);
-    exchange(2, 3);
-    exchange(0, 2);
-    exchange(1, 3);
-    exchange(1, 2);
-    key
-}
-
 /// Asks the processor to start loading the cache lines of `items` (a hint:
 /// no effect on any answer; nothing on targets without the instruction).
 #[inline(always)]
 pub(super) fn prefetch<T>(items: &[T]) {
+    let bytes = std::mem::size_of_val(items);
+    if bytes > 0 {
+        let start = items.as_ptr().cast::<u8>();
+        prefetch_bytes(start, bytes - 1);
+    }
+}
+
+/// Asks the processor to start loading the cache lines of the bytes
+/// `start ..= start + last` (a hint: the address is never dereferenced, and
+/// may be anything).
+#[inline(always)]
+pub(super) fn prefetch_bytes(start: *const u8, last: usize) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let start = items.as_ptr().cast::<i8>();
-        let bytes = std::mem::size_of_val(items);
+        let start = start.cast::<i8>();
         let mut offset = 0;
-        while offset < bytes {
+        while offset < last {
             // SAFETY: SSE is part of the x86_64 baseline, and a prefetch
             // is a hint that never faults, whatever the address.
             unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(offset)) };
             offset += 64;
         }
-        if bytes > 0 {
-            // The last line, when the items straddle one more boundary.
-            // SAFETY: as above.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(bytes - 1)) };
-        }
+        // The last line, when the bytes straddle one more boundary.
+        // SAFETY: as above.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(last)) };
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = items;
+    let _ = (start, last);
 }
 
 /// Rays per unit of parallel work in [`Accel::first_hit_batch`].
@@ -919,10 +914,11 @@ mod tests {
             let (scaled, factor) = unit_scaled(&ray);
             let rb = RayBox::new(&scaled, &frame);
             let (entry, mask) = rb.enter4(&node, rb.limit(f64::INFINITY));
-            assert_eq!(mask, 1, "case {case}: {ray:?} misses [{lo}, {hi}]");
+            assert_eq!(mask.bits(), 1, "case {case}: {ray:?} misses [{lo}, {hi}]");
             // And with the limit at the exact entry, the box still counts.
             let (_, mask) = rb.enter4(&node, rb.limit(t0 / factor));
-            assert_eq!(mask, 1, "case {case}: entry {} vs limit {t0}", entry[0]);
+            let entry = entry.to_array()[0];
+            assert_eq!(mask.bits(), 1, "case {case}: entry {entry} vs limit {t0}");
         }
         assert!(entered > 5_000, "{entered}");
     }

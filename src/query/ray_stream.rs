@@ -11,12 +11,21 @@
 use crate::geom::Ray;
 
 use super::Accel;
-use super::accel::LEAF;
-use super::ray_solid::{BestHit, Crossing, Deferred, RayBox, prefetch, unit_scaled, unscaled_t};
-use super::tri_packet::PacketRay;
+use super::accel::{LEAF, Node4};
+use super::ray_solid::{
+    BestHit, Crossing, Deferred, RayBox, prefetch, prefetch_bytes, unit_scaled, unscaled_t,
+};
+use super::tri_packet::{PacketRay, TriPacket};
 
 /// Rays walked in turn.
 const LANES: usize = 8;
+
+/// The bytes asked for ahead of a step: a node or a packet, whichever is
+/// larger.
+const NEXT_BYTES: usize = {
+    let (node, packet) = (size_of::<Node4>(), size_of::<TriPacket>());
+    if node > packet { node } else { packet }
+};
 
 /// One ray's walk in progress.
 struct Walk {
@@ -37,17 +46,17 @@ struct Walk {
     /// The leaf filtered by the last step: its first triangle and the mask
     /// of its triangles still to decide (requested from memory).
     pending: (u32, u32),
-    /// Children still to visit (requested from memory when pushed),
-    /// nearest on top; `stack[..top]` is live.
+    /// Children still to visit, nearest on top; `stack[..top]` is live.
     stack: Vec<Deferred>,
     top: usize,
 }
 
 impl Walk {
-    /// A walk with room for the deepest path of `accel`'s tree.
-    fn new(accel: &Accel) -> Walk {
+    /// The walk of ray `index`, `r`, with room for the deepest path of
+    /// `accel`'s tree, the root opened.
+    fn new(index: usize, r: &Ray, accel: &Accel) -> Walk {
         let ray = Ray::new(glam::DVec3::ZERO, glam::DVec3::X);
-        Walk {
+        let mut walk = Walk {
             ray: 0,
             scaled: ray,
             t_scale: 1.0,
@@ -57,13 +66,15 @@ impl Walk {
             t_limit: f64::INFINITY,
             limit: f32::INFINITY,
             pending: (0, 0),
-            stack: vec![(0, 0.0); accel.stack_len],
+            stack: vec![(0, 0); accel.stack_len],
             top: 0,
-        }
+        };
+        walk.start(index, r, accel);
+        walk
     }
 
-    /// Starts the walk of ray `index`, `r`, at the root (in place: the
-    /// stack's memory is reused).
+    /// Starts the walk of ray `index`, `r`, in place (the stack's memory is
+    /// reused): the root is opened at once (it stays in cache).
     fn start(&mut self, index: usize, r: &Ray, accel: &Accel) {
         let (scaled, t_scale) = unit_scaled(r);
         self.ray = index;
@@ -75,8 +86,7 @@ impl Walk {
         self.t_limit = f64::INFINITY;
         self.limit = self.rays_box.limit(f64::INFINITY);
         self.pending = (0, 0);
-        self.stack[0] = (0, 0.0);
-        self.top = 1;
+        self.top = accel.open_node(&self.rays_box, 0, self.limit, &mut self.stack, 0);
     }
 }
 
@@ -86,11 +96,7 @@ impl Accel {
     pub(super) fn first_hits_interleaved(&self, rays: &[Ray], out: &mut [Option<Crossing>]) {
         debug_assert_eq!(rays.len(), out.len());
         let mut lanes: smallvec::SmallVec<[Walk; LANES]> = (0..rays.len().min(LANES))
-            .map(|k| {
-                let mut w = Walk::new(self);
-                w.start(k, &rays[k], self);
-                w
-            })
+            .map(|k| Walk::new(k, &rays[k], self))
             .collect();
         let mut fed = lanes.len();
         while !lanes.is_empty() {
@@ -117,8 +123,9 @@ impl Accel {
     /// One step of a walk: decide exactly the triangles the previous step's
     /// filter left undecided, then take the nearest child still in reach
     /// off the stack: filter a leaf (requesting its undecided triangles
-    /// from memory for the next step), or open a node (requesting the
-    /// children it pushes). Returns whether the walk is over.
+    /// from memory for the next step), or open a node. Either way, the
+    /// child then on top is requested from memory for the next step.
+    /// Returns whether the walk is over.
     #[inline(always)]
     fn step(&self, w: &mut Walk) -> bool {
         let (first, mut undecided) = w.pending;
@@ -137,8 +144,7 @@ impl Accel {
                 return true;
             }
             w.top -= 1;
-            let (child, entry) = w.stack[w.top];
-            if entry <= w.limit {
+            if let Some(child) = self.reached(w.stack[w.top], w.limit) {
                 break child;
             }
         };
@@ -152,18 +158,20 @@ impl Accel {
                 prefetch(std::slice::from_ref(&self.tris[i]));
             }
             w.pending = (packet.first, undecided);
-            return false;
+        } else {
+            w.top = self.open_node(&w.rays_box, child, w.limit, &mut w.stack, w.top);
         }
-        let below = w.top;
-        w.top = self.open_node(&w.rays_box, child, w.limit, &mut w.stack, below);
-        for &(child, _) in &w.stack[below..w.top] {
-            if child & LEAF != 0 {
-                prefetch(std::slice::from_ref(
-                    &self.packets[(child & !LEAF) as usize],
-                ));
-            } else {
-                prefetch(std::slice::from_ref(&self.nodes[child as usize]));
-            }
+        if w.top > 0 {
+            let (node, key) = w.stack[w.top - 1];
+            let next = self.nodes[node as usize].child[(key & 3) as usize];
+            // A node or a packet: the address is selected without a branch
+            // (which kind comes next is not predictable), and the lines of
+            // the larger of the two are asked for.
+            let index = (next & !LEAF) as usize;
+            let packet = self.packets.as_ptr().wrapping_add(index).cast::<u8>();
+            let node = self.nodes.as_ptr().wrapping_add(index).cast::<u8>();
+            let start = if next & LEAF != 0 { packet } else { node };
+            prefetch_bytes(start, NEXT_BYTES - 1);
         }
         false
     }
