@@ -1,8 +1,11 @@
 //! First hits of many rays on one thread, interleaved: a few rays are walked
-//! through the BVH in turn, one node each, and each step asks for the memory
-//! its next step needs before handing over to the next ray. A ray's cache
-//! misses (the BVH and its triangles are far larger than the caches on big
-//! meshes) then overlap the other rays' work instead of stalling the core.
+//! through the BVH in turn, one node or leaf each, and each step asks for
+//! the memory its next step needs before handing over to the next ray. A
+//! ray's cache misses (the BVH and its triangles are far larger than the
+//! caches on big meshes) then overlap the other rays' work instead of
+//! stalling the core; so does the latency of each step's chain of dependent
+//! loads and lane operations, which bounds a single ray's walk even when
+//! everything is in cache.
 //!
 //! Every ray visits the same nodes and triangles in the same order as
 //! [`Accel::first_hit`] and decides each triangle with the same exact
@@ -11,11 +14,11 @@
 use crate::geom::Ray;
 
 use super::Accel;
-use super::accel::{LEAF, Node4};
+use super::accel::{LEAF, Node4, YzTri};
 use super::ray_solid::{
-    BestHit, Crossing, Deferred, RayBox, prefetch, prefetch_bytes, unit_scaled, unscaled_t,
+    BestHit, Crossing, Deferred, RayBox, prefetch_bytes, unit_scaled, unscaled_t,
 };
-use super::tri_packet::{PacketRay, TriPacket};
+use super::tri_packet::{LANES as PACKET_LANES, PacketRay, TriPacket};
 
 /// Rays walked in turn.
 const LANES: usize = 8;
@@ -151,12 +154,13 @@ impl Accel {
         if child & LEAF != 0 {
             let packet = &self.packets[(child & !LEAF) as usize];
             let undecided = packet.undecided(&w.packet_ray);
-            let mut lanes = undecided;
-            while lanes != 0 {
-                let i = (packet.first + lanes.trailing_zeros()) as usize;
-                lanes &= lanes - 1;
-                prefetch(std::slice::from_ref(&self.tris[i]));
-            }
+            // The first undecided triangle (rarely more than one) is asked
+            // for without a branch; with none, the next packet's first one,
+            // harmlessly.
+            let first =
+                packet.first as usize + (undecided | 1 << PACKET_LANES).trailing_zeros() as usize;
+            let tri = self.tris.as_ptr().wrapping_add(first).cast::<u8>();
+            prefetch_bytes(tri, size_of::<YzTri>() - 1);
             w.pending = (packet.first, undecided);
         } else {
             w.top = self.open_node(&w.rays_box, child, w.limit, &mut w.stack, w.top);
