@@ -409,9 +409,12 @@ fn leaf_packets(nodes: &mut [Node4], tris: &[YzTri], frame: &BoxFrame) -> Vec<Tr
 /// - The BVH's `f32` node boxes, in `frame` (see [`BoxFrame`]), contain
 ///   their triangles' exact boxes (bounds rounded outward), so culling never
 ///   loses a triangle a ray touches.
-/// - Every leaf slot of a node indexes (with the [`LEAF`] bit) the `TriPacket` of its triangles
-///   (`first .. first + count` of `tris`, in order); a packet only ever
-///   drops a triangle the exact line provably misses.
+/// - Every leaf slot of a node holds [`LEAF`] plus the index of the
+///   `TriPacket` of its triangles (`first .. first + count` of `tris`, in
+///   order); a packet only ever drops a triangle the exact line provably
+///   misses.
+/// - `stack_len` is at least `(WIDTH − 1) · depth + WIDTH` for the depth of
+///   `nodes`.
 /// - Every triangle whose projected `yz` box contains a point `(y, z)` is
 ///   listed in the grid cell of `(y, z)` (cell indices are monotone in the
 ///   coordinates).
