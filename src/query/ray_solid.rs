@@ -198,15 +198,18 @@ impl RayBox {
             // through the upper plane: `(upper − o) · (−|inv|)` is smallest
             // for the smallest origin. Selected by index, without branches:
             // the signs of random directions are not predictable.
-            let down = usize::from(da.is_sign_negative());
-            let origin = [hi, lo];
-            o_near[a] = origin[down];
-            o_far[a] = origin[1 - down];
-            let sign = da as f32;
-            inv_near[a] = inv_lo.copysign(sign);
-            inv_far[a] = inv_hi.copysign(sign);
-            near_row[a] = a + 3 * down;
-            far_row[a] = a + 3 * (1 - down);
+            let down = (da.to_bits() >> 63) as u32;
+            let pick = |up: f32, down_value: f32| {
+                let take_down = 0u32.wrapping_sub(down);
+                f32::from_bits((up.to_bits() & !take_down) | (down_value.to_bits() & take_down))
+            };
+            o_near[a] = pick(hi, lo);
+            o_far[a] = pick(lo, hi);
+            let sign = down << 31;
+            inv_near[a] = f32::from_bits(inv_lo.to_bits() | sign);
+            inv_far[a] = f32::from_bits(inv_hi.to_bits() | sign);
+            near_row[a] = a + 3 * down as usize;
+            far_row[a] = a + 3 * (1 - down as usize);
         }
         RayBox {
             o_near: o_near.map(F32x4::splat),

@@ -98,28 +98,30 @@ impl Accel {
     /// in order.
     pub(super) fn first_hits_interleaved(&self, rays: &[Ray], out: &mut [Option<Crossing>]) {
         debug_assert_eq!(rays.len(), out.len());
-        let mut lanes: smallvec::SmallVec<[Walk; LANES]> = (0..rays.len().min(LANES))
+        let mut walks: Vec<Walk> = (0..rays.len().min(LANES))
             .map(|k| Walk::new(k, &rays[k], self))
             .collect();
-        let mut fed = lanes.len();
-        while !lanes.is_empty() {
-            let mut k = 0;
-            while k < lanes.len() {
-                let w = &mut lanes[k];
-                if self.step(w) {
-                    out[w.ray] = w
-                        .best
-                        .map(|(t, i, s)| self.crossing(unscaled_t(t, w.t_scale), i, s));
-                    if fed < rays.len() {
-                        w.start(fed, &rays[fed], self);
-                        fed += 1;
-                    } else {
-                        lanes.swap_remove(k);
-                        continue;
-                    }
-                }
-                k += 1;
+        let (mut fed, mut live, mut k) = (walks.len(), walks.len(), 0);
+        // `walks[..live]` are under way, taken in turn.
+        while live > 0 {
+            if k >= live {
+                k = 0;
             }
+            let w = &mut walks[k];
+            if self.step(w) {
+                out[w.ray] = w
+                    .best
+                    .map(|(t, i, s)| self.crossing(unscaled_t(t, w.t_scale), i, s));
+                if fed < rays.len() {
+                    w.start(fed, &rays[fed], self);
+                    fed += 1;
+                } else {
+                    live -= 1;
+                    walks.swap(k, live);
+                    continue;
+                }
+            }
+            k += 1;
         }
     }
 
