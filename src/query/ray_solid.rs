@@ -167,6 +167,7 @@ const INV_GROW: f32 = 1.0 + 2.0 / (1u32 << 20) as f32;
 impl RayBox {
     /// The slab-test form of `ray`, whose direction is already scaled by
     /// [`unit_scaled`] (largest component in `[1, 2)`, so `d' = d`, `k = 0`).
+    #[inline(always)]
     pub(super) fn new(ray: &Ray, frame: &BoxFrame) -> RayBox {
         let d = ray.direction;
         debug_assert!((1.0..2.0).contains(&d.abs().max_element()), "{d}");
@@ -269,6 +270,7 @@ pub(super) type BestHit = Option<(f64, u32, Sign)>;
 /// predicates then never see a direction whose products overflow or
 /// underflow (a direction of `1e308` or `5e-324`; found by the queries
 /// fuzz check).
+#[inline(always)]
 pub(super) fn unit_scaled(ray: &Ray) -> (Ray, f64) {
     let largest = ray.direction.abs().max_element();
     // `largest` is finite and non-zero (a checked ray): its binary exponent

@@ -23,6 +23,13 @@ use super::tri_packet::{LANES as PACKET_LANES, PacketRay, TriPacket};
 /// Rays walked in turn.
 const LANES: usize = 8;
 
+/// Accels at least this large (about the size of a core's L2 cache) are
+/// walked asking ahead for memory; smaller ones stay in cache, where the
+/// requests only cost instructions (measured: 12% slower on a
+/// 2,000-triangle sphere of 0.44 MB with them, 1.4× faster on sphere_80k,
+/// 15 MB).
+const ASK_AHEAD_BYTES: usize = 1 << 20;
+
 /// The bytes asked for ahead of a step: a node or a packet, whichever is
 /// larger.
 const NEXT_BYTES: usize = {
@@ -97,6 +104,16 @@ impl Accel {
     /// The first hits of `rays` (checked valid by the caller) into `out`,
     /// in order.
     pub(super) fn first_hits_interleaved(&self, rays: &[Ray], out: &mut [Option<Crossing>]) {
+        if self.stats.memory_bytes >= ASK_AHEAD_BYTES {
+            self.walk_interleaved::<true>(rays, out);
+        } else {
+            self.walk_interleaved::<false>(rays, out);
+        }
+    }
+
+    /// [`Accel::first_hits_interleaved`], each step asking for the next
+    /// step's memory when `ASK_AHEAD`.
+    fn walk_interleaved<const ASK_AHEAD: bool>(&self, rays: &[Ray], out: &mut [Option<Crossing>]) {
         debug_assert_eq!(rays.len(), out.len());
         let mut walks: Vec<Walk> = (0..rays.len().min(LANES))
             .map(|k| Walk::new(k, &rays[k], self))
@@ -108,7 +125,7 @@ impl Accel {
                 k = 0;
             }
             let w = &mut walks[k];
-            if self.step(w) {
+            if self.step::<ASK_AHEAD>(w) {
                 out[w.ray] = w
                     .best
                     .map(|(t, i, s)| self.crossing(unscaled_t(t, w.t_scale), i, s));
@@ -129,10 +146,10 @@ impl Accel {
     /// filter left undecided, then take the nearest child still in reach
     /// off the stack: filter a leaf (requesting its undecided triangles
     /// from memory for the next step), or open a node. Either way, the
-    /// child then on top is requested from memory for the next step.
-    /// Returns whether the walk is over.
+    /// child then on top is requested from memory for the next step. (The
+    /// requests only when `ASK_AHEAD`.) Returns whether the walk is over.
     #[inline(always)]
-    fn step(&self, w: &mut Walk) -> bool {
+    fn step<const ASK_AHEAD: bool>(&self, w: &mut Walk) -> bool {
         let (first, mut undecided) = w.pending;
         w.pending.1 = 0;
         while undecided != 0 {
@@ -159,15 +176,17 @@ impl Accel {
             // The first undecided triangle (rarely more than one) is asked
             // for without a branch; with none, the next packet's first one,
             // harmlessly.
-            let first =
-                packet.first as usize + (undecided | 1 << PACKET_LANES).trailing_zeros() as usize;
-            let tri = self.tris.as_ptr().wrapping_add(first).cast::<u8>();
-            prefetch_bytes(tri, size_of::<YzTri>() - 1);
+            if ASK_AHEAD {
+                let first = packet.first as usize
+                    + (undecided | 1 << PACKET_LANES).trailing_zeros() as usize;
+                let tri = self.tris.as_ptr().wrapping_add(first).cast::<u8>();
+                prefetch_bytes(tri, size_of::<YzTri>() - 1);
+            }
             w.pending = (packet.first, undecided);
         } else {
             w.top = self.open_node(&w.rays_box, child, w.limit, &mut w.stack, w.top);
         }
-        if w.top > 0 {
+        if ASK_AHEAD && w.top > 0 {
             let (node, key) = w.stack[w.top - 1];
             let next = self.nodes[node as usize].child[(key & 3) as usize];
             // A node or a packet: the address is selected without a branch

@@ -180,6 +180,7 @@ impl PacketRay {
     /// `ray` (with its direction scaled by
     /// [`unit_scaled`](super::ray_solid::unit_scaled)) against the packets
     /// of an accel with frame scale `scale`.
+    #[inline(always)]
     pub(super) fn new(ray: &Ray, scale: f64) -> PacketRay {
         let direction = [0, 1, 2].map(|a| ray.direction[a] as f32);
         PacketRay {
