@@ -395,14 +395,12 @@ impl Accel {
     ///
     /// The first invalid ray, by index.
     pub fn first_hit_batch(&self, rays: &[Ray]) -> Result<Vec<Option<Crossing>>, QueryError> {
-        for (index, ray) in rays.iter().enumerate() {
-            self.check_ray(ray, index)?;
-        }
+        check_rays(rays)?;
         // Each worker casts its rays a few at a time, interleaved (see
         // `ray_stream`), so that one ray's cache misses overlap the others'
-        // work.
+        // work. The answers' memory is written first on all cores too.
         let cast = |rays: &[Ray]| {
-            let mut out = vec![None; rays.len()];
+            let mut out: Vec<Option<Crossing>> = rays.par_iter().map(|_| None).collect();
             rays.par_chunks(STREAM_CHUNK)
                 .zip(out.par_chunks_mut(STREAM_CHUNK))
                 .for_each(|(r, o)| self.first_hits_interleaved(r, o));
@@ -420,7 +418,7 @@ impl Accel {
         let order = coherent_order(rays);
         let sorted: Vec<Ray> = order.par_iter().map(|&i| rays[i as usize]).collect();
         let answers = cast(&sorted);
-        let mut out = vec![None; rays.len()];
+        let mut out: Vec<Option<Crossing>> = rays.par_iter().map(|_| None).collect();
         for (&i, a) in order.iter().zip(answers) {
             out[i as usize] = a;
         }
@@ -433,9 +431,7 @@ impl Accel {
     ///
     /// The first invalid ray by index, or [`QueryError::NotClosed`].
     pub fn ray_crossings_batch(&self, rays: &[Ray]) -> Result<Vec<RayCrossings>, QueryError> {
-        for (index, ray) in rays.iter().enumerate() {
-            self.check_ray(ray, index)?;
-        }
+        check_rays(rays)?;
         self.require_closed()?;
         rays.par_iter()
             .with_min_len(256)
@@ -523,11 +519,7 @@ impl Accel {
         if ray.is_valid() {
             Ok(())
         } else {
-            Err(QueryError::InvalidRay {
-                index,
-                origin: ray.origin,
-                direction: ray.direction,
-            })
+            Err(invalid_ray(ray, index))
         }
     }
 
@@ -742,6 +734,27 @@ pub(super) type Deferred = (u32, u32);
 /// Traversal stacks at most this long live on the call stack; longer ones
 /// (trees deeper than 20 levels) on the heap.
 const LOCAL_STACK: usize = 64;
+
+/// The first invalid ray of a batch, by index, as an error (checked on all
+/// cores).
+fn check_rays(rays: &[Ray]) -> Result<(), QueryError> {
+    match rays
+        .par_iter()
+        .enumerate()
+        .find_first(|(_, r)| !r.is_valid())
+    {
+        Some((index, ray)) => Err(invalid_ray(ray, index)),
+        None => Ok(()),
+    }
+}
+
+fn invalid_ray(ray: &Ray, index: usize) -> QueryError {
+    QueryError::InvalidRay {
+        index,
+        origin: ray.origin,
+        direction: ray.direction,
+    }
+}
 
 /// Asks the processor to start loading the cache lines of `items` (a hint:
 /// no effect on any answer; nothing on targets without the instruction).
