@@ -60,3 +60,27 @@ fn batches_match_single_queries() {
         );
     }
 }
+
+#[test]
+fn a_batch_names_its_first_invalid_ray() {
+    use wingedge::query::QueryError;
+    let accel = Accel::new(&builders::cube());
+    let good = Ray::new(DVec3::new(0.1, 0.2, 5.0), DVec3::NEG_Z);
+    let mut rays = vec![good; 20_000];
+    rays[12_345] = Ray::new(DVec3::new(f64::NAN, 0.0, 0.0), DVec3::X);
+    rays[17_000] = Ray::new(DVec3::ZERO, DVec3::ZERO);
+    rays[19_999] = Ray::new(DVec3::ZERO, DVec3::new(0.0, f64::INFINITY, 0.0));
+    let first = |e: QueryError| match e {
+        QueryError::InvalidRay { index, .. } => index,
+        other => panic!("{other}"),
+    };
+    assert_eq!(first(accel.first_hit_batch(&rays).unwrap_err()), 12_345);
+    assert_eq!(first(accel.ray_crossings_batch(&rays).unwrap_err()), 12_345);
+    rays[12_345] = good;
+    assert_eq!(first(accel.first_hit_batch(&rays).unwrap_err()), 17_000);
+    rays[17_000] = good;
+    assert_eq!(first(accel.first_hit_batch(&rays).unwrap_err()), 19_999);
+    rays[19_999] = good;
+    let hits = accel.first_hit_batch(&rays).unwrap();
+    assert!(hits.iter().all(|h| h.is_some_and(|c| c.t == 4.0)));
+}
