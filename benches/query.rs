@@ -11,16 +11,9 @@ use wingedge::geom::Ray;
 use wingedge::mesh::builders;
 use wingedge::query::{Accel, Method};
 
-/// Seeded uniform numbers in [0, 1).
-fn uniform(seed: u64) -> impl FnMut() -> f64 {
-    let mut s = seed;
-    move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+#[path = "../src/test_rng.rs"]
+mod test_rng;
+use test_rng::uniform;
 
 fn points(n: usize) -> Vec<DVec3> {
     let mut u = uniform(0x9E37_79B9_7F4A_7C15);
