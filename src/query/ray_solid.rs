@@ -424,11 +424,14 @@ impl Accel {
         let order = coherent_order(rays);
         let sorted: Vec<Ray> = order.par_iter().map(|&i| rays[i as usize]).collect();
         let answers = cast(&sorted);
-        let mut out: Vec<Option<Crossing>> = rays.par_iter().map(|_| None).collect();
-        for (&i, a) in order.iter().zip(answers) {
-            out[i as usize] = a;
+        // Back to input order by a gather on all cores: the rank of each
+        // ray (a 4-byte scatter, sequential but cache-friendly) then each
+        // answer read from its rank.
+        let mut rank = vec![0u32; rays.len()];
+        for (j, &i) in order.iter().enumerate() {
+            rank[i as usize] = j as u32;
         }
-        out
+        rank.par_iter().map(|&j| answers[j as usize]).collect()
     }
 
     /// [`Accel::ray_crossings`] for every ray, in order, on all cores.
