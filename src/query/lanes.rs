@@ -124,16 +124,11 @@ mod imp {
                 ))
             }
         }
-        /// Per lane `(x, bits of the lane)`.
+        /// The bits of each lane.
         #[inline(always)]
-        pub(in super::super) fn after(self, x: u32) -> [(u32, u32); 4] {
-            let mut out = [(0u32, 0u32); 4];
-            unsafe {
-                let x = arch::_mm_castsi128_ps(arch::_mm_set1_epi32(x as i32));
-                let p = out.as_mut_ptr().cast::<f32>();
-                arch::_mm_storeu_ps(p, arch::_mm_unpacklo_ps(x, self.0));
-                arch::_mm_storeu_ps(p.add(4), arch::_mm_unpackhi_ps(x, self.0));
-            }
+        pub(in super::super) fn to_bits(self) -> [u32; 4] {
+            let mut out = [0u32; 4];
+            unsafe { arch::_mm_storeu_ps(out.as_mut_ptr().cast::<f32>(), self.0) };
             out
         }
     }
@@ -255,10 +250,10 @@ mod imp {
             v.sort_by(|a, b| b.total_cmp(a));
             F32x4(v)
         }
-        /// Per lane `(x, bits of the lane)`.
+        /// The bits of each lane.
         #[inline(always)]
-        pub(in super::super) fn after(self, x: u32) -> [(u32, u32); 4] {
-            self.0.map(|v| (x, v.to_bits()))
+        pub(in super::super) fn to_bits(self) -> [u32; 4] {
+            self.0.map(f32::to_bits)
         }
     }
 
@@ -338,8 +333,7 @@ mod tests {
             entered.and_not_equal(&[7, 7, u32::MAX, 9], u32::MAX).bits(),
             0b1001
         );
-        assert_eq!(v.after(5).map(|(x, _)| x), [5; 4]);
-        assert_eq!(v.after(5).map(|(_, b)| b), raw);
+        assert_eq!(v.to_bits(), raw);
         // Every order of four values, ties and zeros included.
         let values = [0.0f32, 0.5, 0.5, 7.0];
         let mut order = [0usize, 1, 2, 3];

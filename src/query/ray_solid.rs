@@ -659,7 +659,7 @@ impl Accel {
         let mut sp = self.open_node(&rb, 0, limit, stack, 0);
         while sp > 0 {
             sp -= 1;
-            let Some(child) = self.reached(stack[sp], limit) else {
+            let Some(child) = reached(stack[sp], limit) else {
                 continue;
             };
             if child & LEAF == 0 {
@@ -696,7 +696,7 @@ impl Accel {
     /// its entry (a non-negative `f32`, clamped to finite, whose bits order
     /// as the values do) with the low three bits replaced by `4 | slot`, or
     /// by 0 when not entered; the keys are sorted as `f32` lanes, farthest
-    /// first, and pushed with their node.
+    /// first, and pushed with the children they name.
     #[inline(always)]
     pub(super) fn open_node(
         &self,
@@ -706,27 +706,30 @@ impl Accel {
         stack: &mut [Deferred],
         sp: usize,
     ) -> usize {
-        let (entry, entered) = rb.enter4(&self.nodes[node as usize], limit);
+        let node = &self.nodes[node as usize];
+        let (entry, entered) = rb.enter4(node, limit);
         let keys = entry
             .min_or(F32x4::splat(f32::MAX))
             .and_bits([!7; WIDTH])
             .or_bits([4, 5, 6, 7])
             .keep(entered)
             .sorted_descending();
-        stack[sp..sp + WIDTH].copy_from_slice(&keys.after(node));
+        for (slot, key) in stack[sp..sp + WIDTH].iter_mut().zip(keys.to_bits()) {
+            *slot = (node.child[(key & 3) as usize], key);
+        }
         sp + ENTERED_COUNT[entered.bits() as usize] as usize
     }
+}
 
-    /// The child a stack entry names, unless its box is entered beyond
-    /// `limit`. `key & !7`, read as an `f32`, is at most the child's entry
-    /// (so culling with it stays conservative); `key & 3` is its slot.
-    #[inline(always)]
-    pub(super) fn reached(&self, (node, key): Deferred, limit: f32) -> Option<u32> {
-        if f32::from_bits(key & !7) > limit {
-            return None;
-        }
-        Some(self.nodes[node as usize].child[(key & 3) as usize])
+/// The child a stack entry names, unless its box is entered beyond `limit`:
+/// `key & !7`, read as an `f32`, is at most the child's entry (so culling
+/// with it stays conservative).
+#[inline(always)]
+pub(super) fn reached((child, key): Deferred, limit: f32) -> Option<u32> {
+    if f32::from_bits(key & !7) > limit {
+        return None;
     }
+    Some(child)
 }
 
 // The keys' two slot bits and the lane constants are for four slots.
@@ -736,7 +739,7 @@ const _: () = assert!(WIDTH == 4);
 /// `popcnt` instruction, which is not in the `x86_64` baseline).
 const ENTERED_COUNT: [u8; 16] = [0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4];
 
-/// A child waiting on a traversal's stack: the inner node holding it and
+/// A child waiting on a traversal's stack: its [`Node4::child`] entry and
 /// its key (see [`Accel::open_node`]).
 pub(super) type Deferred = (u32, u32);
 

@@ -16,7 +16,7 @@ use crate::geom::Ray;
 use super::Accel;
 use super::accel::{LEAF, Node4, YzTri};
 use super::ray_solid::{
-    BestHit, Crossing, Deferred, RayBox, prefetch_bytes, unit_scaled, unscaled_t,
+    BestHit, Crossing, Deferred, RayBox, prefetch_bytes, reached, unit_scaled, unscaled_t,
 };
 use super::tri_packet::{LANES as PACKET_LANES, PacketRay, TriPacket};
 
@@ -166,7 +166,7 @@ impl Accel {
                 return true;
             }
             w.top -= 1;
-            if let Some(child) = self.reached(w.stack[w.top], w.limit) {
+            if let Some(child) = reached(w.stack[w.top], w.limit) {
                 break child;
             }
         };
@@ -187,8 +187,7 @@ impl Accel {
             w.top = self.open_node(&w.rays_box, child, w.limit, &mut w.stack, w.top);
         }
         if ASK_AHEAD && w.top > 0 {
-            let (node, key) = w.stack[w.top - 1];
-            let next = self.nodes[node as usize].child[(key & 3) as usize];
+            let (next, _) = w.stack[w.top - 1];
             // A node or a packet: the address is selected without a branch
             // (which kind comes next is not predictable), and the lines of
             // the larger of the two are asked for.
