@@ -224,9 +224,6 @@ pub(super) struct Node4 {
     /// Per child: [`LEAF`] plus the index of a leaf's [`TriPacket`], or the
     /// index of an inner node; `u32::MAX` for an empty slot.
     pub child: [u32; WIDTH],
-    /// Per child: the number of triangles of a leaf; 0 for an inner node
-    /// (and for an empty slot).
-    pub count: [u32; WIDTH],
 }
 
 impl Node4 {
@@ -240,16 +237,14 @@ impl Node4 {
             [f32::NEG_INFINITY; WIDTH],
         ],
         child: [u32::MAX; WIDTH],
-        count: [0; WIDTH],
     };
 
-    fn set(&mut self, k: usize, n: &Node, link: (u32, u32)) {
+    fn set(&mut self, k: usize, n: &Node, child: u32) {
         for a in 0..3 {
             self.bounds[a][k] = n.min[a];
             self.bounds[3 + a][k] = n.max[a];
         }
-        self.child[k] = link.0;
-        self.count[k] = link.1;
+        self.child[k] = child;
     }
 }
 
@@ -319,76 +314,85 @@ impl BoxFrame {
 
 /// Turns the binary BVH (one box per node) into [`Node4`]s, root first:
 /// each binary inner node becomes a node whose slots hold up to four of its
-/// descendants (the inner descendant with the largest box opened first).
-/// Also returns the depth of the new tree (nodes on its longest path from
-/// the root).
-fn to_node4(nodes: &[Node]) -> (Vec<Node4>, usize) {
-    let mut out = vec![Node4::EMPTY];
+/// descendants (the inner descendant with the largest box opened first),
+/// and each leaf a [`TriPacket`] of its triangles (`tris` in leaf order,
+/// in the frame of scale `scale`). Also returns the depth of the new tree
+/// (nodes on its longest path from the root).
+fn to_node4(nodes: &[Node], tris: &[YzTri], scale: f64) -> (Vec<Node4>, Vec<TriPacket>, usize) {
+    let mut c = Collapse {
+        nodes,
+        tris,
+        scale,
+        out: vec![Node4::EMPTY],
+        packets: Vec::new(),
+    };
     let has_triangles = nodes
         .first()
         .is_some_and(|n| n.count > 0 || nodes.len() > 1);
-    if !has_triangles {
-        return (out, 1);
-    }
-    if nodes[0].count > 0 {
-        out[0].set(0, &nodes[0], (nodes[0].first, nodes[0].count));
-        return (out, 1);
-    }
-    let depth = fill_node4(nodes, 0, 0, &mut out);
-    (out, depth)
-}
-
-/// Fills `out[at]` from the binary inner node `i`, appending the nodes of
-/// its inner descendants; returns the depth of the subtree at `out[at]`.
-fn fill_node4(nodes: &[Node], i: usize, at: usize, out: &mut Vec<Node4>) -> usize {
-    let area = |n: &Node| {
-        let s = [0, 1, 2].map(|a| f64::from(n.max[a]) - f64::from(n.min[a]));
-        s[0] * s[1] + s[1] * s[2] + s[2] * s[0]
+    let depth = if !has_triangles {
+        1
+    } else if nodes[0].count > 0 {
+        let leaf = c.packet(&nodes[0]);
+        c.out[0].set(0, &nodes[0], leaf);
+        1
+    } else {
+        c.fill(0, 0)
     };
-    let mut slots: smallvec::SmallVec<[usize; WIDTH]> =
-        smallvec::smallvec![i + 1, nodes[i].first as usize];
-    while slots.len() < WIDTH {
-        let open = (0..slots.len())
-            .filter(|&k| nodes[slots[k]].count == 0)
-            .max_by(|&p, &q| area(&nodes[slots[p]]).total_cmp(&area(&nodes[slots[q]])));
-        let Some(k) = open else { break };
-        let j = slots[k];
-        slots[k] = j + 1;
-        slots.insert(k + 1, nodes[j].first as usize);
-    }
-    let mut depth = 1;
-    for (k, &j) in slots.iter().enumerate() {
-        let n = &nodes[j];
-        if n.count > 0 {
-            out[at].set(k, n, (n.first, n.count));
-        } else {
-            let child = out.len();
-            out.push(Node4::EMPTY);
-            out[at].set(k, n, (child as u32, 0));
-            depth = depth.max(1 + fill_node4(nodes, j, child, out));
-        }
-    }
-    depth
+    (c.out, c.packets, depth)
 }
 
-/// Gives every leaf of `nodes` its [`TriPacket`]: the leaf slots' first
-/// triangle is replaced by the index of the packet holding its triangles.
-fn leaf_packets(nodes: &mut [Node4], tris: &[YzTri], frame: &BoxFrame) -> Vec<TriPacket> {
-    let mut packets = Vec::new();
-    for node in nodes {
-        for k in 0..WIDTH {
-            if node.count[k] > 0 {
-                packets.push(TriPacket::new(
-                    tris,
-                    node.child[k],
-                    node.count[k],
-                    frame.scale,
-                ));
-                node.child[k] = (packets.len() - 1) as u32 | LEAF;
+/// The state of [`to_node4`].
+struct Collapse<'a> {
+    nodes: &'a [Node],
+    tris: &'a [YzTri],
+    scale: f64,
+    out: Vec<Node4>,
+    packets: Vec<TriPacket>,
+}
+
+impl Collapse<'_> {
+    /// Makes the packet of binary leaf `n`; returns its slot entry.
+    fn packet(&mut self, n: &Node) -> u32 {
+        self.packets
+            .push(TriPacket::new(self.tris, n.first, n.count, self.scale));
+        (self.packets.len() - 1) as u32 | LEAF
+    }
+
+    /// Fills `out[at]` from the binary inner node `i`, appending the nodes
+    /// of its inner descendants and the packets of its leaves; returns the
+    /// depth of the subtree at `out[at]`.
+    fn fill(&mut self, i: usize, at: usize) -> usize {
+        let nodes = self.nodes;
+        let area = |n: &Node| {
+            let s = [0, 1, 2].map(|a| f64::from(n.max[a]) - f64::from(n.min[a]));
+            s[0] * s[1] + s[1] * s[2] + s[2] * s[0]
+        };
+        let mut slots: smallvec::SmallVec<[usize; WIDTH]> =
+            smallvec::smallvec![i + 1, nodes[i].first as usize];
+        while slots.len() < WIDTH {
+            let open = (0..slots.len())
+                .filter(|&k| nodes[slots[k]].count == 0)
+                .max_by(|&p, &q| area(&nodes[slots[p]]).total_cmp(&area(&nodes[slots[q]])));
+            let Some(k) = open else { break };
+            let j = slots[k];
+            slots[k] = j + 1;
+            slots.insert(k + 1, nodes[j].first as usize);
+        }
+        let mut depth = 1;
+        for (k, &j) in slots.iter().enumerate() {
+            let n = &nodes[j];
+            if n.count > 0 {
+                let leaf = self.packet(n);
+                self.out[at].set(k, n, leaf);
+            } else {
+                let child = self.out.len();
+                self.out.push(Node4::EMPTY);
+                self.out[at].set(k, n, child as u32);
+                depth = depth.max(1 + self.fill(j, child));
             }
         }
+        depth
     }
-    packets
 }
 
 /// The acceleration structure of one solid, built once and shared by every
@@ -464,13 +468,12 @@ impl Accel {
         let boundary_edges = solid.boundary_edges().count();
         let (tris, tri_face) = fan_triangles(solid);
         let (binary, order, frame) = build_bvh(&tris);
-        let (mut nodes, depth) = to_node4(&binary);
-        drop(binary);
         let tris: Vec<YzTri> = order
             .par_iter()
             .map(|&i| yz_tri(&tris[i as usize]))
             .collect();
-        let packets = leaf_packets(&mut nodes, &tris, &frame);
+        let (nodes, packets, depth) = to_node4(&binary, &tris, frame.scale);
+        drop(binary);
         let tri_face: Vec<FaceId> = order.par_iter().map(|&i| tri_face[i as usize]).collect();
         let bounds = tris
             .iter()

@@ -902,7 +902,6 @@ mod tests {
             let mut node = Node4 {
                 bounds: [[f32::INFINITY; WIDTH]; 6],
                 child: [0; WIDTH],
-                count: [1; WIDTH],
             };
             for a in 0..3 {
                 node.bounds[a] = [f32::INFINITY; WIDTH];
