@@ -32,6 +32,7 @@
 mod accel;
 mod lanes;
 mod line_face;
+mod node_open;
 mod point_batch;
 mod point_in_convex;
 mod point_in_solid;

@@ -8,8 +8,10 @@ use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Ray, Sign, line_side_sos, orient3d};
 use crate::mesh::FaceId;
 
-use super::accel::{BoxFrame, LEAF, Node4, WIDTH};
-use super::lanes::{F32x4, Mask4};
+use super::accel::{BoxFrame, LEAF};
+#[cfg(target_arch = "x86_64")]
+use super::node_open::Avx2;
+use super::node_open::{KEY_SLOT_BITS, NodeLanes, Portable};
 use super::tri_packet::PacketRay;
 use super::{Accel, Containment, QueryError};
 
@@ -137,19 +139,19 @@ impl Tally for TraversalStats {
 pub(super) struct RayBox {
     /// The origin in the frame, rounded (per axis) away from the near
     /// planes: used for entries.
-    o_near: [F32x4; 3],
+    pub o_near: [f32; 3],
     /// The origin in the frame, rounded towards the near planes: used for
     /// exits.
-    o_far: [F32x4; 3],
+    pub o_far: [f32; 3],
     /// `1/d'ₐ` rounded towards zero (exactly `±∞` when `d'ₐ = 0`).
-    inv_near: [F32x4; 3],
+    pub inv_near: [f32; 3],
     /// `1/d'ₐ · (1 + 2⁻²⁰)` rounded away from zero.
-    inv_far: [F32x4; 3],
-    /// Per axis, the row of [`Node4::bounds`] holding the near planes
+    pub inv_far: [f32; 3],
+    /// Per axis, the row of [`Node8::bounds`](super::accel::Node8::bounds) holding the near planes
     /// (lower bounds when the ray runs up the axis).
-    near_row: [usize; 3],
+    pub near_row: [usize; 3],
     /// Per axis, the row holding the far planes.
-    far_row: [usize; 3],
+    pub far_row: [usize; 3],
     /// `scale`: the factor from `t` to `s`.
     t_to_s: f64,
 }
@@ -213,10 +215,10 @@ impl RayBox {
             far_row[a] = a + 3 * (1 - down as usize);
         }
         RayBox {
-            o_near: o_near.map(F32x4::splat),
-            o_far: o_far.map(F32x4::splat),
-            inv_near: inv_near.map(F32x4::splat),
-            inv_far: inv_far.map(F32x4::splat),
+            o_near,
+            o_far,
+            inv_near,
+            inv_far,
             near_row,
             far_row,
             t_to_s: frame.scale,
@@ -231,31 +233,6 @@ impl RayBox {
         // rounded it is at least `x (1 + 2⁻²⁰)`; `+ 2⁻¹²⁶` covers `x` below
         // the normal range. `+∞` stays `+∞`.
         ((t * self.t_to_s) as f32) * INV_GROW + f32::MIN_POSITIVE
-    }
-
-    /// The entry parameters `s` of a node's children's boxes, and a bit
-    /// mask of the children the ray (`s ≥ 0`) may touch no later than
-    /// `limit`; conservative (see [`RayBox`]). The four children are
-    /// computed side by side in [`F32x4`] lanes.
-    #[inline(always)]
-    pub(super) fn enter4(&self, n: &Node4, limit: f32) -> (F32x4, Mask4) {
-        let mut t0 = F32x4::splat(0.0);
-        let mut t1 = F32x4::splat(limit);
-        for a in 0..3 {
-            let near = F32x4::load(&n.bounds[self.near_row[a]]);
-            let far = F32x4::load(&n.bounds[self.far_row[a]]);
-            let tn = near.sub(self.o_near[a]).mul(self.inv_near[a]);
-            let tf = far.sub(self.o_far[a]).mul(self.inv_far[a]);
-            // NaN (0 · ∞: origin on the slab plane of a parallel ray)
-            // leaves the bound unchanged.
-            t0 = tn.max_or(t0);
-            t1 = tf.min_or(t1);
-        }
-        // An empty slot (`child == u32::MAX`) is never entered: its inverted
-        // box is refused by the comparisons above except when the origin is
-        // beyond the `f32` range (no constraint, NaN bounds left unchanged);
-        // found by the queries fuzz target.
-        (t0, t0.le(t1).and_not_equal(&n.child, u32::MAX))
     }
 }
 
@@ -634,10 +611,46 @@ impl Accel {
     /// [`TriPacket`](super::tri_packet::TriPacket) proves missed.
     /// `visit(i, t_max)` returns the new limit (a `t`). Deferred children
     /// are kept with their entry parameter, so that one beyond the limit is
-    /// dropped without touching its node or packet.
+    /// dropped without touching its node or packet. Nodes are opened with
+    /// AVX2 where the processor has it (see `node_open`); the walk is the
+    /// same either way.
     #[inline(always)]
     fn traverse(
         &self,
+        ray: &Ray,
+        t_max: f64,
+        tally: &mut impl Tally,
+        visit: impl FnMut(u32, f64) -> f64,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(lanes) = Avx2::detect() {
+            // SAFETY: AVX2 was detected.
+            unsafe { self.traverse_avx2(lanes, ray, t_max, tally, visit) };
+            return;
+        }
+        self.traverse_with(Portable, ray, t_max, tally, visit);
+    }
+
+    /// [`Accel::traverse`] compiled for AVX2, so that the node opening is
+    /// inlined into it.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,popcnt")]
+    fn traverse_avx2(
+        &self,
+        lanes: Avx2,
+        ray: &Ray,
+        t_max: f64,
+        tally: &mut impl Tally,
+        visit: impl FnMut(u32, f64) -> f64,
+    ) {
+        self.traverse_with(lanes, ray, t_max, tally, visit);
+    }
+
+    /// [`Accel::traverse`] with nodes opened by `lanes`.
+    #[inline(always)]
+    fn traverse_with(
+        &self,
+        lanes: impl NodeLanes,
         ray: &Ray,
         t_max: f64,
         tally: &mut impl Tally,
@@ -647,24 +660,24 @@ impl Accel {
         let pr = PacketRay::new(ray, self.frame.scale);
         let mut t_limit = t_max;
         let mut limit = rb.limit(t_limit);
-        let mut local = [(0, 0); LOCAL_STACK];
+        let mut local = [Deferred::EMPTY; LOCAL_STACK];
         let mut heap = Vec::new();
         let stack: &mut [Deferred] = if self.stack_len <= LOCAL_STACK {
             &mut local
         } else {
-            heap.resize(self.stack_len, (0, 0));
+            heap.resize(self.stack_len, Deferred::EMPTY);
             &mut heap
         };
         tally.node();
-        let mut sp = self.open_node(&rb, 0, limit, stack, 0);
+        let mut sp = self.open_node(lanes, &rb, 0, limit, stack, 0);
         while sp > 0 {
             sp -= 1;
-            let Some(child) = reached(stack[sp], limit) else {
+            let Some(child) = stack[sp].reached(limit) else {
                 continue;
             };
             if child & LEAF == 0 {
                 tally.node();
-                sp = self.open_node(&rb, child, limit, stack, sp);
+                sp = self.open_node(lanes, &rb, child, limit, stack, sp);
                 continue;
             }
             let packet = &self.packets[(child & !LEAF) as usize];
@@ -685,63 +698,51 @@ impl Accel {
         }
     }
 
-    /// Tests the children of inner node `node` against the ray and pushes
-    /// those it may touch no later than `limit` onto `stack` above `sp`,
-    /// nearest on top; returns the new top. `stack` has room for
-    /// [`WIDTH`] entries above `sp` (see `Accel::stack_len`); the slots
-    /// above the new top are left overwritten.
-    ///
-    /// Branch-free: a ray's walk is too irregular for branches on the
-    /// children's order to be predicted. Each child is keyed by the bits of
-    /// its entry (a non-negative `f32`, clamped to finite, whose bits order
-    /// as the values do) with the low three bits replaced by `4 | slot`, or
-    /// by 0 when not entered; the keys are sorted as `f32` lanes, farthest
-    /// first, and pushed with the children they name.
+    /// Opens inner node `node` with `lanes` (see [`NodeLanes::open`]):
+    /// pushes the children the ray may touch no later than `limit` onto
+    /// `stack` above `sp`, nearest on top; returns the new top. `stack` has
+    /// room for [`WIDTH`](super::accel::WIDTH) entries above `sp` (see `Accel::stack_len`).
     #[inline(always)]
     pub(super) fn open_node(
         &self,
+        lanes: impl NodeLanes,
         rb: &RayBox,
         node: u32,
         limit: f32,
         stack: &mut [Deferred],
         sp: usize,
     ) -> usize {
-        let node = &self.nodes[node as usize];
-        let (entry, entered) = rb.enter4(node, limit);
-        let keys = entry
-            .min_or(F32x4::splat(f32::MAX))
-            .and_bits([!7; WIDTH])
-            .or_bits([4, 5, 6, 7])
-            .keep(entered)
-            .sorted_descending();
-        for (slot, key) in stack[sp..sp + WIDTH].iter_mut().zip(keys.to_bits()) {
-            *slot = (node.child[(key & 3) as usize], key);
+        lanes.open(rb, &self.nodes[node as usize], limit, stack, sp)
+    }
+}
+
+/// A child waiting on a traversal's stack: its [`Node8::child`](super::accel::Node8::child) entry and
+/// its key (see `node_open`). `repr(C)`: the AVX2 opener writes entries as
+/// pairs of `u32` lanes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(C)]
+pub(super) struct Deferred {
+    /// [`LEAF`] plus a packet index, or an inner node's index.
+    pub child: u32,
+    /// The child's entry bits with `8 | slot` in the low four bits.
+    pub key: u32,
+}
+
+impl Deferred {
+    /// An unused stack slot.
+    pub(super) const EMPTY: Deferred = Deferred { child: 0, key: 0 };
+
+    /// The child, unless its box is entered beyond `limit`: the key without
+    /// its slot bits, read as an `f32`, is at most the child's entry (so
+    /// culling with it stays conservative).
+    #[inline(always)]
+    pub(super) fn reached(self, limit: f32) -> Option<u32> {
+        if f32::from_bits(self.key & !KEY_SLOT_BITS) > limit {
+            return None;
         }
-        sp + ENTERED_COUNT[entered.bits() as usize] as usize
+        Some(self.child)
     }
 }
-
-/// The child a stack entry names, unless its box is entered beyond `limit`:
-/// `key & !7`, read as an `f32`, is at most the child's entry (so culling
-/// with it stays conservative).
-#[inline(always)]
-pub(super) fn reached((child, key): Deferred, limit: f32) -> Option<u32> {
-    if f32::from_bits(key & !7) > limit {
-        return None;
-    }
-    Some(child)
-}
-
-// The keys' two slot bits and the lane constants are for four slots.
-const _: () = assert!(WIDTH == 4);
-
-/// The number of bits set in each 4-bit mask (`count_ones` without the
-/// `popcnt` instruction, which is not in the `x86_64` baseline).
-const ENTERED_COUNT: [u8; 16] = [0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4];
-
-/// A child waiting on a traversal's stack: its [`Node4::child`] entry and
-/// its key (see [`Accel::open_node`]).
-pub(super) type Deferred = (u32, u32);
 
 /// Traversal stacks at most this long live on the call stack; longer ones
 /// (trees deeper than 20 levels) on the heap.
@@ -871,6 +872,8 @@ fn alternate(hits: &mut [(f64, u32, Sign)], mut inside: bool) {
 mod tests {
     use super::*;
     use crate::mesh::builders;
+    use crate::query::accel::{Node8, WIDTH};
+    use crate::query::node_open::for_each_lanes;
 
     /// The `f32` slab test never rejects a box the exact ray enters: boxes
     /// and rays at many scales and offsets, including rays grazing a box's
@@ -899,7 +902,7 @@ mod tests {
             }
             direction *= 2f64.powi((uniform() * 200.0) as i32 - 100);
             let ray = Ray::new(origin, direction);
-            let mut node = Node4 {
+            let mut node = Node8 {
                 bounds: [[f32::INFINITY; WIDTH]; 6],
                 child: [0; WIDTH],
             };
@@ -935,12 +938,14 @@ mod tests {
             // `t` along the scaled ray is `t / factor`, exactly.
             let (scaled, factor) = unit_scaled(&ray);
             let rb = RayBox::new(&scaled, &frame);
-            let (entry, mask) = rb.enter4(&node, rb.limit(f64::INFINITY));
-            assert_eq!(mask.bits(), 1, "case {case}: {ray:?} misses [{lo}, {hi}]");
-            // And with the limit at the exact entry, the box still counts.
-            let (_, mask) = rb.enter4(&node, rb.limit(t0 / factor));
-            let entry = entry.to_array()[0];
-            assert_eq!(mask.bits(), 1, "case {case}: entry {entry} vs limit {t0}");
+            for_each_lanes!(|lanes| {
+                let (entry, mask) = lanes.enter(&rb, &node, rb.limit(f64::INFINITY));
+                assert_eq!(mask, 1, "case {case}: {ray:?} misses [{lo}, {hi}]");
+                // And with the limit at the exact entry, the box still counts.
+                let (_, mask) = lanes.enter(&rb, &node, rb.limit(t0 / factor));
+                let entry = entry[0];
+                assert_eq!(mask, 1, "case {case}: entry {entry} vs limit {t0}");
+            });
         }
         assert!(entered > 5_000, "{entered}");
     }
@@ -965,6 +970,34 @@ mod tests {
         }
         let hits = coherent.iter().filter(|h| h.is_some()).count();
         assert!(hits > rays.len() / 2, "{hits} of {}", rays.len());
+    }
+
+    /// The walk gives the same answers whichever way its nodes are opened
+    /// (the AVX2 one only runs where the processor has it).
+    #[test]
+    fn both_node_openers_give_the_same_hits() {
+        let accel = Accel::new(&builders::sphere(24));
+        let mut uniform = crate::test_rng::uniform(0x3C6E_F372_FE94_F82B);
+        let mut rand = || DVec3::new(uniform(), uniform(), uniform()) * 4.0 - DVec3::splat(2.0);
+        let rays: Vec<Ray> = (0..4000)
+            .map(|_| {
+                let origin = rand();
+                Ray::new(origin, rand() * 0.5 - origin)
+            })
+            .filter(Ray::is_valid)
+            .collect();
+        let mut portable = vec![None; rays.len()];
+        accel.first_hits_with(Portable, &rays, &mut portable);
+        let hits = portable.iter().filter(|h| h.is_some()).count();
+        assert!(hits > rays.len() / 2, "{hits} of {}", rays.len());
+        for_each_lanes!(|lanes| {
+            let mut out = vec![None; rays.len()];
+            accel.first_hits_with(lanes, &rays, &mut out);
+            assert_eq!(out, portable);
+        });
+        for (ray, hit) in rays.iter().zip(&portable).step_by(5) {
+            assert_eq!(accel.first_hit(ray).unwrap(), *hit);
+        }
     }
 
     #[test]

@@ -14,9 +14,12 @@
 use crate::geom::Ray;
 
 use super::Accel;
-use super::accel::{LEAF, Node4, YzTri};
+use super::accel::{LEAF, Node8, YzTri};
+#[cfg(target_arch = "x86_64")]
+use super::node_open::Avx2;
+use super::node_open::{NodeLanes, Portable};
 use super::ray_solid::{
-    BestHit, Crossing, Deferred, RayBox, prefetch_bytes, reached, unit_scaled, unscaled_t,
+    BestHit, Crossing, Deferred, RayBox, prefetch_bytes, unit_scaled, unscaled_t,
 };
 use super::tri_packet::{LANES as PACKET_LANES, PacketRay, TriPacket};
 
@@ -33,7 +36,7 @@ const ASK_AHEAD_BYTES: usize = 1 << 20;
 /// The bytes asked for ahead of a step: a node or a packet, whichever is
 /// larger.
 const NEXT_BYTES: usize = {
-    let (node, packet) = (size_of::<Node4>(), size_of::<TriPacket>());
+    let (node, packet) = (size_of::<Node8>(), size_of::<TriPacket>());
     if node > packet { node } else { packet }
 };
 
@@ -64,7 +67,8 @@ struct Walk {
 impl Walk {
     /// The walk of ray `index`, `r`, with room for the deepest path of
     /// `accel`'s tree, the root opened.
-    fn new(index: usize, r: &Ray, accel: &Accel) -> Walk {
+    #[inline(always)]
+    fn new(lanes: impl NodeLanes, index: usize, r: &Ray, accel: &Accel) -> Walk {
         let ray = Ray::new(glam::DVec3::ZERO, glam::DVec3::X);
         let mut walk = Walk {
             ray: 0,
@@ -76,16 +80,17 @@ impl Walk {
             t_limit: f64::INFINITY,
             limit: f32::INFINITY,
             pending: (0, 0),
-            stack: vec![(0, 0); accel.stack_len],
+            stack: vec![Deferred::EMPTY; accel.stack_len],
             top: 0,
         };
-        walk.start(index, r, accel);
+        walk.start(lanes, index, r, accel);
         walk
     }
 
     /// Starts the walk of ray `index`, `r`, in place (the stack's memory is
     /// reused): the root is opened at once (it stays in cache).
-    fn start(&mut self, index: usize, r: &Ray, accel: &Accel) {
+    #[inline(always)]
+    fn start(&mut self, lanes: impl NodeLanes, index: usize, r: &Ray, accel: &Accel) {
         let (scaled, t_scale) = unit_scaled(r);
         self.ray = index;
         self.scaled = scaled;
@@ -96,27 +101,60 @@ impl Walk {
         self.t_limit = f64::INFINITY;
         self.limit = self.rays_box.limit(f64::INFINITY);
         self.pending = (0, 0);
-        self.top = accel.open_node(&self.rays_box, 0, self.limit, &mut self.stack, 0);
+        self.top = accel.open_node(lanes, &self.rays_box, 0, self.limit, &mut self.stack, 0);
     }
 }
 
 impl Accel {
     /// The first hits of `rays` (checked valid by the caller) into `out`,
     /// in order.
+    /// Nodes are opened with AVX2 where the processor has it (see
+    /// `node_open`).
     pub(super) fn first_hits_interleaved(&self, rays: &[Ray], out: &mut [Option<Crossing>]) {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(lanes) = Avx2::detect() {
+            // SAFETY: AVX2 was detected.
+            unsafe { self.first_hits_avx2(lanes, rays, out) };
+            return;
+        }
+        self.first_hits_with(Portable, rays, out);
+    }
+
+    /// [`Accel::first_hits_interleaved`] compiled for AVX2, so that the
+    /// node opening is inlined into the walk.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,popcnt")]
+    fn first_hits_avx2(&self, lanes: Avx2, rays: &[Ray], out: &mut [Option<Crossing>]) {
+        self.first_hits_with(lanes, rays, out);
+    }
+
+    /// [`Accel::first_hits_interleaved`] with nodes opened by `lanes`.
+    #[inline(always)]
+    pub(super) fn first_hits_with(
+        &self,
+        lanes: impl NodeLanes,
+        rays: &[Ray],
+        out: &mut [Option<Crossing>],
+    ) {
         if self.stats.memory_bytes >= ASK_AHEAD_BYTES {
-            self.walk_interleaved::<true>(rays, out);
+            self.walk_interleaved::<true>(lanes, rays, out);
         } else {
-            self.walk_interleaved::<false>(rays, out);
+            self.walk_interleaved::<false>(lanes, rays, out);
         }
     }
 
     /// [`Accel::first_hits_interleaved`], each step asking for the next
     /// step's memory when `ASK_AHEAD`.
-    fn walk_interleaved<const ASK_AHEAD: bool>(&self, rays: &[Ray], out: &mut [Option<Crossing>]) {
+    #[inline(always)]
+    fn walk_interleaved<const ASK_AHEAD: bool>(
+        &self,
+        lanes: impl NodeLanes,
+        rays: &[Ray],
+        out: &mut [Option<Crossing>],
+    ) {
         debug_assert_eq!(rays.len(), out.len());
         let mut walks: Vec<Walk> = (0..rays.len().min(LANES))
-            .map(|k| Walk::new(k, &rays[k], self))
+            .map(|k| Walk::new(lanes, k, &rays[k], self))
             .collect();
         let (mut fed, mut live, mut k) = (walks.len(), walks.len(), 0);
         // `walks[..live]` are under way, taken in turn.
@@ -125,12 +163,12 @@ impl Accel {
                 k = 0;
             }
             let w = &mut walks[k];
-            if self.step::<ASK_AHEAD>(w) {
+            if self.step::<ASK_AHEAD>(lanes, w) {
                 out[w.ray] = w
                     .best
                     .map(|(t, i, s)| self.crossing(unscaled_t(t, w.t_scale), i, s));
                 if fed < rays.len() {
-                    w.start(fed, &rays[fed], self);
+                    w.start(lanes, fed, &rays[fed], self);
                     fed += 1;
                 } else {
                     live -= 1;
@@ -149,7 +187,7 @@ impl Accel {
     /// child then on top is requested from memory for the next step. (The
     /// requests only when `ASK_AHEAD`.) Returns whether the walk is over.
     #[inline(always)]
-    fn step<const ASK_AHEAD: bool>(&self, w: &mut Walk) -> bool {
+    fn step<const ASK_AHEAD: bool>(&self, lanes: impl NodeLanes, w: &mut Walk) -> bool {
         let (first, mut undecided) = w.pending;
         w.pending.1 = 0;
         while undecided != 0 {
@@ -166,7 +204,7 @@ impl Accel {
                 return true;
             }
             w.top -= 1;
-            if let Some(child) = reached(w.stack[w.top], w.limit) {
+            if let Some(child) = w.stack[w.top].reached(w.limit) {
                 break child;
             }
         };
@@ -184,10 +222,10 @@ impl Accel {
             }
             w.pending = (packet.first, undecided);
         } else {
-            w.top = self.open_node(&w.rays_box, child, w.limit, &mut w.stack, w.top);
+            w.top = self.open_node(lanes, &w.rays_box, child, w.limit, &mut w.stack, w.top);
         }
         if ASK_AHEAD && w.top > 0 {
-            let (next, _) = w.stack[w.top - 1];
+            let next = w.stack[w.top - 1].child;
             // A node or a packet: the address is selected without a branch
             // (which kind comes next is not predictable), and the lines of
             // the larger of the two are asked for.

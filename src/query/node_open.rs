@@ -1,0 +1,463 @@
+//! Opening a BVH node for one ray: the slab tests of its eight children
+//! side by side, and the children entered pushed onto the traversal stack,
+//! nearest on top, without a branch on their order.
+//!
+//! Two implementations give the same stack, entry for entry:
+//!
+//! - [`Avx2`], on `x86_64` processors that have AVX2 (detected at run time):
+//!   the eight children in one 256-bit register per operation, and a
+//!   sorting network of six shuffle rounds;
+//! - [`Portable`], everywhere: the children in two halves of four
+//!   [`F32x4`] lanes, and a scalar sorting network.
+//!
+//! Each child is keyed by the bits of its entry parameter (a non-negative
+//! `f32`, clamped to finite, whose bits order as the values do) with the low
+//! four bits replaced by `8 | slot`, or by 0 when it is not entered. Keys are
+//! distinct, so both sorts give the same order. The keys are sorted
+//! descending and pushed with the children they name; the entered ones (all
+//! non-zero) come first, the nearest of them on top.
+
+use super::accel::{Node8, WIDTH};
+use super::lanes::F32x4;
+use super::ray_solid::{Deferred, RayBox};
+
+/// The low bits of a key that carry `8 | slot` (see the module docs).
+pub(super) const KEY_SLOT_BITS: u32 = 15;
+
+/// One way of opening a node: see the module docs.
+pub(super) trait NodeLanes: Copy {
+    /// The entry parameters `s` of node `n`'s children's boxes and a bit
+    /// mask of the children the ray (`s ≥ 0`) may touch no later than
+    /// `limit`; conservative (see [`RayBox`]).
+    fn enter(self, rb: &RayBox, n: &Node8, limit: f32) -> ([f32; WIDTH], u32);
+
+    /// Tests the children of node `n` against the ray and pushes those it
+    /// may touch no later than `limit` onto `stack` above `sp`, nearest on
+    /// top; returns the new top. `stack` has room for [`WIDTH`] entries
+    /// above `sp`; all of them are overwritten.
+    fn open(self, rb: &RayBox, n: &Node8, limit: f32, stack: &mut [Deferred], sp: usize) -> usize;
+}
+
+/// Node opening in [`F32x4`] lanes and scalar code: runs everywhere.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Portable;
+
+impl NodeLanes for Portable {
+    #[inline(always)]
+    fn enter(self, rb: &RayBox, n: &Node8, limit: f32) -> ([f32; WIDTH], u32) {
+        let mut entry = [0.0f32; WIDTH];
+        let mut entered = 0;
+        for half in 0..2 {
+            let lanes = |row: &[f32; WIDTH]| {
+                F32x4::load(row[4 * half..4 * half + 4].try_into().expect("4 lanes"))
+            };
+            let mut t0 = F32x4::splat(0.0);
+            let mut t1 = F32x4::splat(limit);
+            for a in 0..3 {
+                let near = lanes(&n.bounds[rb.near_row[a]]);
+                let far = lanes(&n.bounds[rb.far_row[a]]);
+                let tn = near
+                    .sub(F32x4::splat(rb.o_near[a]))
+                    .mul(F32x4::splat(rb.inv_near[a]));
+                let tf = far
+                    .sub(F32x4::splat(rb.o_far[a]))
+                    .mul(F32x4::splat(rb.inv_far[a]));
+                // NaN (0 · ∞: origin on the slab plane of a parallel ray)
+                // leaves the bound unchanged.
+                t0 = tn.max_or(t0);
+                t1 = tf.min_or(t1);
+            }
+            entry[4 * half..4 * half + 4].copy_from_slice(&t0.to_array());
+            entered |= t0.le(t1).bits() << (4 * half);
+        }
+        // An empty slot (`child == u32::MAX`) is never entered: its inverted
+        // box is refused by the comparisons above except when the origin is
+        // beyond the `f32` range (no constraint, NaN bounds left unchanged);
+        // found by the queries fuzz target.
+        for (k, &child) in n.child.iter().enumerate() {
+            entered &= !(u32::from(child == u32::MAX) << k);
+        }
+        (entry, entered)
+    }
+
+    #[inline(always)]
+    fn open(self, rb: &RayBox, n: &Node8, limit: f32, stack: &mut [Deferred], sp: usize) -> usize {
+        let (entry, entered) = self.enter(rb, n, limit);
+        let mut keys = [0u32; WIDTH];
+        for (k, key) in keys.iter_mut().enumerate() {
+            let bits = (entry[k].min(f32::MAX).to_bits() & !KEY_SLOT_BITS) | 8 | k as u32;
+            *key = bits & 0u32.wrapping_sub((entered >> k) & 1);
+        }
+        sort_descending(&mut keys);
+        for (slot, key) in stack[sp..sp + WIDTH].iter_mut().zip(keys) {
+            *slot = Deferred {
+                child: n.child[(key & 7) as usize],
+                key,
+            };
+        }
+        sp + entered.count_ones() as usize
+    }
+}
+
+/// The 19 compare-exchanges of an optimal sorting network for eight keys,
+/// in six rounds; each puts the larger key first.
+const NETWORK: [(usize, usize); 19] = [
+    (0, 2),
+    (1, 3),
+    (4, 6),
+    (5, 7),
+    (0, 4),
+    (1, 5),
+    (2, 6),
+    (3, 7),
+    (0, 1),
+    (2, 3),
+    (4, 5),
+    (6, 7),
+    (2, 4),
+    (3, 5),
+    (1, 4),
+    (3, 6),
+    (1, 2),
+    (3, 4),
+    (5, 6),
+];
+
+/// Sorts eight keys, largest first, without branches on their values.
+#[inline(always)]
+pub(super) fn sort_descending(keys: &mut [u32; WIDTH]) {
+    for (i, j) in NETWORK {
+        let (a, b) = (keys[i], keys[j]);
+        keys[i] = a.max(b);
+        keys[j] = a.min(b);
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+pub(super) use avx2::Avx2;
+
+#[cfg(target_arch = "x86_64")]
+mod avx2 {
+    use std::arch::x86_64 as arch;
+
+    use super::{Deferred, KEY_SLOT_BITS, Node8, NodeLanes, RayBox, WIDTH};
+
+    /// Node opening with AVX2; a value exists only when the processor has
+    /// AVX2 ([`Avx2::detect`]).
+    #[derive(Clone, Copy, Debug)]
+    pub(in super::super) struct Avx2(());
+
+    impl Avx2 {
+        /// `Some` when this processor runs AVX2 instructions.
+        #[inline]
+        pub(in super::super) fn detect() -> Option<Avx2> {
+            is_x86_feature_detected!("avx2").then_some(Avx2(()))
+        }
+    }
+
+    impl NodeLanes for Avx2 {
+        #[inline(always)]
+        fn enter(self, rb: &RayBox, n: &Node8, limit: f32) -> ([f32; WIDTH], u32) {
+            // SAFETY: an `Avx2` value proves the processor has AVX2.
+            unsafe { enter_avx2(rb, n, limit) }
+        }
+
+        #[inline(always)]
+        fn open(
+            self,
+            rb: &RayBox,
+            n: &Node8,
+            limit: f32,
+            stack: &mut [Deferred],
+            sp: usize,
+        ) -> usize {
+            // SAFETY: an `Avx2` value proves the processor has AVX2.
+            unsafe { open_avx2(rb, n, limit, stack, sp) }
+        }
+    }
+
+    // The functions below are not `#[target_feature]` functions: those are
+    // not always inlined, and a call per node costs more than the node.
+    // They are inlined into the `#[target_feature(enable = "avx2")]` walks
+    // (`Accel::traverse`, `Accel::first_hits_interleaved`), where the AVX2
+    // intrinsics inline in turn.
+    //
+    // # Safety (each function)
+    //
+    // The processor must have AVX2.
+
+    /// Entry parameters and the entered children as lanes (all bits set
+    /// where entered).
+    #[inline(always)]
+    unsafe fn slab_test(rb: &RayBox, n: &Node8, limit: f32) -> (arch::__m256, arch::__m256) {
+        // SAFETY: AVX2 (the caller's contract); the loads read whole rows
+        // of `n`, 32-byte aligned (`Node8` is 64-byte aligned and its rows
+        // are 32 bytes).
+        unsafe {
+            let mut t0 = arch::_mm256_setzero_ps();
+            let mut t1 = arch::_mm256_set1_ps(limit);
+            for a in 0..3 {
+                let near = arch::_mm256_load_ps(n.bounds[rb.near_row[a]].as_ptr());
+                let far = arch::_mm256_load_ps(n.bounds[rb.far_row[a]].as_ptr());
+                let tn = arch::_mm256_mul_ps(
+                    arch::_mm256_sub_ps(near, arch::_mm256_set1_ps(rb.o_near[a])),
+                    arch::_mm256_set1_ps(rb.inv_near[a]),
+                );
+                let tf = arch::_mm256_mul_ps(
+                    arch::_mm256_sub_ps(far, arch::_mm256_set1_ps(rb.o_far[a])),
+                    arch::_mm256_set1_ps(rb.inv_far[a]),
+                );
+                // `maxps`/`minps` return their second operand when either is
+                // NaN (0 · ∞: origin on the slab plane of a parallel ray), which
+                // leaves the bound unchanged.
+                t0 = arch::_mm256_max_ps(tn, t0);
+                t1 = arch::_mm256_min_ps(tf, t1);
+            }
+            // An empty slot (`child == u32::MAX`) is never entered (see
+            // `Portable::enter`).
+            let children = arch::_mm256_load_si256(n.child.as_ptr().cast());
+            let empty = arch::_mm256_cmpeq_epi32(children, arch::_mm256_set1_epi32(-1));
+            let entered = arch::_mm256_andnot_ps(
+                arch::_mm256_castsi256_ps(empty),
+                arch::_mm256_cmp_ps::<{ arch::_CMP_LE_OQ }>(t0, t1),
+            );
+            (t0, entered)
+        }
+    }
+
+    #[inline(always)]
+    unsafe fn enter_avx2(rb: &RayBox, n: &Node8, limit: f32) -> ([f32; WIDTH], u32) {
+        let mut entry = [0.0f32; WIDTH];
+        // SAFETY: AVX2 (the caller's contract); `entry` is eight `f32`s,
+        // stored unaligned.
+        unsafe {
+            let (t0, entered) = slab_test(rb, n, limit);
+            arch::_mm256_storeu_ps(entry.as_mut_ptr(), t0);
+            (entry, arch::_mm256_movemask_ps(entered) as u32)
+        }
+    }
+
+    #[inline(always)]
+    unsafe fn open_avx2(
+        rb: &RayBox,
+        n: &Node8,
+        limit: f32,
+        stack: &mut [Deferred],
+        sp: usize,
+    ) -> usize {
+        let out = &mut stack[sp..sp + WIDTH];
+        // SAFETY: AVX2 (the caller's contract); the loads read `n`'s
+        // children, eight `u32`s 32-byte aligned; `out` is eight `Deferred`s,
+        // each two `u32`s in order (`repr(C)`), 64 bytes written unaligned.
+        unsafe {
+            let (t0, entered) = slab_test(rb, n, limit);
+            let entry =
+                arch::_mm256_castps_si256(arch::_mm256_min_ps(t0, arch::_mm256_set1_ps(f32::MAX)));
+            let keys = arch::_mm256_or_si256(
+                arch::_mm256_and_si256(entry, arch::_mm256_set1_epi32(!KEY_SLOT_BITS as i32)),
+                arch::_mm256_setr_epi32(8, 9, 10, 11, 12, 13, 14, 15),
+            );
+            let keys = sorted_descending(arch::_mm256_and_si256(
+                keys,
+                arch::_mm256_castps_si256(entered),
+            ));
+            // The children in the keys' order, each beside its key.
+            let children = arch::_mm256_load_si256(n.child.as_ptr().cast());
+            let children = arch::_mm256_permutevar8x32_epi32(
+                children,
+                arch::_mm256_and_si256(keys, arch::_mm256_set1_epi32(7)),
+            );
+            let low = arch::_mm256_unpacklo_epi32(children, keys);
+            let high = arch::_mm256_unpackhi_epi32(children, keys);
+            let out = out.as_mut_ptr().cast::<arch::__m256i>();
+            arch::_mm256_storeu_si256(out, arch::_mm256_permute2x128_si256::<0x20>(low, high));
+            arch::_mm256_storeu_si256(
+                out.add(1),
+                arch::_mm256_permute2x128_si256::<0x31>(low, high),
+            );
+            sp + (arch::_mm256_movemask_ps(entered) as u32).count_ones() as usize
+        }
+    }
+
+    /// Blend mask of a bitonic round comparing lanes `j` apart within
+    /// blocks of `k`, sorting descending: lane `i` takes the larger key when
+    /// it is the lower lane of its pair in a descending block, or the upper
+    /// one in an ascending block.
+    const fn takes_larger(j: usize, k: usize) -> i32 {
+        let mut mask = 0;
+        let mut i = 0;
+        while i < WIDTH {
+            if ((i & j) == 0) != ((i & k) != 0) {
+                mask |= 1 << i;
+            }
+            i += 1;
+        }
+        mask
+    }
+
+    /// Eight non-negative keys sorted largest first: a bitonic network of
+    /// six rounds, each a shuffle to the partner lane, a `min`, a `max` and
+    /// a blend.
+    #[inline(always)]
+    pub(in super::super) unsafe fn sorted_descending(v: arch::__m256i) -> arch::__m256i {
+        // Partners one and two lanes apart stay within 128-bit halves; four
+        // apart is the swap of the halves.
+        const NEXT: i32 = 0b10_11_00_01; // [v1, v0, v3, v2] per half
+        const PAIR: i32 = 0b01_00_11_10; // [v2, v3, v0, v1] per half
+        macro_rules! round {
+            ($v:expr, $partner:expr, $j:literal, $k:literal) => {{
+                let (v, p) = ($v, $partner);
+                arch::_mm256_blend_epi32::<{ takes_larger($j, $k) }>(
+                    arch::_mm256_min_epu32(v, p),
+                    arch::_mm256_max_epu32(v, p),
+                )
+            }};
+        }
+        // SAFETY: AVX2 (the caller's contract).
+        unsafe {
+            let v = round!(v, arch::_mm256_shuffle_epi32::<NEXT>(v), 1, 2);
+            let v = round!(v, arch::_mm256_shuffle_epi32::<PAIR>(v), 2, 4);
+            let v = round!(v, arch::_mm256_shuffle_epi32::<NEXT>(v), 1, 4);
+            let v = round!(v, arch::_mm256_permute2x128_si256::<0x01>(v, v), 4, 8);
+            let v = round!(v, arch::_mm256_shuffle_epi32::<PAIR>(v), 2, 8);
+            round!(v, arch::_mm256_shuffle_epi32::<NEXT>(v), 1, 8)
+        }
+    }
+}
+
+/// Runs `$body` with `$lanes` bound to each implementation this processor
+/// runs ([`Portable`], and [`Avx2`] when detected).
+#[cfg(test)]
+macro_rules! for_each_lanes {
+    (|$lanes:ident| $body:block) => {{
+        {
+            let $lanes = $crate::query::node_open::Portable;
+            $body
+        }
+        #[cfg(target_arch = "x86_64")]
+        if let Some($lanes) = $crate::query::node_open::Avx2::detect() {
+            $body
+        }
+    }};
+}
+#[cfg(test)]
+pub(super) use for_each_lanes;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Ray;
+    use crate::query::accel::BoxFrame;
+    use crate::query::ray_solid::unit_scaled;
+    use glam::DVec3;
+
+    /// Both openers push the children entered, nearest on top (ties by
+    /// slot), and only those: random nodes with empty, flat and huge
+    /// slots, rays from inside and outside, some parallel to an axis.
+    #[test]
+    fn openers_push_the_entered_children_nearest_on_top() {
+        let mut uniform = crate::test_rng::uniform(0xBB67_AE85_84CA_A73B);
+        let frame = BoxFrame {
+            centre: DVec3::ZERO,
+            scale: 1.0,
+        };
+        let (mut pushed, mut several) = (0, 0);
+        for case in 0..5_000 {
+            let mut rand = || DVec3::new(uniform(), uniform(), uniform()) * 2.0 - DVec3::ONE;
+            let mut node = Node8 {
+                bounds: [[0.0; WIDTH]; 6],
+                child: [0; WIDTH],
+            };
+            for k in 0..WIDTH {
+                let (lo, size) = (rand() * 0.8, (rand() + DVec3::ONE) * 0.8);
+                for a in 0..3 {
+                    let flat = (case + k + a) % 11 == 0;
+                    node.bounds[a][k] = lo[a] as f32;
+                    node.bounds[3 + a][k] = if flat { lo[a] } else { lo[a] + size[a] } as f32;
+                }
+                node.child[k] = match (case + 3 * k) % 7 {
+                    0 => u32::MAX,
+                    1 => crate::query::accel::LEAF | k as u32,
+                    _ => 100 + k as u32,
+                };
+            }
+            let origin = rand() * if case % 2 == 0 { 0.5 } else { 3.0 };
+            // Aimed near one slot's box, so that most rays enter a few.
+            let k = case % WIDTH;
+            let aim = DVec3::from_array(
+                [0, 1, 2].map(|a| f64::from(node.bounds[a][k] + node.bounds[3 + a][k]) * 0.5),
+            );
+            let mut direction = aim + rand() * 0.02 - origin;
+            if case % 5 == 0 {
+                direction[case % 3] = 0.0;
+            }
+            if direction == DVec3::ZERO {
+                continue;
+            }
+            let (ray, _) = unit_scaled(&Ray::new(origin, direction));
+            let rb = RayBox::new(&ray, &frame);
+            let limit = if case % 3 == 0 {
+                rb.limit(uniform() * 2.0)
+            } else {
+                f32::INFINITY
+            };
+            let (entry, entered) = Portable.enter(&rb, &node, limit);
+            // Keyed by the entry with its low four bits replaced: the
+            // farthest first, the nearest on top.
+            let mut want: Vec<(u32, usize)> = (0..WIDTH)
+                .filter(|&k| entered & (1 << k) != 0)
+                .map(|k| {
+                    (
+                        (entry[k].min(f32::MAX).to_bits() & !KEY_SLOT_BITS) | 8 | k as u32,
+                        k,
+                    )
+                })
+                .collect();
+            want.sort_by(|p, q| q.cmp(p));
+            for_each_lanes!(|lanes| {
+                assert_eq!(lanes.enter(&rb, &node, limit), (entry, entered));
+                let mut stack = [Deferred::EMPTY; WIDTH + 3];
+                let top = lanes.open(&rb, &node, limit, &mut stack, 3);
+                assert_eq!(top, 3 + want.len(), "case {case}");
+                for (d, &(key, k)) in stack[3..top].iter().zip(&want) {
+                    assert_eq!((d.child, d.key), (node.child[k], key), "case {case}");
+                    assert!(f32::from_bits(d.key & !KEY_SLOT_BITS) <= entry[k]);
+                }
+            });
+            pushed += want.len();
+            several += usize::from(want.len() >= 3);
+        }
+        assert!(pushed > 3_000 && several > 500, "{pushed} pushed, {several} several");
+    }
+
+    /// Both sorts order every 0–1 input (which proves a network sorts
+    /// everything) and random keys as `sort` does.
+    #[test]
+    fn both_sorting_networks_sort() {
+        let mut inputs: Vec<[u32; WIDTH]> = (0..256u32)
+            .map(|bits| std::array::from_fn(|k| (bits >> k) & 1))
+            .collect();
+        let mut uniform = crate::test_rng::uniform(0x6A09_E667_F3BC_C908);
+        inputs.extend((0..1000).map(|_| std::array::from_fn(|_| (uniform() * 1e9) as u32)));
+        for keys in inputs {
+            let mut want = keys;
+            want.sort_unstable_by(|a, b| b.cmp(a));
+            let mut portable = keys;
+            sort_descending(&mut portable);
+            assert_eq!(portable, want, "{keys:?}");
+            #[cfg(target_arch = "x86_64")]
+            if Avx2::detect().is_some() {
+                use std::arch::x86_64 as arch;
+                let mut out = [0u32; WIDTH];
+                // SAFETY: AVX2 was detected; loads and stores are of eight
+                // `u32`s, unaligned.
+                unsafe {
+                    let v = arch::_mm256_loadu_si256(keys.as_ptr().cast());
+                    let v = avx2::sorted_descending(v);
+                    arch::_mm256_storeu_si256(out.as_mut_ptr().cast(), v);
+                }
+                assert_eq!(out, want, "{keys:?}");
+            }
+        }
+    }
+}
