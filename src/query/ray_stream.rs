@@ -21,7 +21,7 @@ use super::node_open::{NodeLanes, Portable};
 use super::ray_solid::{
     BestHit, Crossing, Deferred, RayBox, prefetch_bytes, unit_scaled, unscaled_t,
 };
-use super::tri_packet::{LANES as PACKET_LANES, PacketRay, TriPacket};
+use super::tri_packet::{PacketRay, TriPacket};
 
 /// Rays walked in turn.
 const LANES: usize = 8;
@@ -33,12 +33,11 @@ const LANES: usize = 8;
 /// 15 MB).
 const ASK_AHEAD_BYTES: usize = 1 << 20;
 
-/// The bytes asked for ahead of a step: a node or a packet, whichever is
-/// larger.
-const NEXT_BYTES: usize = {
-    let (node, packet) = (size_of::<Node8>(), size_of::<TriPacket>());
-    if node > packet { node } else { packet }
-};
+/// The bytes of a node: four cache lines...
+const NODE_BYTES: usize = size_of::<Node8>();
+/// ...and of a leaf packet: three.
+const PACKET_BYTES: usize = size_of::<TriPacket>();
+const _: () = assert!(NODE_BYTES == 256 && PACKET_BYTES == 192);
 
 /// One ray's walk in progress.
 struct Walk {
@@ -153,6 +152,10 @@ impl Accel {
         out: &mut [Option<Crossing>],
     ) {
         debug_assert_eq!(rays.len(), out.len());
+        // Each ray's best crossing, `t` already in the caller's units; its
+        // face is looked up after all walks, where the lookups (a cache miss
+        // each on large meshes) overlap instead of stalling the walks.
+        let mut best: Vec<BestHit> = vec![None; rays.len()];
         let mut walks: Vec<Walk> = (0..rays.len().min(LANES))
             .map(|k| Walk::new(lanes, k, &rays[k], self))
             .collect();
@@ -164,9 +167,7 @@ impl Accel {
             }
             let w = &mut walks[k];
             if self.step::<ASK_AHEAD>(lanes, w) {
-                out[w.ray] = w
-                    .best
-                    .map(|(t, i, s)| self.crossing(unscaled_t(t, w.t_scale), i, s));
+                best[w.ray] = w.best.map(|(t, i, s)| (unscaled_t(t, w.t_scale), i, s));
                 if fed < rays.len() {
                     w.start(lanes, fed, &rays[fed], self);
                     fed += 1;
@@ -177,6 +178,9 @@ impl Accel {
                 }
             }
             k += 1;
+        }
+        for (o, b) in out.iter_mut().zip(best) {
+            *o = b.map(|(t, i, s)| self.crossing(t, i, s));
         }
     }
 
@@ -212,13 +216,17 @@ impl Accel {
             let packet = &self.packets[(child & !LEAF) as usize];
             let undecided = packet.undecided(&w.packet_ray);
             // The first undecided triangle (rarely more than one) is asked
-            // for without a branch; with none, the next packet's first one,
-            // harmlessly.
+            // for without a branch; with none, the packet itself (already in
+            // cache), so that no memory is fetched for nothing.
             if ASK_AHEAD {
-                let first = packet.first as usize
-                    + (undecided | 1 << PACKET_LANES).trailing_zeros() as usize;
+                let first = packet.first as usize + undecided.trailing_zeros() as usize;
                 let tri = self.tris.as_ptr().wrapping_add(first).cast::<u8>();
-                prefetch_bytes(tri, size_of::<YzTri>() - 1);
+                let start = std::hint::select_unpredictable(
+                    undecided != 0,
+                    tri,
+                    std::ptr::from_ref(packet).cast::<u8>(),
+                );
+                prefetch_bytes(start, size_of::<YzTri>() - 1);
             }
             w.pending = (packet.first, undecided);
         } else {
@@ -227,13 +235,17 @@ impl Accel {
         if ASK_AHEAD && w.top > 0 {
             let next = w.stack[w.top - 1].child;
             // A node or a packet: the address is selected without a branch
-            // (which kind comes next is not predictable), and the lines of
-            // the larger of the two are asked for.
+            // (which kind comes next is not predictable). A node's four
+            // lines are asked for; a packet's three, then its first again
+            // (a line already on its way, not the next packet's).
             let index = (next & !LEAF) as usize;
             let packet = self.packets.as_ptr().wrapping_add(index).cast::<u8>();
             let node = self.nodes.as_ptr().wrapping_add(index).cast::<u8>();
-            let start = if next & LEAF != 0 { packet } else { node };
-            prefetch_bytes(start, NEXT_BYTES - 1);
+            let is_packet = next & LEAF != 0;
+            let start = std::hint::select_unpredictable(is_packet, packet, node);
+            prefetch_bytes(start, PACKET_BYTES - 1);
+            let last = std::hint::select_unpredictable(is_packet, 0, NODE_BYTES - 1);
+            prefetch_bytes(start.wrapping_add(last), 0);
         }
         false
     }
