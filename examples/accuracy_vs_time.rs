@@ -1154,10 +1154,10 @@ fn main() {
         checks.rays - checks.ray_parity_mismatch,
         checks.rays
     );
-    if let Some(dir) = std::path::Path::new(&out).parent() {
-        if !dir.as_os_str().is_empty() {
-            std::fs::create_dir_all(dir).expect("create the plot's directory");
-        }
+    if let Some(dir) = std::path::Path::new(&out).parent()
+        && !dir.as_os_str().is_empty()
+    {
+        std::fs::create_dir_all(dir).expect("create the plot's directory");
     }
     std::fs::write(&out, svg(&rows)).expect("write the plot");
     println!(

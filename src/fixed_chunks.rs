@@ -43,7 +43,7 @@ mod tests {
     #[test]
     fn sums_do_not_depend_on_the_thread_count() {
         // Terms whose sum rounds differently in different orders.
-        let term = |i: usize| 1.0 / (1.0 + i as f64) * if i % 3 == 0 { 1e8 } else { 1e-8 };
+        let term = |i: usize| 1.0 / (1.0 + i as f64) * if i.is_multiple_of(3) { 1e8 } else { 1e-8 };
         let n = 20 * CHUNK + 17;
         let sequential = (0..n.div_ceil(CHUNK))
             .map(|c| (c * CHUNK..((c + 1) * CHUNK).min(n)).map(term).sum::<f64>())

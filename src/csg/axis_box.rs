@@ -167,7 +167,7 @@ impl Primitive for AxisBox {
 
     fn normal(&self, _p: DVec3, surface: SurfaceId) -> DVec3 {
         let mut n = DVec3::ZERO;
-        n[(surface / 2) as usize % 3] = if surface % 2 == 0 { -1.0 } else { 1.0 };
+        n[(surface / 2) as usize % 3] = if surface.is_multiple_of(2) { -1.0 } else { 1.0 };
         n
     }
 

@@ -574,15 +574,15 @@ impl Reader<'_> {
             at: at.to_string(),
             source: Box::new(source),
         };
-        if let Ok(canonical) = std::fs::canonicalize(file) {
-            if let Some(first) = self.files.iter().position(|f| *f == canonical) {
-                let mut chain = self.files[first..].to_vec();
-                chain.push(canonical);
-                return Err(SceneError::IncludeCycle {
-                    at: at.to_string(),
-                    chain,
-                });
-            }
+        if let Ok(canonical) = std::fs::canonicalize(file)
+            && let Some(first) = self.files.iter().position(|f| *f == canonical)
+        {
+            let mut chain = self.files[first..].to_vec();
+            chain.push(canonical);
+            return Err(SceneError::IncludeCycle {
+                at: at.to_string(),
+                chain,
+            });
         }
         if self.files.len() >= MAX_INCLUDE_DEPTH {
             return Err(SceneError::Limit {

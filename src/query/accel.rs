@@ -10,6 +10,7 @@ use crate::geom::polygon::{Axis, Projection};
 use crate::geom::{Aabb, Sign, orient2d, orient3d};
 use crate::mesh::{FaceId, Solid};
 
+use super::huge_pages::{collapse_into_huge_pages, with_huge_capacity};
 use super::tri_packet::{LANES, TriPacket};
 
 /// Why a solid is not convex (the normals method refuses it).
@@ -326,7 +327,7 @@ fn to_node8(nodes: &[Node], tris: &[YzTri], scale: f64) -> (Vec<Node8>, Vec<TriP
         tris,
         scale,
         out: vec![Node8::EMPTY],
-        packets: Vec::new(),
+        packets: with_huge_capacity(nodes.iter().filter(|n| n.count > 0).count()),
     };
     let has_triangles = nodes
         .first()
@@ -470,13 +471,19 @@ impl Accel {
         let boundary_edges = solid.boundary_edges().count();
         let (tris, tri_face) = fan_triangles(solid);
         let (binary, order, frame) = build_bvh(&tris);
-        let tris: Vec<YzTri> = order
-            .par_iter()
-            .map(|&i| yz_tri(&tris[i as usize]))
-            .collect();
+        let mut leaf_tris: Vec<YzTri> = with_huge_capacity(order.len());
+        leaf_tris.par_extend(order.par_iter().map(|&i| yz_tri(&tris[i as usize])));
+        let tris = leaf_tris;
         let (nodes, packets, depth) = to_node8(&binary, &tris, frame.scale);
         drop(binary);
-        let tri_face: Vec<FaceId> = order.par_iter().map(|&i| tri_face[i as usize]).collect();
+        let mut leaf_faces: Vec<FaceId> = with_huge_capacity(order.len());
+        leaf_faces.par_extend(order.par_iter().map(|&i| tri_face[i as usize]));
+        let tri_face = leaf_faces;
+        // What rays read at random, on huge pages where offered.
+        collapse_into_huge_pages(&tris);
+        collapse_into_huge_pages(&tri_face);
+        collapse_into_huge_pages(&nodes);
+        collapse_into_huge_pages(&packets);
         let bounds = tris
             .iter()
             .flat_map(YzTri::corners)

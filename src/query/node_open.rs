@@ -427,7 +427,10 @@ mod tests {
             pushed += want.len();
             several += usize::from(want.len() >= 3);
         }
-        assert!(pushed > 3_000 && several > 500, "{pushed} pushed, {several} several");
+        assert!(
+            pushed > 3_000 && several > 500,
+            "{pushed} pushed, {several} several"
+        );
     }
 
     /// Both sorts order every 0–1 input (which proves a network sorts

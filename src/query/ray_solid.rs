@@ -856,10 +856,10 @@ fn alternate(hits: &mut [(f64, u32, Sign)], mut inside: bool) {
         } else {
             Sign::Negative
         };
-        if hits[i].2 != want {
-            if let Some(j) = (i + 1..hits.len()).find(|&j| hits[j].2 == want) {
-                hits[i..=j].rotate_right(1);
-            }
+        if hits[i].2 != want
+            && let Some(j) = (i + 1..hits.len()).find(|&j| hits[j].2 == want)
+        {
+            hits[i..=j].rotate_right(1);
         }
         inside = hits[i].2 == Sign::Negative;
     }

@@ -33,11 +33,11 @@ pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf
         (None, None) => unreachable!("clap requires a file or --builtin"),
     };
     print!("{}", describe(&name, &solid));
-    if let Some(out) = write {
-        if let Err(e) = write_obj(&solid, &out) {
-            eprintln!("error: {}: cannot write: {e}", out.display());
-            return ExitCode::from(2);
-        }
+    if let Some(out) = write
+        && let Err(e) = write_obj(&solid, &out)
+    {
+        eprintln!("error: {}: cannot write: {e}", out.display());
+        return ExitCode::from(2);
     }
     ExitCode::SUCCESS
 }
