@@ -718,12 +718,16 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         grid.cell_start[i + 1] += grid.cell_start[i];
     }
     let total = grid.cell_start[ny * nz] as usize;
-    // Initialised in parallel: for a large mesh this is mostly page faults.
-    let mut entries: Vec<GridEntry> = (0..total)
-        .into_par_iter()
-        .with_min_len(1 << 16)
-        .map(|_| GridEntry::default())
-        .collect();
+    // Initialised in parallel: for a large mesh this is mostly page faults
+    // (fewer of them on huge pages, which the point queries' random reads
+    // want too).
+    let mut entries: Vec<GridEntry> = with_huge_capacity(total);
+    entries.par_extend(
+        (0..total)
+            .into_par_iter()
+            .with_min_len(1 << 16)
+            .map(|_| GridEntry::default()),
+    );
     let mut parts = Vec::with_capacity(bands);
     let mut rest: &mut [GridEntry] = &mut entries;
     let mut extent_rest: &mut [f32] = &mut grid.extent;
@@ -778,6 +782,9 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
                 sort_by_x(&mut part[s..e]);
             }
         });
+    collapse_into_huge_pages(&entries);
+    collapse_into_huge_pages(&grid.cell_start);
+    collapse_into_huge_pages(&grid.extent);
     grid.entries = entries;
     grid
 }
