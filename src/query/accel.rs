@@ -851,140 +851,176 @@ pub(super) fn f32_up(x: f64) -> f32 {
     if f64::from(f) < x { -f32_below(-f) } else { f }
 }
 
-#[derive(Clone, Copy)]
-struct Bin {
-    bounds: Aabb,
-    centres: Aabb,
-    count: usize,
+/// A triangle as the BVH build sees it: its box in the accel's
+/// [`BoxFrame`], rounded outward to `f32` (as node boxes are stored), and
+/// its index. Builds partition these 32-byte records in place, so each
+/// level of the build streams through memory instead of gathering boxes
+/// through an index array.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(32))]
+struct PrimRef {
+    min: [f32; 3],
+    index: u32,
+    max: [f32; 3],
 }
 
-fn half_area(b: &Aabb) -> f64 {
-    if b.is_empty() {
-        return 0.0;
+impl PrimRef {
+    /// The middle of the box along `axis` (the SAH's position of the
+    /// triangle; any point of the box would keep the build correct).
+    #[inline]
+    fn centre(&self, axis: usize) -> f32 {
+        self.min[axis] * 0.5 + self.max[axis] * 0.5
     }
-    let s = b.size();
-    s.x * s.y + s.y * s.z + s.z * s.x
 }
 
-/// Builds the BVH; returns the nodes and the triangle order of the leaves.
+/// The boxes of a subtree: of its triangles (as stored in nodes) and of
+/// their centres.
+#[derive(Clone, Copy, Debug)]
+struct Extent {
+    min: [f32; 3],
+    max: [f32; 3],
+    centre_min: [f32; 3],
+    centre_max: [f32; 3],
+}
+
+impl Extent {
+    const EMPTY: Extent = Extent {
+        min: [f32::INFINITY; 3],
+        max: [f32::NEG_INFINITY; 3],
+        centre_min: [f32::INFINITY; 3],
+        centre_max: [f32::NEG_INFINITY; 3],
+    };
+
+    fn grow(mut self, p: &PrimRef) -> Extent {
+        for a in 0..3 {
+            self.min[a] = self.min[a].min(p.min[a]);
+            self.max[a] = self.max[a].max(p.max[a]);
+            let c = p.centre(a);
+            self.centre_min[a] = self.centre_min[a].min(c);
+            self.centre_max[a] = self.centre_max[a].max(c);
+        }
+        self
+    }
+
+    fn union(mut self, o: &Extent) -> Extent {
+        for a in 0..3 {
+            self.min[a] = self.min[a].min(o.min[a]);
+            self.max[a] = self.max[a].max(o.max[a]);
+            self.centre_min[a] = self.centre_min[a].min(o.centre_min[a]);
+            self.centre_max[a] = self.centre_max[a].max(o.centre_max[a]);
+        }
+        self
+    }
+
+    fn of(prims: &[PrimRef]) -> Extent {
+        prims.iter().fold(Extent::EMPTY, Extent::grow)
+    }
+
+    /// Half the surface area of the triangles' box (0 when empty).
+    fn half_area(&self) -> f64 {
+        if self.min[0] > self.max[0] {
+            return 0.0;
+        }
+        let s = [0, 1, 2].map(|a| f64::from(self.max[a]) - f64::from(self.min[a]));
+        s[0] * s[1] + s[1] * s[2] + s[2] * s[0]
+    }
+}
+
+/// The binary BVH of `tris` (leaves of at most [`LEAF_SIZE`] triangles),
+/// the triangle order of its leaves, and the frame its boxes are in.
 fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>, BoxFrame) {
-    let boxes: Vec<Aabb> = tris.par_iter().map(|t| Aabb::from_points(*t)).collect();
-    let centres: Vec<DVec3> = boxes.par_iter().map(Aabb::center).collect();
-    let mut order: Vec<u32> = (0..tris.len() as u32).collect();
-    let mut nodes = Vec::with_capacity(2 * tris.len() / LEAF_SIZE + 1);
-    if tris.is_empty() {
-        nodes.push(Node {
+    let bounds = tris
+        .par_iter()
+        .map(|t| Aabb::from_points(*t))
+        .reduce(|| Aabb::EMPTY, Aabb::union);
+    let frame = BoxFrame::of(&bounds);
+    let mut prims: Vec<PrimRef> = tris
+        .par_iter()
+        .enumerate()
+        .map(|(i, t)| {
+            let b = Aabb::from_points(*t);
+            PrimRef {
+                min: [0, 1, 2].map(|a| frame.lower(b.min[a], a)),
+                index: i as u32,
+                max: [0, 1, 2].map(|a| frame.upper(b.max[a], a)),
+            }
+        })
+        .collect();
+    if prims.is_empty() {
+        let empty = Node {
             min: [f32::INFINITY; 3],
             max: [f32::NEG_INFINITY; 3],
             first: 0,
             count: 0,
-        });
-        return (nodes, order, BoxFrame::of(&Aabb::EMPTY));
+        };
+        return (vec![empty], Vec::new(), frame);
     }
-    let _ = nodes;
-    let ext = Extent {
-        bounds: boxes.iter().fold(Aabb::EMPTY, |b, x| b.union(*x)),
-        centres: centres.iter().fold(Aabb::EMPTY, |b, &c| b.grow(c)),
-    };
-    let frame = BoxFrame::of(&ext.bounds);
-    let build = Build {
-        boxes: &boxes,
-        centres: &centres,
-        frame,
-    };
-    let nodes = build_node_parallel(&build, &mut order, 0, &ext);
+    let ext = prims
+        .par_chunks(4096)
+        .map(Extent::of)
+        .reduce(|| Extent::EMPTY, |a, b| a.union(&b));
+    let nodes = build_node_parallel(&mut prims, 0, &ext);
+    let order = prims.par_iter().map(|p| p.index).collect();
     (nodes, order, frame)
 }
 
-/// What every step of the BVH build reads: the triangles' boxes and
-/// centroids, and the frame the node boxes are stored in.
-struct Build<'a> {
-    boxes: &'a [Aabb],
-    centres: &'a [DVec3],
-    frame: BoxFrame,
-}
-
-fn node_of(frame: &BoxFrame, bounds: &Aabb, order: &[u32], offset: usize) -> Node {
+fn node_of(ext: &Extent, count: usize, offset: usize) -> Node {
     Node {
-        min: [0, 1, 2].map(|a| frame.lower(bounds.min[a], a)),
-        max: [0, 1, 2].map(|a| frame.upper(bounds.max[a], a)),
+        min: ext.min,
+        max: ext.max,
         first: offset as u32,
-        count: order.len() as u32,
+        count: count as u32,
     }
 }
 
-/// The boxes of a subtree: of its triangles and of their centroids.
+/// One SAH bin: the triangles whose centre falls in it.
 #[derive(Clone, Copy)]
-struct Extent {
-    bounds: Aabb,
-    centres: Aabb,
+struct Bin {
+    ext: Extent,
+    count: usize,
 }
 
-impl Extent {
-    fn of(boxes: &[Aabb], centres: &[DVec3], order: &[u32]) -> Extent {
-        order.iter().fold(
-            Extent {
-                bounds: Aabb::EMPTY,
-                centres: Aabb::EMPTY,
-            },
-            |e, &i| Extent {
-                bounds: e.bounds.union(boxes[i as usize]),
-                centres: e.centres.grow(centres[i as usize]),
-            },
-        )
-    }
-}
-
-/// Splits `order` (more than [`LEAF_SIZE`] triangles, centroids in
-/// `ext.centres`) by binned SAH on the longest axis of the centroids' box;
-/// returns the size of the first part and the extents of both parts.
-fn partition(
-    centres: &[DVec3],
-    boxes: &[Aabb],
-    order: &mut [u32],
-    ext: &Extent,
-) -> (usize, Extent, Extent) {
-    let n = order.len();
-    let size = ext.centres.size();
-    let axis = if size.x >= size.y && size.x >= size.z {
+/// Splits `prims` (more than [`LEAF_SIZE`], extent `ext`) by binned SAH
+/// on the longest axis of the centres' box, in place; returns the size of
+/// the first part and the extents of both parts.
+fn partition(prims: &mut [PrimRef], ext: &Extent) -> (usize, Extent, Extent) {
+    let n = prims.len();
+    let size = [0, 1, 2].map(|a| f64::from(ext.centre_max[a]) - f64::from(ext.centre_min[a]));
+    let axis = if size[0] >= size[1] && size[0] >= size[2] {
         0
-    } else if size.y >= size.z {
+    } else if size[1] >= size[2] {
         1
     } else {
         2
     };
-    let lo = ext.centres.min[axis];
-    let width = size[axis];
+    let (lo, width) = (f64::from(ext.centre_min[axis]), size[axis]);
     if width > 0.0 {
         let scale = BINS as f64 / width;
-        let bin_of = |i: u32| (((centres[i as usize][axis] - lo) * scale) as usize).min(BINS - 1);
+        let bin_of =
+            |p: &PrimRef| (((f64::from(p.centre(axis)) - lo) * scale) as usize).min(BINS - 1);
         let mut bins = [Bin {
-            bounds: Aabb::EMPTY,
-            centres: Aabb::EMPTY,
+            ext: Extent::EMPTY,
             count: 0,
         }; BINS];
-        for &i in order.iter() {
-            let b = &mut bins[bin_of(i)];
-            b.bounds = b.bounds.union(boxes[i as usize]);
-            b.centres = b.centres.grow(centres[i as usize]);
+        for p in prims.iter() {
+            let b = &mut bins[bin_of(p)];
+            b.ext = b.ext.grow(p);
             b.count += 1;
         }
         // Sweep from the right for suffix areas.
         let mut right_area = [0.0; BINS];
-        let mut acc = Aabb::EMPTY;
         let mut right_count = [0usize; BINS];
-        let mut cnt = 0;
+        let (mut acc, mut cnt) = (Extent::EMPTY, 0);
         for k in (1..BINS).rev() {
-            acc = acc.union(bins[k].bounds);
+            acc = acc.union(&bins[k].ext);
             cnt += bins[k].count;
-            right_area[k] = half_area(&acc);
+            right_area[k] = acc.half_area();
             right_count[k] = cnt;
         }
         let mut best = (f64::INFINITY, 0usize);
-        let mut acc = Aabb::EMPTY;
-        let mut cnt = 0;
+        let (mut acc, mut cnt) = (Extent::EMPTY, 0);
         for k in 0..BINS - 1 {
-            acc = acc.union(bins[k].bounds);
+            acc = acc.union(&bins[k].ext);
             cnt += bins[k].count;
             if cnt == 0 || right_count[k + 1] == 0 {
                 continue;
@@ -993,58 +1029,56 @@ fn partition(
             // count packets, not triangles, so that splits fill them.
             let packets = |c: usize| c.div_ceil(LEAF_SIZE) as f64;
             let cost =
-                half_area(&acc) * packets(cnt) + right_area[k + 1] * packets(right_count[k + 1]);
+                acc.half_area() * packets(cnt) + right_area[k + 1] * packets(right_count[k + 1]);
             if cost < best.0 {
                 best = (cost, k);
             }
         }
         if best.0.is_finite() {
             let split = best.1;
-            let mut left = 0;
-            for j in 0..n {
-                if bin_of(order[j]) <= split {
-                    order.swap(left, j);
-                    left += 1;
+            // Hoare-style: both ends move towards each other.
+            let (mut i, mut j) = (0, n);
+            loop {
+                while i < j && bin_of(&prims[i]) <= split {
+                    i += 1;
                 }
+                while i < j && bin_of(&prims[j - 1]) > split {
+                    j -= 1;
+                }
+                if i >= j {
+                    break;
+                }
+                prims.swap(i, j - 1);
+                i += 1;
+                j -= 1;
             }
             let merge = |range: std::ops::Range<usize>| {
-                bins[range].iter().fold(
-                    Extent {
-                        bounds: Aabb::EMPTY,
-                        centres: Aabb::EMPTY,
-                    },
-                    |e, b| Extent {
-                        bounds: e.bounds.union(b.bounds),
-                        centres: e.centres.union(b.centres),
-                    },
-                )
+                bins[range]
+                    .iter()
+                    .fold(Extent::EMPTY, |e, b| e.union(&b.ext))
             };
-            if left > 0 && left < n {
-                return (left, merge(0..split + 1), merge(split + 1..BINS));
+            if i > 0 && i < n {
+                return (i, merge(0..split + 1), merge(split + 1..BINS));
             }
         }
     }
-    // No useful split (all centroids equal): halve by count.
+    // No useful split (all centres equal): halve by count.
     let mid = n / 2;
-    let (l, r) = order.split_at(mid);
-    (
-        mid,
-        Extent::of(boxes, centres, l),
-        Extent::of(boxes, centres, r),
-    )
+    let (l, r) = prims.split_at(mid);
+    (mid, Extent::of(l), Extent::of(r))
 }
 
-fn build_node(b: &Build, order: &mut [u32], offset: usize, ext: &Extent, nodes: &mut Vec<Node>) {
+fn build_node(prims: &mut [PrimRef], offset: usize, ext: &Extent, nodes: &mut Vec<Node>) {
     let me = nodes.len();
-    nodes.push(node_of(&b.frame, &ext.bounds, order, offset));
-    if order.len() <= LEAF_SIZE {
+    nodes.push(node_of(ext, prims.len(), offset));
+    if prims.len() <= LEAF_SIZE {
         return;
     }
-    let (mid, le, re) = partition(b.centres, b.boxes, order, ext);
-    let (left, right) = order.split_at_mut(mid);
-    build_node(b, left, offset, &le, nodes);
+    let (mid, le, re) = partition(prims, ext);
+    let (left, right) = prims.split_at_mut(mid);
+    build_node(left, offset, &le, nodes);
     let second = nodes.len() as u32;
-    build_node(b, right, offset + mid, &re, nodes);
+    build_node(right, offset + mid, &re, nodes);
     nodes[me].first = second;
     nodes[me].count = 0;
 }
@@ -1054,18 +1088,18 @@ const PARALLEL_BUILD: usize = 16 * 1024;
 
 /// [`build_node`] with the two halves of large subtrees built in parallel;
 /// returns the subtree's nodes with indices local to it.
-fn build_node_parallel(b: &Build, order: &mut [u32], offset: usize, ext: &Extent) -> Vec<Node> {
+fn build_node_parallel(prims: &mut [PrimRef], offset: usize, ext: &Extent) -> Vec<Node> {
     let mut nodes = Vec::new();
-    if order.len() < PARALLEL_BUILD {
-        build_node(b, order, offset, ext, &mut nodes);
+    if prims.len() < PARALLEL_BUILD {
+        build_node(prims, offset, ext, &mut nodes);
         return nodes;
     }
-    nodes.push(node_of(&b.frame, &ext.bounds, order, offset));
-    let (mid, le, re) = partition(b.centres, b.boxes, order, ext);
-    let (left, right) = order.split_at_mut(mid);
+    nodes.push(node_of(ext, prims.len(), offset));
+    let (mid, le, re) = partition(prims, ext);
+    let (left, right) = prims.split_at_mut(mid);
     let (l, r) = rayon::join(
-        || build_node_parallel(b, left, offset, &le),
-        || build_node_parallel(b, right, offset + mid, &re),
+        || build_node_parallel(left, offset, &le),
+        || build_node_parallel(right, offset + mid, &re),
     );
     let shift = |n: &Node, base: u32| {
         let mut n = *n;

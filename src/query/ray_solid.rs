@@ -1002,14 +1002,16 @@ mod tests {
 
     #[test]
     fn a_tree_deeper_than_the_local_stack_is_walked_in_full() {
-        // Tetrahedra at x = 2^k: binned splits peel off only the farthest
-        // few at each level, so the tree is far deeper than a balanced one
-        // and traversal stacks spill to the heap.
-        let count = 100;
+        // Tetrahedra at x = 1.2^k: binned splits peel off only the farthest
+        // few at each level (as far as the `f32` boxes of the build tell
+        // them apart), so the tree is far deeper than a balanced one and
+        // traversal stacks spill to the heap.
+        let count = 150;
+        let corner = |k: i32| (1.2f64.powi(k), 1.2f64.powi(k) / 4.0);
         let mut positions = Vec::new();
         let mut polygons = Vec::new();
         for k in 0..count {
-            let (x, s) = (2f64.powi(k), 2f64.powi(k - 2));
+            let (x, s) = corner(k);
             let base = positions.len();
             positions.extend([
                 DVec3::new(x, 0.0, 0.0),
@@ -1027,13 +1029,13 @@ mod tests {
         // Straight down onto each slanted face `x' + y' + z' = s`.
         let rays: Vec<Ray> = (0..count)
             .map(|k| {
-                let (x, s) = (2f64.powi(k), 2f64.powi(k - 2));
+                let (x, s) = corner(k);
                 Ray::new(DVec3::new(x + s / 4.0, s / 4.0, 10.0 * s), DVec3::NEG_Z)
             })
             .collect();
         let batch = accel.first_hit_batch(&rays).unwrap();
         for (k, (ray, hit)) in rays.iter().zip(batch).enumerate() {
-            let s = 2f64.powi(k as i32 - 2);
+            let (_, s) = corner(k as i32);
             let hit = hit.unwrap_or_else(|| panic!("tetrahedron {k} missed"));
             assert_eq!(hit.transition, Transition::Enter, "{k}");
             assert!((hit.t - 9.5 * s).abs() <= 1e-12 * s, "{k}: {}", hit.t);
