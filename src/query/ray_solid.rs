@@ -64,7 +64,7 @@ pub struct RayCrossings {
 /// that culling can be checked by counting rather than by timing.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TraversalStats {
-    /// BVH nodes whose four child boxes were tested.
+    /// BVH nodes whose child boxes were tested.
     pub nodes: u64,
     /// Triangles the ray was tested against (by the leaves' `f32` miss
     /// filter).
