@@ -590,31 +590,42 @@ impl Accel {
 /// in face order.
 fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
     let ids: Vec<FaceId> = solid.faces().map(|(id, _)| id).collect();
-    let per_face: Vec<smallvec::SmallVec<[[DVec3; 3]; 2]>> = ids
-        .par_iter()
-        .with_min_len(1024)
-        .map(|&id| {
-            let mut corners: smallvec::SmallVec<[DVec3; 8]> =
-                solid.face_vertices(id).map(|v| solid.position(v)).collect();
-            // Canonical fan apex: the triangulation of a face whose corners
-            // are not exactly coplanar must not depend on where its vertex
-            // list starts.
-            let apex = fan_apex(&corners);
-            corners.rotate_left(apex);
-            (1..corners.len().saturating_sub(1))
-                .map(|k| [corners[0], corners[k], corners[k + 1]])
-                .collect()
+    // Each run of faces makes its triangles into two flat arrays, which are
+    // then appended in order (a copy of a few large blocks, not one small
+    // vector per face).
+    let parts: Vec<(Vec<[DVec3; 3]>, Vec<FaceId>)> = ids
+        .par_chunks(FAN_CHUNK)
+        .map(|run| {
+            let (mut tris, mut faces) =
+                (Vec::with_capacity(run.len()), Vec::with_capacity(run.len()));
+            let mut corners: smallvec::SmallVec<[DVec3; 8]> = smallvec::SmallVec::new();
+            for &id in run {
+                corners.clear();
+                corners.extend(solid.face_vertices(id).map(|v| solid.position(v)));
+                // Canonical fan apex: the triangulation of a face whose
+                // corners are not exactly coplanar must not depend on where
+                // its vertex list starts.
+                let apex = fan_apex(&corners);
+                corners.rotate_left(apex);
+                for k in 1..corners.len().saturating_sub(1) {
+                    tris.push([corners[0], corners[k], corners[k + 1]]);
+                    faces.push(id);
+                }
+            }
+            (tris, faces)
         })
         .collect();
-    let count: usize = per_face.iter().map(|f| f.len()).sum();
-    let mut tris = Vec::with_capacity(count);
-    let mut tri_face = Vec::with_capacity(count);
-    for (&id, fan) in ids.iter().zip(&per_face) {
-        tris.extend_from_slice(fan);
-        tri_face.extend(std::iter::repeat_n(id, fan.len()));
+    let count: usize = parts.iter().map(|(t, _)| t.len()).sum();
+    let (mut tris, mut tri_face) = (Vec::with_capacity(count), Vec::with_capacity(count));
+    for (t, f) in &parts {
+        tris.extend_from_slice(t);
+        tri_face.extend_from_slice(f);
     }
     (tris, tri_face)
 }
+
+/// Faces per unit of parallel work in [`fan_triangles`].
+const FAN_CHUNK: usize = 4096;
 
 /// The index of the lexicographically smallest point `(x, y, z)`: the apex
 /// of a face's fan triangulation. Preserved by translations and positive
