@@ -884,6 +884,16 @@ impl PrimRef {
     }
 }
 
+#[inline(always)]
+fn lesser(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
+#[inline(always)]
+fn greater(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
+}
+
 /// The boxes of a subtree: of its triangles (as stored in nodes) and of
 /// their centres.
 #[derive(Clone, Copy, Debug)]
@@ -902,23 +912,29 @@ impl Extent {
         centre_max: [f32::NEG_INFINITY; 3],
     };
 
+    // The bounds are never NaN (rounded from finite coordinates), so plain
+    // comparisons do (`f32::min` also handles NaN, at three times the
+    // instructions in the build's innermost loop).
+
+    #[inline]
     fn grow(mut self, p: &PrimRef) -> Extent {
         for a in 0..3 {
-            self.min[a] = self.min[a].min(p.min[a]);
-            self.max[a] = self.max[a].max(p.max[a]);
+            self.min[a] = lesser(self.min[a], p.min[a]);
+            self.max[a] = greater(self.max[a], p.max[a]);
             let c = p.centre(a);
-            self.centre_min[a] = self.centre_min[a].min(c);
-            self.centre_max[a] = self.centre_max[a].max(c);
+            self.centre_min[a] = lesser(self.centre_min[a], c);
+            self.centre_max[a] = greater(self.centre_max[a], c);
         }
         self
     }
 
+    #[inline]
     fn union(mut self, o: &Extent) -> Extent {
         for a in 0..3 {
-            self.min[a] = self.min[a].min(o.min[a]);
-            self.max[a] = self.max[a].max(o.max[a]);
-            self.centre_min[a] = self.centre_min[a].min(o.centre_min[a]);
-            self.centre_max[a] = self.centre_max[a].max(o.centre_max[a]);
+            self.min[a] = lesser(self.min[a], o.min[a]);
+            self.max[a] = greater(self.max[a], o.max[a]);
+            self.centre_min[a] = lesser(self.centre_min[a], o.centre_min[a]);
+            self.centre_max[a] = greater(self.centre_max[a], o.centre_max[a]);
         }
         self
     }
