@@ -46,4 +46,4 @@ pub use stats::Stats;
 pub use trace::{FirstHit, Spans};
 pub use transform::{TransformError, Transformed};
 pub use tree::{Csg, CsgError, CsgExpr, Leaf, LeafId};
-pub use volume::{VolumeError, VolumeEstimate};
+pub use volume::{MAX_VOLUME_RAYS, VolumeError, VolumeEstimate};

@@ -93,7 +93,9 @@ pub enum SceneError {
         /// Why (the validator's report for a defective mesh).
         message: String,
     },
-    /// A limit of the format was exceeded (see the [module docs](self)).
+    /// A limit of the scene format was exceeded: nodes nested too deep,
+    /// too many nodes, or includes nested too deep (the error names which,
+    /// where, and the limit).
     #[error("{at}: {what} exceeds the limit of {limit}")]
     Limit {
         /// The JSON path where the limit was crossed.

@@ -413,10 +413,10 @@ impl Collapse<'_> {
 ///   vertices, `(v₀, vₖ, vₖ₊₁)` for `k = 1 .. n − 2` in the face's winding,
 ///   with `v₀` the face's lexicographically smallest corner `(x, y, z)`,
 ///   holding the exact input coordinates; `tri_face[i]` is its face.
-/// - The BVH's `f32` node boxes, in `frame` (see [`BoxFrame`]), contain
+/// - The BVH's `f32` node boxes, in `frame` (see `BoxFrame`), contain
 ///   their triangles' exact boxes (bounds rounded outward), so culling never
 ///   loses a triangle a ray touches.
-/// - Every leaf slot of a node holds [`LEAF`] plus the index of the
+/// - Every leaf slot of a node holds `LEAF` plus the index of the
 ///   `TriPacket` of its triangles (`first .. first + count` of `tris`, in
 ///   order); a packet only ever drops a triangle the exact line provably
 ///   misses.
