@@ -470,7 +470,7 @@ impl Accel {
         let start = Instant::now();
         let boundary_edges = solid.boundary_edges().count();
         let (tris, tri_face) = fan_triangles(solid);
-        let (binary, order, frame) = build_bvh(&tris);
+        let (binary, order, frame, bounds) = build_bvh(&tris);
         let mut leaf_tris: Vec<YzTri> = with_huge_capacity(order.len());
         leaf_tris.par_extend(order.par_iter().map(|&i| yz_tri(&tris[i as usize])));
         let tris = leaf_tris;
@@ -484,10 +484,6 @@ impl Accel {
         collapse_into_huge_pages(&tri_face);
         collapse_into_huge_pages(&nodes);
         collapse_into_huge_pages(&packets);
-        let bounds = tris
-            .iter()
-            .flat_map(YzTri::corners)
-            .fold(Aabb::EMPTY, Aabb::grow);
         let memory_bytes = tris.capacity() * std::mem::size_of::<YzTri>()
             + tri_face.capacity() * std::mem::size_of::<FaceId>()
             + nodes.capacity() * std::mem::size_of::<Node8>()
@@ -954,8 +950,9 @@ impl Extent {
 }
 
 /// The binary BVH of `tris` (leaves of at most [`LEAF_SIZE`] triangles),
-/// the triangle order of its leaves, and the frame its boxes are in.
-fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>, BoxFrame) {
+/// the triangle order of its leaves, the frame its boxes are in, and the
+/// exact bounding box of all triangles.
+fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>, BoxFrame, Aabb) {
     let bounds = tris
         .par_iter()
         .map(|t| Aabb::from_points(*t))
@@ -980,7 +977,7 @@ fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>, BoxFrame) {
             first: 0,
             count: 0,
         };
-        return (vec![empty], Vec::new(), frame);
+        return (vec![empty], Vec::new(), frame, bounds);
     }
     let ext = prims
         .par_chunks(4096)
@@ -988,7 +985,7 @@ fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>, BoxFrame) {
         .reduce(|| Extent::EMPTY, |a, b| a.union(&b));
     let nodes = build_node_parallel(&mut prims, 0, &ext);
     let order = prims.par_iter().map(|p| p.index).collect();
-    (nodes, order, frame)
+    (nodes, order, frame, bounds)
 }
 
 fn node_of(ext: &Extent, count: usize, offset: usize) -> Node {

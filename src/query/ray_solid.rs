@@ -719,7 +719,7 @@ impl Accel {
 /// A child waiting on a traversal's stack: its [`Node8::child`](super::accel::Node8::child) entry and
 /// its key (see `node_open`). `repr(C)`: the AVX2 opener writes entries as
 /// pairs of `u32` lanes.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C)]
 pub(super) struct Deferred {
     /// [`LEAF`] plus a packet index, or an inner node's index.
