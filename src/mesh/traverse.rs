@@ -13,7 +13,7 @@
 //! Vertex relations run counter-clockwise around the vertex seen from outside;
 //! face relations run counter-clockwise around the face seen from outside.
 
-use super::{EdgeId, EdgeUse, FaceId, Side, Solid, VertexId};
+use super::{Edge, EdgeId, EdgeUse, FaceId, Side, Solid, VertexId};
 
 impl Solid {
     /// The vertex an edge use starts at.
@@ -117,7 +117,7 @@ impl Solid {
         LoopWalk {
             solid: self,
             start,
-            current: Some(start),
+            current: Some((start, &self.edges[start.edge])),
             budget: self.edges.len() * 2,
         }
     }
@@ -180,7 +180,13 @@ impl Solid {
     /// Face → vertices: the corners of `face`, counter-clockwise seen from
     /// outside.
     pub fn face_vertices(&self, face: FaceId) -> impl Iterator<Item = VertexId> + '_ {
-        self.face_loop(face).map(|u| self.use_start(u))
+        let mut walk = self.face_loop(face);
+        std::iter::from_fn(move || {
+            walk.next_with_edge().map(|(u, e)| match u.side {
+                Side::Left => e.origin,
+                Side::Right => e.dest,
+            })
+        })
     }
 
     /// Face → edges: the edges bounding `face`, counter-clockwise.
@@ -216,19 +222,39 @@ impl Solid {
 pub struct LoopWalk<'a> {
     solid: &'a Solid,
     start: EdgeUse,
-    current: Option<EdgeUse>,
+    /// The next use and its edge's record (looked up once per step: it
+    /// names the use after it).
+    current: Option<(EdgeUse, &'a Edge)>,
     budget: usize,
+}
+
+impl<'a> LoopWalk<'a> {
+    /// The next use with its edge's record.
+    fn next_with_edge(&mut self) -> Option<(EdgeUse, &'a Edge)> {
+        let (u, e) = self.current?;
+        self.budget = self.budget.checked_sub(1)?;
+        // As `Solid::use_next`, from the record in hand.
+        let (next, end) = match u.side {
+            Side::Left => (e.ccw_left, e.dest),
+            Side::Right => (e.ccw_right, e.origin),
+        };
+        let n = &self.solid.edges[next];
+        let side = if n.origin == end {
+            Side::Left
+        } else {
+            Side::Right
+        };
+        let next = EdgeUse { edge: next, side };
+        self.current = (next != self.start).then_some((next, n));
+        Some((u, e))
+    }
 }
 
 impl Iterator for LoopWalk<'_> {
     type Item = EdgeUse;
 
     fn next(&mut self) -> Option<EdgeUse> {
-        let u = self.current?;
-        self.budget = self.budget.checked_sub(1)?;
-        let next = self.solid.use_next(u);
-        self.current = (next != self.start).then_some(next);
-        Some(u)
+        self.next_with_edge().map(|(u, _)| u)
     }
 }
 

@@ -30,6 +30,7 @@
 //!   *listed* in order of their rounded `t`.
 
 mod accel;
+mod bvh_build;
 mod huge_pages;
 mod lanes;
 mod line_face;
