@@ -591,10 +591,12 @@ fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
         .map(|run| {
             let (mut tris, mut faces) =
                 (Vec::with_capacity(run.len()), Vec::with_capacity(run.len()));
-            let mut corners: smallvec::SmallVec<[DVec3; 8]> = smallvec::SmallVec::new();
+            let mut corners: Vec<DVec3> = Vec::with_capacity(8);
             for &id in run {
                 corners.clear();
-                corners.extend(solid.face_vertices(id).map(|v| solid.position(v)));
+                for v in solid.face_vertices(id) {
+                    corners.push(solid.position(v));
+                }
                 // Canonical fan apex: the triangulation of a face whose
                 // corners are not exactly coplanar must not depend on where
                 // its vertex list starts.
