@@ -16,7 +16,9 @@
 //! for a miss) and `DIR/NAME.wingedge.hitface.u32` (per ray `2 · face +
 //! exit`, `face` the index in the solid's face order, `u32::MAX` for a miss:
 //! the exact decisions, for comparing two builds file to file); one JSON line
-//! per mesh goes to stdout.
+//! per mesh goes to stdout (`accel_bytes`: the accel's heap bytes after the
+//! queries, the point grid included; `grid_s`: the grid's build, part of
+//! the first point query).
 //!
 //! **validate**: what `wingedge validate` does — import (tobj and the line
 //! pass, welding), build the winged-edge solid, every check (the exact
@@ -107,7 +109,6 @@ fn queries(dir: &Path, name: &str) -> Result<()> {
         }
         return Ok(());
     }
-    let stats = accel.stats();
     let points: Vec<DVec3> = read_f64s(&dir.join(format!("{name}.points.f64")), 3)?
         .chunks_exact(3)
         .map(|c| DVec3::new(c[0], c[1], c[2]))
@@ -181,6 +182,9 @@ fn queries(dir: &Path, name: &str) -> Result<()> {
         write_answers(&dir.join(format!("{name}.wingedge.hitface.u32")), faces)?;
     }
     let count = |want: Containment| classes.iter().filter(|&&c| c == want).count();
+    // After the queries, so that the point grid (built by the first point
+    // query) is counted.
+    let stats = accel.stats();
     println!(
         "{}",
         json!({
@@ -190,6 +194,7 @@ fn queries(dir: &Path, name: &str) -> Result<()> {
             "load_s": load_s,
             "accel_s": accel_s,
             "accel_bytes": stats.memory_bytes,
+            "grid_s": stats.grid_build_time.as_secs_f64(),
             "points": points.len(),
             "points_s": points_s,
             "inside": count(Containment::Inside),
