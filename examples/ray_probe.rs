@@ -1,6 +1,6 @@
 //! Times first-hit ray casting alone on one shared mesh (profiling aid):
-//! `ray_probe MESHES NAME` prints ns per ray for the batch on one thread,
-//! in input order and in coherent order, alternating.
+//! `ray_probe MESHES NAME` prints ns per ray on one thread, one query at a
+//! time and as a batch (the interleaved stream walk), alternating.
 use glam::DVec3;
 use wingedge::geom::Ray;
 use wingedge::io::read_obj;
@@ -40,7 +40,7 @@ fn main() {
         });
         let b = t.elapsed().as_secs_f64();
         println!(
-            "{name}: input order {:.0} ns/ray ({n} hits), batch {:.0} ns/ray ({m:?})",
+            "{name}: one at a time {:.0} ns/ray ({n} hits), batch {:.0} ns/ray ({m:?})",
             a * 1e3,
             b * 1e3
         );

@@ -12,8 +12,7 @@ use test_rng::uniform;
 
 #[test]
 fn batches_match_single_queries() {
-    // 19,320 triangles. Rays take the coherent order only from 256k
-    // triangles; the unit test `coherent_order_changes_no_answer` covers it.
+    // 19,320 triangles.
     let solid = builders::sphere(70);
     let accel = Accel::new(&solid);
     assert!(accel.stats().triangles > 16 * 1024);
