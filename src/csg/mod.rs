@@ -6,7 +6,7 @@
 //!   bounds. Kinds: [`HalfSpace`] (exact), [`AxisBox`], [`Sphere`],
 //!   [`Cylinder`] and [`Transformed`].
 //! - A [`Csg`] tree (built from a [`CsgExpr`]) combines two children's
-//!   answers with the seed's four-state machine ([`merge`]).
+//!   answers with the seed's four-state machine ([`merge()`]).
 //! - Answers: [`Spans`] of a ray, the [`FirstHit`] with its normal when
 //!   asked, point classification right at coincident faces, and volume by
 //!   integrating span lengths ([`VolumeEstimate`]).

@@ -4,7 +4,7 @@
 //! A ray meets a BVH leaf's box far more often than it crosses one of the
 //! leaf's triangles. Each leaf keeps a copy of its triangles' corners
 //! relative to the leaf's own centre, scaled by the accel's
-//! [`BoxFrame`] scale and rounded to `f32`, laid out lane by lane, so that
+//! [`BoxFrame`](super::accel::BoxFrame) scale and rounded to `f32`, laid out lane by lane, so that
 //! the three edge signs of all four triangles are computed side by side in
 //! one pass. Coordinates relative to the leaf keep the rounding error in
 //! proportion to the triangles' size, wherever they are and however fine
