@@ -47,17 +47,23 @@ impl Solid {
     /// the one that starts where `u` ends.
     #[must_use]
     pub fn use_next(&self, u: EdgeUse) -> EdgeUse {
-        let e = &self.edges[u.edge];
+        self.use_next_from(u, &self.edges[u.edge]).0
+    }
+
+    /// [`Solid::use_next`] from `u`'s edge record `e` in hand; also returns
+    /// the next use's edge record (one lookup per step of a walk).
+    fn use_next_from(&self, u: EdgeUse, e: &Edge) -> (EdgeUse, &Edge) {
         let (next, end) = match u.side {
             Side::Left => (e.ccw_left, e.dest),
             Side::Right => (e.ccw_right, e.origin),
         };
-        let side = if self.edges[next].origin == end {
+        let n = &self.edges[next];
+        let side = if n.origin == end {
             Side::Left
         } else {
             Side::Right
         };
-        EdgeUse { edge: next, side }
+        (EdgeUse { edge: next, side }, n)
     }
 
     /// The previous edge use around the same face (or hole): the one that ends
@@ -233,18 +239,7 @@ impl<'a> LoopWalk<'a> {
     fn next_with_edge(&mut self) -> Option<(EdgeUse, &'a Edge)> {
         let (u, e) = self.current?;
         self.budget = self.budget.checked_sub(1)?;
-        // As `Solid::use_next`, from the record in hand.
-        let (next, end) = match u.side {
-            Side::Left => (e.ccw_left, e.dest),
-            Side::Right => (e.ccw_right, e.origin),
-        };
-        let n = &self.solid.edges[next];
-        let side = if n.origin == end {
-            Side::Left
-        } else {
-            Side::Right
-        };
-        let next = EdgeUse { edge: next, side };
+        let (next, n) = self.solid.use_next_from(u, e);
         self.current = (next != self.start).then_some((next, n));
         Some((u, e))
     }
