@@ -8,8 +8,8 @@
 //! only how fast answers come.
 //!
 //! Box arithmetic is on [`Vec3A`] (one SSE register on `x86_64`): the
-//! build's inner loop grows a bin's four boxes by a triangle, which is then
-//! four `minps`/`maxps`.
+//! build's inner loop grows a bin's box and its centres' box by a triangle,
+//! which is then four `minps`/`maxps`.
 
 use glam::{DVec3, Vec3A};
 use rayon::prelude::*;
@@ -287,8 +287,9 @@ fn best_split(bins: &[Bin; BINS]) -> Option<usize> {
     best.map(|(_, k)| k)
 }
 
-/// Splits `prims` (more than [`LEAF_SIZE`], extent `ext`) by binned SAH
-/// on the longest axis of the centres' box, in place; returns the size of
+/// Splits `prims` (more than [`LEAF_SIZE`], extent `ext`) along the
+/// longest axis of the centres' box, in place: by binned SAH, or for at
+/// most [`SORTED_SPLIT`] triangles by [`split_sorted`]. Returns the size of
 /// the first part and the extents of both parts.
 fn partition(prims: &mut Prims, ext: &Extent) -> (usize, Extent, Extent) {
     let size = ext.centre2_max - ext.centre2_min;
@@ -333,6 +334,8 @@ fn split_sorted(prims: &mut Prims, axis: usize) -> (usize, Extent, Extent) {
     }
     let keys = &mut keys[..n];
     keys.sort_unstable();
+    // The low 16 bits of a key are the triangle's place; slots past `n`
+    // repeat the last triangle and are never used.
     let boxes: [PrimBox; SORTED_SPLIT] =
         std::array::from_fn(|k| prims.boxes[(keys[k.min(n - 1)] & 0xffff) as usize]);
     let index: [u32; SORTED_SPLIT] =
