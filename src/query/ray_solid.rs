@@ -373,18 +373,13 @@ impl Accel {
     /// The first invalid ray, by index.
     pub fn first_hit_batch(&self, rays: &[Ray]) -> Result<Vec<Option<Crossing>>, QueryError> {
         check_rays(rays)?;
-        Ok(self.first_hits(rays))
-    }
-
-    /// The first hits of valid `rays`, in order, on all cores.
-    ///
-    /// Cast in input order: grouping rays that pass close to one another
-    /// (a 6-D Morton order of origin and direction, or a 3-D one of the
-    /// point nearest the solid's centre) cost more in sorting, copying and
-    /// unpermuting than it saved in cache misses — on 1M random rays over
-    /// the 1M-triangle sphere the 6-D order took 1.2–1.5× the time of the
-    /// input order on 2 threads (2026-11-21).
-    fn first_hits(&self, rays: &[Ray]) -> Vec<Option<Crossing>> {
+        // Cast in input order: grouping rays that pass close to one another
+        // (a 6-D Morton order of origin and direction, or a 3-D one of the
+        // point nearest the solid's centre) cost more in sorting, copying
+        // and unpermuting than it saved in cache misses — on 1M random rays
+        // over the 1M-triangle sphere the 6-D order took 1.2–1.5× the time
+        // of the input order on 2 threads (2026-11-21).
+        //
         // Each worker casts its rays a few at a time, interleaved (see
         // `ray_stream`), so that one ray's cache misses overlap the others'
         // work. The answers' memory is written first on all cores too.
@@ -392,7 +387,7 @@ impl Accel {
         rays.par_chunks(STREAM_CHUNK)
             .zip(out.par_chunks_mut(STREAM_CHUNK))
             .for_each(|(r, o)| self.first_hits_interleaved(r, o));
-        out
+        Ok(out)
     }
 
     /// [`Accel::ray_crossings`] for every ray, in order, on all cores.
