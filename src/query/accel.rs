@@ -11,7 +11,7 @@ use crate::geom::{Aabb, Sign, orient2d, orient3d};
 use crate::mesh::{FaceId, Solid};
 
 use super::bvh_build::build_bvh;
-use super::huge_pages::{collapse_into_huge_pages, with_huge_capacity};
+use super::huge_pages::{HugeVec, collapse_into_huge_pages};
 use super::tri_packet::TriPacket;
 
 /// Why a solid is not convex (the normals method refuses it).
@@ -131,7 +131,7 @@ pub(super) struct YzGrid {
     pub ny: usize,
     pub nz: usize,
     pub cell_start: Vec<u32>,
-    pub entries: Vec<GridEntry>,
+    pub entries: HugeVec<GridEntry>,
     pub extent: Vec<f32>,
 }
 
@@ -186,7 +186,7 @@ impl YzGrid {
     /// Heap bytes.
     pub fn memory_bytes(&self) -> usize {
         (self.cell_start.capacity() + self.extent.capacity()) * std::mem::size_of::<u32>()
-            + self.entries.capacity() * std::mem::size_of::<GridEntry>()
+            + self.entries.memory_bytes()
     }
 }
 
@@ -322,13 +322,21 @@ impl BoxFrame {
 /// and each leaf a [`TriPacket`] of its triangles (`tris` in leaf order,
 /// in the frame of scale `scale`). Also returns the depth of the new tree
 /// (nodes on its longest path from the root).
-fn to_node8(nodes: &[Node], tris: &[YzTri], scale: f64) -> (Vec<Node8>, Vec<TriPacket>, usize) {
+fn to_node8(
+    nodes: &[Node],
+    tris: &[YzTri],
+    scale: f64,
+) -> (HugeVec<Node8>, HugeVec<TriPacket>, usize) {
+    let leaves = nodes.iter().filter(|n| n.count > 0).count();
+    // Each node but a leaf root's is made from its own binary inner node.
+    let mut out = HugeVec::with_capacity((nodes.len() - leaves).max(1));
+    out.push(Node8::EMPTY);
     let mut c = Collapse {
         nodes,
         tris,
         scale,
-        out: vec![Node8::EMPTY],
-        packets: with_huge_capacity(nodes.iter().filter(|n| n.count > 0).count()),
+        out,
+        packets: HugeVec::with_capacity(leaves),
     };
     let has_triangles = nodes
         .first()
@@ -350,8 +358,8 @@ struct Collapse<'a> {
     nodes: &'a [Node],
     tris: &'a [YzTri],
     scale: f64,
-    out: Vec<Node8>,
-    packets: Vec<TriPacket>,
+    out: HugeVec<Node8>,
+    packets: HugeVec<TriPacket>,
 }
 
 impl Collapse<'_> {
@@ -428,12 +436,12 @@ impl Collapse<'_> {
 ///   coordinates).
 #[derive(Clone, Debug)]
 pub struct Accel {
-    pub(super) tris: Vec<YzTri>,
-    pub(super) tri_face: Vec<FaceId>,
-    pub(super) nodes: Vec<Node8>,
+    pub(super) tris: HugeVec<YzTri>,
+    pub(super) tri_face: HugeVec<FaceId>,
+    pub(super) nodes: HugeVec<Node8>,
     /// One per BVH leaf, the leaf's triangles in `f32` for the rays' miss
     /// filter; leaves of `nodes` index it.
-    pub(super) packets: Vec<TriPacket>,
+    pub(super) packets: HugeVec<TriPacket>,
     pub(super) frame: BoxFrame,
     /// A length of traversal stack that never overflows: the stack holds
     /// at most `WIDTH − 1` deferred children per level above the node being
@@ -468,23 +476,19 @@ impl Accel {
         let boundary_edges = solid.boundary_edges().count();
         let (tris, tri_face) = fan_triangles(solid);
         let (binary, order, frame, bounds) = build_bvh(&tris);
-        let mut leaf_tris: Vec<YzTri> = with_huge_capacity(order.len());
-        leaf_tris.par_extend(order.par_iter().map(|&i| yz_tri(&tris[i as usize])));
-        let tris = leaf_tris;
+        let tris = HugeVec::from_par_iter(order.par_iter().map(|&i| yz_tri(&tris[i as usize])));
         let (nodes, packets, depth) = to_node8(&binary, &tris, frame.scale);
         drop(binary);
-        let mut leaf_faces: Vec<FaceId> = with_huge_capacity(order.len());
-        leaf_faces.par_extend(order.par_iter().map(|&i| tri_face[i as usize]));
-        let tri_face = leaf_faces;
+        let tri_face = HugeVec::from_par_iter(order.par_iter().map(|&i| tri_face[i as usize]));
         // What rays read at random, on huge pages where offered.
-        collapse_into_huge_pages(&tris);
-        collapse_into_huge_pages(&tri_face);
-        collapse_into_huge_pages(&nodes);
-        collapse_into_huge_pages(&packets);
-        let memory_bytes = tris.capacity() * std::mem::size_of::<YzTri>()
-            + tri_face.capacity() * std::mem::size_of::<FaceId>()
-            + nodes.capacity() * std::mem::size_of::<Node8>()
-            + packets.capacity() * std::mem::size_of::<TriPacket>();
+        tris.collapse();
+        tri_face.collapse();
+        nodes.collapse();
+        packets.collapse();
+        let memory_bytes = tris.memory_bytes()
+            + tri_face.memory_bytes()
+            + nodes.memory_bytes()
+            + packets.memory_bytes();
         let stats = AccelStats {
             triangles: tris.len(),
             bvh_nodes: nodes.len(),
@@ -671,7 +675,7 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         ny,
         nz,
         cell_start: vec![0; ny * nz + 1],
-        entries: Vec::new(),
+        entries: HugeVec::with_capacity(0),
         extent: vec![0.0; ny * nz],
     };
     // Each triangle's cells: columns `c0..=c1`, rows `r0..=r1` (its
@@ -727,8 +731,7 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
     // Initialised in parallel: for a large mesh this is mostly page faults
     // (fewer of them on huge pages, which the point queries' random reads
     // want too).
-    let mut entries: Vec<GridEntry> = with_huge_capacity(total);
-    entries.par_extend(
+    let mut entries = HugeVec::from_par_iter(
         (0..total)
             .into_par_iter()
             .with_min_len(1 << 16)
@@ -788,7 +791,7 @@ fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
                 sort_by_x(&mut part[s..e]);
             }
         });
-    collapse_into_huge_pages(&entries);
+    entries.collapse();
     collapse_into_huge_pages(&grid.cell_start);
     collapse_into_huge_pages(&grid.extent);
     grid.entries = entries;

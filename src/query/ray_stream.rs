@@ -11,6 +11,8 @@
 //! [`Accel::first_hit`] and decides each triangle with the same exact
 //! predicates, so the answers are the same.
 
+use std::mem::MaybeUninit;
+
 use crate::geom::Ray;
 
 use super::Accel;
@@ -106,10 +108,14 @@ impl Walk {
 
 impl Accel {
     /// The first hits of `rays` (checked valid by the caller) into `out`,
-    /// in order.
+    /// in order; every slot of `out` is written.
     /// Nodes are opened with AVX2 where the processor has it (see
     /// `node_open`).
-    pub(super) fn first_hits_interleaved(&self, rays: &[Ray], out: &mut [Option<Crossing>]) {
+    pub(super) fn first_hits_interleaved(
+        &self,
+        rays: &[Ray],
+        out: &mut [MaybeUninit<Option<Crossing>>],
+    ) {
         #[cfg(target_arch = "x86_64")]
         if let Some(lanes) = Avx2::detect() {
             // SAFETY: AVX2 was detected.
@@ -123,7 +129,12 @@ impl Accel {
     /// node opening is inlined into the walk.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,popcnt")]
-    fn first_hits_avx2(&self, lanes: Avx2, rays: &[Ray], out: &mut [Option<Crossing>]) {
+    fn first_hits_avx2(
+        &self,
+        lanes: Avx2,
+        rays: &[Ray],
+        out: &mut [MaybeUninit<Option<Crossing>>],
+    ) {
         self.first_hits_with(lanes, rays, out);
     }
 
@@ -133,7 +144,7 @@ impl Accel {
         &self,
         lanes: impl NodeLanes,
         rays: &[Ray],
-        out: &mut [Option<Crossing>],
+        out: &mut [MaybeUninit<Option<Crossing>>],
     ) {
         if self.stats.memory_bytes >= ASK_AHEAD_BYTES {
             self.walk_interleaved::<true>(lanes, rays, out);
@@ -149,7 +160,7 @@ impl Accel {
         &self,
         lanes: impl NodeLanes,
         rays: &[Ray],
-        out: &mut [Option<Crossing>],
+        out: &mut [MaybeUninit<Option<Crossing>>],
     ) {
         debug_assert_eq!(rays.len(), out.len());
         // Each ray's best crossing, `t` already in the caller's units; its
@@ -180,7 +191,7 @@ impl Accel {
             k += 1;
         }
         for (o, b) in out.iter_mut().zip(best) {
-            *o = b.map(|(t, i, s)| self.crossing(t, i, s));
+            o.write(b.map(|(t, i, s)| self.crossing(t, i, s)));
         }
     }
 
