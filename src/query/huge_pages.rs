@@ -72,9 +72,11 @@ impl<T: Copy> HugeVec<T> {
             .expect("capacity overflow");
         let huge = cfg!(target_os = "linux") && bytes >= HUGE_ARRAY_BYTES;
         let layout = if huge {
-            Layout::from_size_align(bytes.next_multiple_of(HUGE), HUGE)
+            bytes
+                .checked_next_multiple_of(HUGE)
+                .and_then(|size| Layout::from_size_align(size, HUGE).ok())
         } else {
-            Layout::array::<T>(capacity)
+            Layout::array::<T>(capacity).ok()
         }
         .expect("capacity overflow");
         let ptr = if layout.size() == 0 {
