@@ -33,8 +33,9 @@ use rayon::prelude::*;
 const HUGE: usize = 2 << 20;
 
 /// Arrays of at least this many bytes get memory of their own on huge
-/// pages (at most half a huge page is then left unused per array, on
-/// average a quarter).
+/// pages. Their last huge page is resident in full once touched: up to
+/// just under 2 MiB more than the items need per array (at most as much
+/// again as the items themselves, since they fill at least half a page).
 const HUGE_ARRAY_BYTES: usize = HUGE / 2;
 
 /// A vector of `Copy` items with a capacity fixed when it is made: when
