@@ -322,6 +322,15 @@ impl BoxFrame {
 /// and each leaf a [`TriPacket`] of its triangles (`tris` in leaf order,
 /// in the frame of scale `scale`). Also returns the depth of the new tree
 /// (nodes on its longest path from the root).
+///
+/// The nodes are made in one pass, which numbers the leaves as it meets
+/// them; the packets are then made on all cores, in that order. (Their
+/// memory is fresh huge pages, whose first touch is costly at times on
+/// this project's virtual machines: made in the serial pass, sphere_80k's
+/// nodes and packets took 3–5 ms in most processes and 13–29 ms in a third
+/// of them, 2026-11-22 00:40 UTC; with the packets made on two threads,
+/// 2–4 ms in 12 processes out of 12 a few minutes later, when the slow
+/// first touches had not come back for the serial pass either.)
 fn to_node8(
     nodes: &[Node],
     tris: &[YzTri],
@@ -333,10 +342,8 @@ fn to_node8(
     out.push(Node8::EMPTY);
     let mut c = Collapse {
         nodes,
-        tris,
-        scale,
         out,
-        packets: HugeVec::with_capacity(leaves),
+        leaves: Vec::with_capacity(leaves),
     };
     let has_triangles = nodes
         .first()
@@ -344,30 +351,32 @@ fn to_node8(
     let depth = if !has_triangles {
         1
     } else if nodes[0].count > 0 {
-        let leaf = c.packet(&nodes[0]);
+        let leaf = c.leaf(0);
         c.out[0].set(0, &nodes[0], leaf);
         1
     } else {
         c.fill(0, 0)
     };
-    (c.out, c.packets, depth)
+    let packets = HugeVec::from_par_iter(c.leaves.par_iter().map(|&j| {
+        let n = &nodes[j];
+        TriPacket::new(tris, n.first, n.count, scale)
+    }));
+    (c.out, packets, depth)
 }
 
-/// The state of [`to_node8`].
+/// The state of [`to_node8`]'s pass over the binary tree.
 struct Collapse<'a> {
     nodes: &'a [Node],
-    tris: &'a [YzTri],
-    scale: f64,
     out: HugeVec<Node8>,
-    packets: HugeVec<TriPacket>,
+    /// The binary leaves met so far, by packet index.
+    leaves: Vec<usize>,
 }
 
 impl Collapse<'_> {
-    /// Makes the packet of binary leaf `n`; returns its slot entry.
-    fn packet(&mut self, n: &Node) -> u32 {
-        self.packets
-            .push(TriPacket::new(self.tris, n.first, n.count, self.scale));
-        (self.packets.len() - 1) as u32 | LEAF
+    /// Numbers binary leaf `j` as the next packet; returns its slot entry.
+    fn leaf(&mut self, j: usize) -> u32 {
+        self.leaves.push(j);
+        (self.leaves.len() - 1) as u32 | LEAF
     }
 
     /// Fills `out[at]` from the binary inner node `i`, appending the nodes
@@ -394,7 +403,7 @@ impl Collapse<'_> {
         for (k, &j) in slots.iter().enumerate() {
             let n = &nodes[j];
             if n.count > 0 {
-                let leaf = self.packet(n);
+                let leaf = self.leaf(j);
                 self.out[at].set(k, n, leaf);
             } else {
                 let child = self.out.len();
