@@ -84,11 +84,12 @@ def markdown(rows, verdicts, validations, info, args):
     pk = info["packages"]
     out.append("Measured %s on %s (%d cores), %d threads for every library that can use them; "
                "Python %s, numpy %s, trimesh %s with embreex %s, libigl %s, open3d %s, manifold3d %s; "
-               "%s; parry3d / parry3d-f64 %s. The run took %.1f min; 1-minute load average %.1f at its start, "
+               "%s; parry3d / parry3d-f64 %s. wingedge and open3d took turns over %d rounds, each keeping "
+               "its best. The run took %.1f min; 1-minute load average %.1f at its start, "
                "%.1f at its end."
                % (info["date"], info["cpu"], info["cores"], info["threads"], info["python"], pk["numpy"],
                   pk["trimesh"], pk["embreex"], pk["libigl"], pk["open3d"], pk["manifold3d"], info["rustc"],
-                  info["parry3d"], info["minutes"], info["load"][0], info["load"][1]))
+                  info["parry3d"], args.rounds, info["minutes"], info["load"][0], info["load"][1]))
     out.append("")
     out.append("| mesh (triangles) | task | library (precision, threads) | setup s | throughput | ÷ wingedge "
                "| answers that differ from wingedge | exact arithmetic on those: who is wrong |")
