@@ -108,16 +108,17 @@ impl<T: Copy> HugeVec<T> {
         T: Send,
     {
         let mut v = HugeVec::with_capacity(items.len());
-        let spare = v.spare();
-        let written = spare.len();
-        spare
+        // An indexed zip pairs slot `i` with item `i`: the slots written are
+        // the first `written`, however many items the iterator yields.
+        let written = v
+            .spare()
             .par_iter_mut()
             .zip(items)
             .with_min_len(1 << 12)
-            .for_each(|(slot, item)| {
+            .map(|(slot, item)| {
                 slot.write(item);
-            });
-        // Every slot was written: the iterator is indexed, of `written` items.
+            })
+            .count();
         v.len = written;
         v
     }
