@@ -1,7 +1,8 @@
 """The meshes, points and rays every library in the peer comparison answers.
 
-Each mesh is made with manifold3d (or built here and accepted by manifold3d
-as a closed 2-manifold) and written as an OBJ with every coordinate printed
+Each mesh is made with manifold3d (or built here, or read from one of the
+team's real models, and accepted by manifold3d as a closed 2-manifold) and
+written as an OBJ with every coordinate printed
 to 17 significant digits, so the file holds exactly the `f64` vertices the
 Python peers see in memory. Next to `<name>.obj` go:
 
@@ -28,7 +29,33 @@ RECIPES = {
     "sphere_1m": "manifold3d Manifold.sphere(1, circular_segments=1416): 1,002,528 triangles",
     "csg_diff": "manifold3d cube(2) - sphere(0.7, 128 segments, at (0,0,1)) - cylinder along x "
                 "(r 0.4, 128 segments): a CAD-like part with long thin fan triangles, genus 2",
+    "fandisk": "the team's real model fandisk.obj (a CAD part, 12,946 triangles), as read",
+    "spot": "the team's real model spot.obj (a scanned-and-remeshed cow, 5,856 triangles), as read",
 }
+
+# The team's real-world models (not part of the repository: the comparison
+# reads them from the shared folder next to it when they are asked for).
+MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "models")
+
+
+def _model(name):
+    """A real model's triangles as read from its OBJ (`v` and `f` lines;
+    texture and normal indices ignored), accepted by manifold3d."""
+    path = os.path.join(MODELS, name + ".obj")
+    if not os.path.exists(path):
+        raise SystemExit("%s: not found (the real models live in the team's shared folder)" % path)
+    vertices, triangles = [], []
+    with open(path) as f:
+        for line in f:
+            fields = line.split()
+            if fields[:1] == ["v"]:
+                vertices.append([float(x) for x in fields[1:4]])
+            elif fields[:1] == ["f"]:
+                corners = [int(c.split("/")[0]) - 1 for c in fields[1:]]
+                triangles += [[corners[0], corners[k], corners[k + 1]] for k in range(1, len(corners) - 1)]
+    mesh = m3d.Mesh64(vert_properties=np.ascontiguousarray(vertices, dtype=np.float64),
+                      tri_verts=np.ascontiguousarray(triangles, dtype=np.uint64))
+    return m3d.Manifold(mesh)
 
 
 def _sphere(segments):
@@ -101,6 +128,8 @@ MAKERS = {
     "torus_knot": _torus_knot,
     "sphere_1m": lambda: _sphere(1416),
     "csg_diff": _csg_diff,
+    "fandisk": lambda: _model("fandisk"),
+    "spot": lambda: _model("spot"),
 }
 
 

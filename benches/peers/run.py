@@ -4,7 +4,9 @@
     python3 benches/peers/run.py --out /tmp/peers
 
 builds the examples (`cargo build --release --examples`), makes the inputs
-(seeded; see inputs.py) under OUT/inputs, then for each mesh:
+(seeded; see inputs.py) under OUT/inputs — the meshes sphere_80k, torus_knot
+and sphere_1m, and the real models fandisk and spot when the team's shared
+models folder is next to the repository — then for each mesh:
 
   (a) point classification of 1M points uniform in the mesh's box,
   (b) first-hit ray casting of 1M rays from a sphere around the box,
@@ -55,7 +57,10 @@ import report  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXAMPLES = os.path.join(ROOT, "target", "release", "examples")
-DEFAULT_MESHES = ["sphere_80k", "torus_knot", "sphere_1m"]
+# The three shared meshes, then the team's real models that fit in
+# the caches (a CAD part and a remeshed scan) when their folder is there.
+DEFAULT_MESHES = ["sphere_80k", "torus_knot", "sphere_1m"] + (
+    ["fandisk", "spot"] if os.path.isdir(inputs.MODELS) else [])
 T_TOLERANCE = 1e-4  # relative, for comparing first-hit parameters
 VALIDATE_ROUNDS = 3
 
