@@ -51,7 +51,9 @@ def _model(name):
             if fields[:1] == ["v"]:
                 vertices.append([float(x) for x in fields[1:4]])
             elif fields[:1] == ["f"]:
-                corners = [int(c.split("/")[0]) - 1 for c in fields[1:]]
+                # 1-based; negative indices count back from the last vertex read.
+                corners = [int(c.split("/")[0]) for c in fields[1:]]
+                corners = [c - 1 if c > 0 else len(vertices) + c for c in corners]
                 triangles += [[corners[0], corners[k], corners[k + 1]] for k in range(1, len(corners) - 1)]
     mesh = m3d.Mesh64(vert_properties=np.ascontiguousarray(vertices, dtype=np.float64),
                       tri_verts=np.ascontiguousarray(triangles, dtype=np.uint64))
