@@ -322,6 +322,9 @@ def main():
         log("cargo build --release --examples")
         subprocess.run(["cargo", "build", "--release", "--examples"], cwd=ROOT, check=True)
     names = [n for n in args.meshes.split(",") if n]
+    if args.inputs and args.meshes == ",".join(DEFAULT_MESHES):
+        # Inputs made elsewhere: the default meshes that are there.
+        names = [n for n in names if os.path.exists(os.path.join(args.inputs, n + ".obj"))]
     rng = np.random.default_rng(20261121)
     rows, verdicts, validations, metas = [], {}, {}, {}
     for name in names:
