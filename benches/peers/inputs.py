@@ -38,12 +38,10 @@ RECIPES = {
 MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "models")
 
 
-def _model(name):
-    """A real model's triangles as read from its OBJ (`v` and `f` lines;
-    texture and normal indices ignored), accepted by manifold3d."""
-    path = os.path.join(MODELS, name + ".obj")
-    if not os.path.exists(path):
-        raise SystemExit("%s: not found (the real models live in the team's shared folder)" % path)
+def read_obj(path):
+    """The vertices (`f64`) and triangles (0-based) of an OBJ's `v` and `f`
+    lines: polygons split into fans, texture and normal indices ignored,
+    negative indices counted back from the last vertex read."""
     vertices, triangles = [], []
     with open(path) as f:
         for line in f:
@@ -51,11 +49,19 @@ def _model(name):
             if fields[:1] == ["v"]:
                 vertices.append([float(x) for x in fields[1:4]])
             elif fields[:1] == ["f"]:
-                # 1-based; negative indices count back from the last vertex read.
                 corners = [int(c.split("/")[0]) for c in fields[1:]]
                 corners = [c - 1 if c > 0 else len(vertices) + c for c in corners]
                 triangles += [[corners[0], corners[k], corners[k + 1]] for k in range(1, len(corners) - 1)]
-    mesh = m3d.Mesh64(vert_properties=np.ascontiguousarray(vertices, dtype=np.float64),
+    return np.array(vertices, dtype=np.float64).reshape(-1, 3), np.array(triangles, dtype=np.int64).reshape(-1, 3)
+
+
+def _model(name):
+    """A real model as read from its OBJ, accepted by manifold3d."""
+    path = os.path.join(MODELS, name + ".obj")
+    if not os.path.exists(path):
+        raise SystemExit("%s: not found (the real models live in the team's shared folder)" % path)
+    vertices, triangles = read_obj(path)
+    mesh = m3d.Mesh64(vert_properties=np.ascontiguousarray(vertices),
                       tri_verts=np.ascontiguousarray(triangles, dtype=np.uint64))
     return m3d.Manifold(mesh)
 

@@ -77,18 +77,6 @@ def run_json_lines(command):
     return [json.loads(line) for line in done.stdout.splitlines() if line.startswith("{")]
 
 
-def read_obj_arrays(path):
-    """The vertices and triangles of an OBJ with `v x y z` and `f i j k` lines."""
-    vertices, triangles = [], []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("v "):
-                vertices.append(line.split()[1:4])
-            elif line.startswith("f "):
-                triangles.append([int(w.split("/")[0]) for w in line.split()[1:4]])
-    return np.array(vertices, dtype=np.float64), np.array(triangles, dtype=np.int64) - 1
-
-
 # ---------------------------------------------------------------- agreement
 
 def points_differ(ours, peer):
@@ -182,7 +170,7 @@ def best_rows(runs):
 
 
 def queries_for_mesh(name, directory, args, rng):
-    vertices, triangles = read_obj_arrays(os.path.join(directory, name + ".obj"))
+    vertices, triangles = inputs.read_obj(os.path.join(directory, name + ".obj"))
     points = np.fromfile(os.path.join(directory, name + ".points.f64"), "<f8").reshape(-1, 3)
     rays = np.fromfile(os.path.join(directory, name + ".rays.f64"), "<f8").reshape(-1, 6)
     # wingedge and open3d, the closest in speed, take turns over several
@@ -302,8 +290,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", required=True, help="directory for inputs, answers and the table")
     ap.add_argument("--inputs", help="use NAME.obj/.points.f64/.rays.f64 from this directory instead of making them")
-    ap.add_argument("--meshes", default=",".join(DEFAULT_MESHES),
-                    help="comma-separated, from: %s" % ", ".join(inputs.MAKERS))
+    ap.add_argument("--meshes",
+                    help="comma-separated, from: %s (default: %s; with --inputs, those of them that are there)"
+                    % (", ".join(inputs.MAKERS), ",".join(DEFAULT_MESHES)))
     ap.add_argument("--queries", type=int, default=1_000_000, help="points and rays per mesh")
     ap.add_argument("--parry-points", type=int, default=50_000,
                     help="points given to parry's contains_point (slow on large curved meshes)")
@@ -321,10 +310,12 @@ def main():
     if not args.no_build:
         log("cargo build --release --examples")
         subprocess.run(["cargo", "build", "--release", "--examples"], cwd=ROOT, check=True)
-    names = [n for n in args.meshes.split(",") if n]
-    if args.inputs and args.meshes == ",".join(DEFAULT_MESHES):
-        # Inputs made elsewhere: the default meshes that are there.
-        names = [n for n in names if os.path.exists(os.path.join(args.inputs, n + ".obj"))]
+    if args.meshes:
+        names = [n for n in args.meshes.split(",") if n]
+    elif args.inputs:
+        names = [n for n in DEFAULT_MESHES if os.path.exists(os.path.join(args.inputs, n + ".obj"))]
+    else:
+        names = DEFAULT_MESHES
     rng = np.random.default_rng(20261121)
     rows, verdicts, validations, metas = [], {}, {}, {}
     for name in names:
