@@ -8,14 +8,17 @@
 //! case and an exact evaluation (error-free transformations summed into a
 //! non-overlapping expansion, after Shewchuk 1997) decides the rest; each
 //! exact evaluation is counted by [`exact_fallbacks`](super::exact_fallbacks).
-//! The answers are exact for finite input whose products neither overflow nor
-//! underflow.
+//! The answers are exact for every finite input: the filter allows for
+//! roundings in the subnormal range ([`UNDERFLOW`]) and input outside the
+//! range where expansions are exact goes to big-integer arithmetic
+//! (`dyadic`).
 
 use glam::DVec3;
 
 use super::Sign;
+use super::dyadic::{Dyadic, in_safe_range};
 use super::expansion::Expansion;
-use super::predicates::count_fallback;
+use super::predicates::{UNDERFLOW, count_fallback};
 
 /// Unit round-off of `f64` (half an ulp of 1.0).
 const HALF_EPSILON: f64 = f64::EPSILON / 2.0;
@@ -47,7 +50,7 @@ pub fn side_of_plane(p: DVec3, q: DVec3, n: DVec3) -> Sign {
     let d = p - q;
     let terms = [d.x * n.x, d.y * n.y, d.z * n.z];
     let sum = terms[0] + terms[1] + terms[2];
-    let bound = DOT_BOUND * (terms[0].abs() + terms[1].abs() + terms[2].abs());
+    let bound = DOT_BOUND * (terms[0].abs() + terms[1].abs() + terms[2].abs()) + UNDERFLOW;
     if sum > bound || -sum > bound {
         return Sign::of(sum);
     }
@@ -62,6 +65,14 @@ pub fn side_of_plane(p: DVec3, q: DVec3, n: DVec3) -> Sign {
 
 fn exact_side_of_plane(p: DVec3, q: DVec3, n: DVec3) -> Sign {
     count_fallback();
+    let inputs = [p, q, n].map(|v| v.to_array());
+    if !in_safe_range(inputs.as_flattened()) {
+        let mut total = Dyadic::of(0.0);
+        for i in 0..3 {
+            total = &total + &(&Dyadic::difference(p[i], q[i]) * &Dyadic::of(n[i]));
+        }
+        return total.sign();
+    }
     let mut total = Expansion::default();
     for i in 0..3 {
         total.grow_expansion(&Expansion::difference(p[i], q[i]).scale(n[i]), false);

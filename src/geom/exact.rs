@@ -11,14 +11,18 @@
 //! FMA, `grow_expansion`). Fallbacks are counted in the same per-thread
 //! counter as the other predicates ([`exact_fallbacks`](super::exact_fallbacks)).
 //!
-//! Exactness assumes that no intermediate product overflows or underflows
-//! into the subnormal range (coordinates roughly within `1e-90 ..= 1e90` in
-//! magnitude), the same assumption the `robust` crate makes.
+//! Expansion arithmetic is exact only while no intermediate product
+//! overflows or underflows; entries outside the range where that is certain
+//! (`dyadic`) are decided by exact big-integer arithmetic instead, and the
+//! filters allow for roundings in the subnormal range
+//! ([`UNDERFLOW`](super::predicates::UNDERFLOW)). So every sign here is
+//! exact for every finite input.
 
 use glam::{DVec2, DVec3};
 
+use super::dyadic::{self, Dyadic, in_safe_range};
 use super::expansion::Expansion;
-use super::predicates::count_fallback;
+use super::predicates::{UNDERFLOW, count_fallback};
 use super::{Sign, orient2d};
 
 /// Half a unit in the last place of 1.0.
@@ -60,6 +64,20 @@ impl Diff {
     fn expansion(self) -> Expansion {
         Expansion::difference(self.plus, self.minus)
     }
+
+    fn dyadic(self) -> Dyadic {
+        Dyadic::difference(self.plus, self.minus)
+    }
+
+    /// Whether both numbers are in the range where expansion arithmetic is
+    /// exact (see `dyadic`).
+    fn in_safe_range(self) -> bool {
+        in_safe_range(&[self.plus, self.minus])
+    }
+
+    fn is_finite(self) -> bool {
+        self.plus.is_finite() && self.minus.is_finite()
+    }
 }
 
 /// The rows of `p − q` for 3-vectors: `[p.x − q.x, p.y − q.y, p.z − q.z]`.
@@ -93,14 +111,20 @@ pub fn det3_sign(rows: [[Diff; 3]; 3]) -> Sign {
     let permanent = m[0][0].abs() * (m12.abs() + m21.abs())
         + m[0][1].abs() * (n12.abs() + n21.abs())
         + m[0][2].abs() * (o12.abs() + o21.abs());
-    let bound = DET3_BOUND * permanent;
+    let bound =
+        DET3_BOUND * permanent + UNDERFLOW * (m[0][0].abs() + m[0][1].abs() + m[0][2].abs() + 1.0);
     if det > bound || -det > bound {
         return Sign::of(det);
     }
-    if !det.is_finite() || !permanent.is_finite() {
+    let entries = rows.as_flattened();
+    if !entries.iter().all(|e| e.is_finite()) {
+        // Unspecified for non-finite input (never a panic).
         return Sign::of(det);
     }
     count_fallback();
+    if !entries.iter().all(|e| e.in_safe_range()) {
+        return dyadic::det3_sign(&rows.map(|r| r.map(Diff::dyadic)));
+    }
     const PERMS: [([usize; 3], bool); 6] = [
         ([0, 1, 2], false),
         ([1, 2, 0], false),
@@ -126,11 +150,16 @@ pub fn det2_sign(r0: [Diff; 2], r1: [Diff; 2]) -> Sign {
     let left = r0[0].rounded() * r1[1].rounded();
     let right = r0[1].rounded() * r1[0].rounded();
     let det = left - right;
-    let bound = DET2_BOUND * (left.abs() + right.abs());
-    if det > bound || -det > bound || !det.is_finite() {
+    let bound = DET2_BOUND * (left.abs() + right.abs()) + UNDERFLOW;
+    let entries = [r0[0], r0[1], r1[0], r1[1]];
+    if det > bound || -det > bound || !entries.iter().all(|e| e.is_finite()) {
         return Sign::of(det);
     }
     count_fallback();
+    if !entries.iter().all(|e| e.in_safe_range()) {
+        let [a, b, c, d] = entries.map(Diff::dyadic);
+        return dyadic::det2_sign(&a, &b, &c, &d);
+    }
     let mut total = Expansion::default();
     total.grow_expansion(&r0[0].expansion().mul(&r1[1].expansion()), false);
     total.grow_expansion(&r0[1].expansion().mul(&r1[0].expansion()), true);
@@ -163,7 +192,7 @@ pub fn line_side_filter_scalar(d: [f64; 3], u: [f64; 3], v: [f64; 3]) -> Option<
     let permanent = d[0].abs() * (m12.abs() + m21.abs())
         + d[1].abs() * (n12.abs() + n21.abs())
         + d[2].abs() * (o12.abs() + o21.abs());
-    let bound = DET3_BOUND * permanent;
+    let bound = DET3_BOUND * permanent + UNDERFLOW * (d[0].abs() + d[1].abs() + d[2].abs() + 1.0);
     if det > bound {
         Some(Sign::Positive)
     } else if -det > bound {
@@ -234,9 +263,11 @@ const SHARED_SIDE_BOUND: f64 = DET3_BOUND * 2.0 * (1.0 + 64.0 * f64::EPSILON);
 /// `(1 + ε)⁵`, and the floating-point `2·s·m²·DET3_BOUND` falls short of its
 /// exact value by at most `(1 − ε)⁵`; the margin `1 + 64ε` covers both. So
 /// the bound returned is at least `DET3_BOUND · P` for each determinant, and
-/// a sign it certifies is the exact sign. (As for the other filters: no
-/// overflow or underflow; an infinite or NaN bound or determinant certifies
-/// nothing.)
+/// a sign it certifies is the exact sign. Roundings in the subnormal range
+/// add at most `(1 + ε)³ · 2η · s + 3η(1 + ε)²` to each determinant's error
+/// (`η = 2⁻¹⁰⁷⁵`, see [`UNDERFLOW`]), covered by the term `UNDERFLOW · (s + 1)`;
+/// overflow makes the bound or a determinant infinite or NaN, which
+/// certifies nothing.
 #[must_use]
 #[inline(always)]
 pub fn triangle_edge_sides(d: [f64; 3], u: [f64; 3], v: [f64; 3], w: [f64; 3]) -> EdgeSides {
@@ -249,7 +280,7 @@ pub fn triangle_edge_sides(d: [f64; 3], u: [f64; 3], v: [f64; 3], w: [f64; 3]) -
     let m3 = |p: [f64; 3]| p[0].abs().max(p[1].abs()).max(p[2].abs());
     let m = m3(u).max(m3(v)).max(m3(w));
     let s = d[0].abs() + d[1].abs() + d[2].abs();
-    let bound = SHARED_SIDE_BOUND * s * (m * m);
+    let bound = SHARED_SIDE_BOUND * s * (m * m) + UNDERFLOW * (s + 1.0);
     EdgeSides { det, bound }
 }
 

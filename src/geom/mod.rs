@@ -6,6 +6,7 @@
 
 mod aabb;
 mod dot;
+pub(crate) mod dyadic;
 pub mod exact;
 pub(crate) mod expansion;
 mod plane;
@@ -18,10 +19,10 @@ pub use aabb::Aabb;
 pub use dot::{dot_sign, side_of_plane};
 pub use exact::{line_side, line_side_sos};
 pub use plane::{Plane, PlaneError, PlaneFit, newell_vector_area};
-pub(crate) use predicates::count_tie_break;
 pub use predicates::{
     Sign, exact_fallbacks, orient2d, orient3d, reset_exact_fallbacks, tie_breaks,
 };
+pub(crate) use predicates::{UNDERFLOW, count_tie_break};
 pub use ray::{Ray, Segment};
 pub use tolerance::Tolerance;
 

@@ -9,6 +9,12 @@
 //! evaluation of the `robust` crate, which returns the sign of the exact
 //! determinant of the input coordinates. No epsilon ever decides a sign.
 //!
+//! Both stages hold for every finite input, not only for coordinates of
+//! moderate size: the filters allow for roundings in the subnormal range
+//! ([`UNDERFLOW`]) and certify nothing on overflow, and inputs outside the
+//! range where expansion arithmetic is exact (about `1e-75 ..= 1e75`; see
+//! `dyadic`) are decided by exact big-integer arithmetic instead.
+//!
 //! The number of fallbacks taken by the current thread is counted
 //! ([`exact_fallbacks`]) so that callers can report how often the slow path
 //! was needed.
@@ -16,6 +22,8 @@
 use std::cell::Cell;
 
 use glam::{DVec2, DVec3};
+
+use super::dyadic::{Dyadic, det2_sign, det3_sign, in_safe_range};
 
 /// The sign of an exactly evaluated quantity.
 ///
@@ -128,6 +136,23 @@ const ORIENT3D_BOUND: f64 = (7.0 + 56.0 * HALF_EPSILON) * HALF_EPSILON;
 /// Half a unit in the last place of 1.0: the unit round-off of `f64`.
 const HALF_EPSILON: f64 = f64::EPSILON / 2.0;
 
+/// `2⁻¹⁰⁷⁰`, sixteen times the smallest subnormal: the absolute allowance a
+/// filter adds to its bound for roundings in the subnormal range.
+///
+/// Shewchuk's relative bounds assume that nothing underflows. With gradual
+/// underflow a rounded product is `xy(1 + δ) + η` with `|δ| ≤ ε` and
+/// `|η| ≤ 2⁻¹⁰⁷⁵`, and a sum or difference whose result is subnormal is
+/// exact. So the error of a filter's determinant exceeds the relative bound
+/// by at most the `η` of its products carried to the result: two for a
+/// 2×2 determinant (`2η(1 + ε)`), and for a 3×3 one expanded along its
+/// first row `r` the two of each minor times `|rᵢ|` plus one per outer
+/// product — at most `(1 + ε)³ · 2η · Σ|rᵢ| + 3η(1 + ε)²`. Each filter adds
+/// `UNDERFLOW` (2×2, dot products) or `UNDERFLOW · (Σ|rᵢ| + 1)` (3×3), which
+/// exceeds that with room for the allowance's own rounding. Overflow needs
+/// no allowance: it makes the determinant or the bound infinite or NaN,
+/// which certifies nothing, and the exact path decides.
+pub(crate) const UNDERFLOW: f64 = 16.0 * f64::from_bits(1);
+
 /// Orientation of three points in the plane.
 ///
 /// Returns [`Sign::Positive`] when `a`, `b`, `c` turn counter-clockwise (the
@@ -147,7 +172,7 @@ pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     let left = (a.x - c.x) * (b.y - c.y);
     let right = (a.y - c.y) * (b.x - c.x);
     let det = left - right;
-    let bound = ORIENT2D_BOUND * (left.abs() + right.abs());
+    let bound = ORIENT2D_BOUND * (left.abs() + right.abs()) + UNDERFLOW;
     if det > bound || -det > bound {
         return Sign::of(det);
     }
@@ -158,6 +183,10 @@ pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
 #[inline(never)]
 fn exact_orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     count_fallback();
+    if !in_safe_range(&[a.x, a.y, b.x, b.y, c.x, c.y]) {
+        let d = Dyadic::difference;
+        return det2_sign(&d(a.x, c.x), &d(a.y, c.y), &d(b.x, c.x), &d(b.y, c.y));
+    }
     let p = |v: DVec2| robust::Coord { x: v.x, y: v.y };
     Sign::of(robust::orient2d(p(a), p(b), p(c)))
 }
@@ -197,7 +226,8 @@ pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     let permanent = (bdxcdy.abs() + cdxbdy.abs()) * ad.z.abs()
         + (cdxady.abs() + adxcdy.abs()) * bd.z.abs()
         + (adxbdy.abs() + bdxady.abs()) * cd.z.abs();
-    let bound = ORIENT3D_BOUND * permanent;
+    let bound =
+        ORIENT3D_BOUND * permanent + UNDERFLOW * (ad.z.abs() + bd.z.abs() + cd.z.abs() + 1.0);
     if det > bound || -det > bound {
         // Shewchuk's det is positive when d is below; ours is the opposite.
         return Sign::of(-det);
@@ -209,6 +239,12 @@ pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
 #[inline(never)]
 fn exact_orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     count_fallback();
+    let coordinates = [a, b, c, d].map(|p| p.to_array());
+    if !in_safe_range(coordinates.as_flattened()) {
+        // det[b − a, c − a, d − a]: our sign convention directly.
+        let row = |p: DVec3| [0, 1, 2].map(|k| Dyadic::difference(p[k], a[k]));
+        return det3_sign(&[row(b), row(c), row(d)]);
+    }
     let p = |v: DVec3| robust::Coord3D {
         x: v.x,
         y: v.y,

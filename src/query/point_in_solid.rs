@@ -5,7 +5,7 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use crate::geom::polygon::coplanar_point_in_closed_triangle;
-use crate::geom::{Sign, orient2d, orient3d};
+use crate::geom::{Sign, UNDERFLOW, orient2d, orient3d};
 
 use super::accel::{YzTri, f32_down, f32_up, f64_below};
 use super::{Accel, Containment, QueryError};
@@ -387,10 +387,11 @@ const SHARED_ORIENT2D_BOUND: f64 = ORIENT2D_BOUND * 2.0 * (1.0 + 64.0 * f64::EPS
 /// The bound used here, `(K · m) · m` with `K = 2B(1 + 64ε)`
 /// ([`SHARED_ORIENT2D_BOUND`]), is at least `Km²(1 − ε)²`, which exceeds
 /// `2Bm²(1 + ε)³`. So a sign this filter certifies is one [`orient2d`] would
-/// certify, the exact sign. (As for the other filters: no overflow and no
-/// underflow into the subnormal range; an infinite or NaN bound or
-/// determinant certifies nothing, and every case the filter leaves open goes
-/// to the exact tests of [`cross_x_exact`].)
+/// certify, the exact sign. Roundings in the subnormal range add at most
+/// `2η(1 + ε)` (`η = 2⁻¹⁰⁷⁵`) to each determinant's error, covered by
+/// [`UNDERFLOW`]; overflow makes the bound or a determinant infinite or NaN,
+/// which certifies nothing. Every case the filter leaves open goes to the
+/// exact tests of [`cross_x_exact`].
 ///
 /// Multiplying each determinant by the projection's sign `σ = ±1` is exact,
 /// so the filter decides [`Cross::No`] when one of them is certainly `−σ`
@@ -412,7 +413,7 @@ fn cross_x(t: &YzTri, q: DVec2) -> Cross {
             .max(z0.abs())
             .max(z1.abs())
             .max(z2.abs());
-        let bound = SHARED_ORIENT2D_BOUND * m * m;
+        let bound = SHARED_ORIENT2D_BOUND * m * m + UNDERFLOW;
         if (d0 < -bound) | (d1 < -bound) | (d2 < -bound) {
             return Cross::No;
         }

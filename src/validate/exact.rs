@@ -4,12 +4,15 @@
 //! The volume sign is filtered first (a rounded sum with a forward error
 //! bound) and falls back to exact expansion arithmetic (Shewchuk's
 //! `two_sum`/`two_product` and `grow_expansion`) only when the filter cannot
-//! decide, so nearly flat shells get the right sign too.
+//! decide, so nearly flat shells get the right sign too; coordinates outside
+//! the range where expansions are exact (`geom::dyadic`) are summed in
+//! exact big-integer arithmetic instead.
 
 use glam::{DVec2, DVec3};
 
+use crate::geom::dyadic::{Dyadic, in_safe_range};
 use crate::geom::expansion::{Expansion, two_product};
-use crate::geom::{Sign, orient2d, orient3d};
+use crate::geom::{Sign, UNDERFLOW, orient2d, orient3d};
 
 /// Adds `sign · a · b · c` to `sum` exactly.
 fn grow_triple_product(sum: &mut Expansion, sign: f64, a: f64, b: f64, c: f64) {
@@ -25,6 +28,9 @@ pub(crate) struct VolumeFilter {
     sum: f64,
     magnitude: f64,
     count: f64,
+    /// `Σ (|cₖ| + 1)` over the last factors of the products (see
+    /// [`VolumeFilter::sign`]).
+    last_factors: f64,
 }
 
 impl VolumeFilter {
@@ -43,6 +49,8 @@ impl VolumeFilter {
             self.magnitude += t.abs();
         }
         self.count += 1.0;
+        // Each corner coordinate of `c` ends two of the six products.
+        self.last_factors += 2.0 * (c.x.abs() + c.y.abs() + c.z.abs()) + 6.0;
     }
 
     /// Adds another filter's sums (triangles of the same shell).
@@ -50,17 +58,33 @@ impl VolumeFilter {
         self.sum += other.sum;
         self.magnitude += other.magnitude;
         self.count += other.count;
+        self.last_factors += other.last_factors;
     }
 
     /// The sign when the rounded sum is certain to have it. Each product
     /// carries at most 2 rounding errors and the running sums one per
-    /// addition: `|error| ≤ (6n + 8) ε Σ|terms|` (generous).
+    /// addition: `|error| ≤ (6n + 8) ε Σ|terms|` (generous). A product
+    /// `(a·b)·c` rounded in the subnormal range errs by at most a further
+    /// `η(1 + ε)(|c| + 1)` (`η = 2⁻¹⁰⁷⁵`), covered by `UNDERFLOW · Σ(|c| + 1)`;
+    /// overflow leaves the sum or the bound non-finite, which decides
+    /// nothing.
     pub fn sign(&self) -> Option<Sign> {
-        let bound = (6.0 * self.count + 8.0) * f64::EPSILON * self.magnitude;
+        let bound = (6.0 * self.count + 8.0) * f64::EPSILON * self.magnitude
+            + UNDERFLOW * self.last_factors;
         (self.sum.is_finite() && bound.is_finite() && self.sum.abs() > bound)
             .then(|| Sign::of(self.sum))
     }
 }
+
+/// The six terms of `a·(b × c)`: sign and the axes of `a`, `b`, `c`.
+const VOLUME_TERMS: [(f64, [usize; 3]); 6] = [
+    (1.0, [0, 1, 2]),
+    (-1.0, [0, 2, 1]),
+    (-1.0, [1, 0, 2]),
+    (1.0, [1, 2, 0]),
+    (1.0, [2, 0, 1]),
+    (-1.0, [2, 1, 0]),
+];
 
 /// The exact sign of `Σ a·(b × c)` over the given triangles: six times the
 /// signed volume of a closed triangulated surface (positive when outward).
@@ -73,14 +97,32 @@ pub(crate) fn volume_sign(triangles: &[[DVec3; 3]]) -> Sign {
     if let Some(sign) = filter.sign() {
         return sign;
     }
+    let coordinates = triangles
+        .iter()
+        .flat_map(|t| t.iter().flat_map(|p| p.to_array()));
+    if !coordinates.clone().all(|x| in_safe_range(&[x])) {
+        if !coordinates.clone().all(f64::is_finite) {
+            // Unspecified for non-finite input (never a panic).
+            return Sign::Zero;
+        }
+        let mut exact = Dyadic::of(0.0);
+        for &[a, b, c] in triangles {
+            for (sign, [i, j, k]) in VOLUME_TERMS {
+                let term = &(&Dyadic::of(a[i]) * &Dyadic::of(b[j])) * &Dyadic::of(c[k]);
+                exact = if sign > 0.0 {
+                    &exact + &term
+                } else {
+                    &exact - &term
+                };
+            }
+        }
+        return exact.sign();
+    }
     let mut exact = Expansion::default();
-    for [a, b, c] in triangles {
-        grow_triple_product(&mut exact, 1.0, a.x, b.y, c.z);
-        grow_triple_product(&mut exact, -1.0, a.x, b.z, c.y);
-        grow_triple_product(&mut exact, -1.0, a.y, b.x, c.z);
-        grow_triple_product(&mut exact, 1.0, a.y, b.z, c.x);
-        grow_triple_product(&mut exact, 1.0, a.z, b.x, c.y);
-        grow_triple_product(&mut exact, -1.0, a.z, b.y, c.x);
+    for &[a, b, c] in triangles {
+        for (sign, [i, j, k]) in VOLUME_TERMS {
+            grow_triple_product(&mut exact, sign, a[i], b[j], c[k]);
+        }
     }
     exact.sign()
 }
