@@ -78,7 +78,7 @@ pub struct TraversalStats {
 
 /// Where a traversal reports its work: nowhere (the queries) or into a
 /// [`TraversalStats`] (the traced forms).
-trait Tally {
+pub(super) trait Tally {
     fn node(&mut self);
     fn triangle(&mut self);
     fn exact_test(&mut self);
@@ -244,11 +244,17 @@ pub(super) type BestHit = Option<(f64, u32, Sign)>;
 
 /// The same ray with its direction multiplied by a power of two so that its
 /// largest component lies in `[1, 2)`, and the factor that turns its
-/// parameters back into the caller's. Exact: the line and
-/// the half-line `t > 0` do not change, only the unit of `t`; the exact
-/// predicates then never see a direction whose products overflow or
-/// underflow (a direction of `1e308` or `5e-324`; found by the queries
-/// fuzz check).
+/// parameters back into the caller's: the half-line `t > 0` does not
+/// change, only the unit of `t`, and the slab tests and crossing parameters
+/// see directions of one size (a direction of `1e308` or `5e-324` overflowed
+/// or underflowed them; found by the queries fuzz check).
+///
+/// Scaling down can round a component far smaller than the largest (a
+/// direction `(64, 0, 2⁻¹⁰⁶⁹)` loses its `z`): then the scaled ray is a
+/// different line, good for the conservative box tests and for `t` but not
+/// for decisions. [`scales_exactly`] says which; where it does not, the
+/// exact tests take the caller's ray (their signs do not depend on the
+/// direction's length, symbolic perturbation included).
 #[inline(always)]
 pub(super) fn unit_scaled(ray: &Ray) -> (Ray, f64) {
     let largest = ray.direction.abs().max_element();
@@ -273,9 +279,63 @@ pub(super) fn unit_scaled(ray: &Ray) -> (Ray, f64) {
     (Ray::new(ray.origin, direction), factor)
 }
 
+/// Whether [`unit_scaled`] turned `ray` into `scaled` without rounding:
+/// scaling back by the inverse power of two (exact: the scaled components
+/// are below 2) gives the caller's direction.
+#[inline(always)]
+pub(super) fn scales_exactly(ray: &Ray, scaled: &Ray, factor: f64) -> bool {
+    factor == 1.0 || scaled.direction * (1.0 / factor) == ray.direction
+}
+
+/// The ray the exact tests decide with: `scaled` when [`unit_scaled`] made
+/// it without rounding, else the caller's `ray` (the same half-line).
+#[inline(always)]
+pub(super) fn deciding_ray(ray: &Ray, scaled: &Ray, factor: f64) -> Ray {
+    if scales_exactly(ray, scaled, factor) {
+        *scaled
+    } else {
+        *ray
+    }
+}
+
+/// `2⁻⁶⁰⁰`: below this denominator [`Accel::plane_t`]'s plain formula may
+/// have lost `n` to underflow.
+const PLANE_T_DENOMINATOR: f64 = pow2(-600);
+
+/// [`Accel::plane_t`] for triangles or distances of extreme size: the
+/// corners and origin are first scaled down by `2⁻⁶⁴` if any coordinate is
+/// beyond `2¹⁰⁰⁰` (so that differences cannot overflow), then the edges and
+/// `a − o` are each scaled by a power of two to a largest component in
+/// `[1, 2)`, so that the cross product neither underflows nor overflows;
+/// the powers of two are divided out of the quotient at the end (exactly,
+/// unless the true `t` itself is beyond the `f64` range).
+#[cold]
+#[inline(never)]
+fn plane_t_rescaled([a, b, c]: [DVec3; 3], ray: &Ray) -> f64 {
+    let far = [a, b, c, ray.origin]
+        .iter()
+        .any(|p| p.abs().max_element() > pow2(1000));
+    let pre = if far { pow2(-64) } else { 1.0 };
+    let (a, b, c, o) = (a * pre, b * pre, c * pre, ray.origin * pre);
+    // `v · 2^k` with its largest component in [1, 2), and `2^k`.
+    let unit = |v: DVec3| {
+        let m = v.abs().max_element();
+        if m == 0.0 || !m.is_finite() {
+            return (v, 1.0);
+        }
+        let k = (-m.log2().floor() as i32).clamp(-1022, 1022);
+        (v * pow2(k), pow2(k))
+    };
+    let ((e1, _), (e2, _)) = (unit(b - a), unit(c - a));
+    let (w, w_scale) = unit(a - o);
+    let n = e1.cross(e2);
+    // t = n·(a − o) / n·d, and (a − o) = w / w_scale / pre.
+    n.dot(w) / n.dot(ray.direction) / w_scale / pre
+}
+
 /// `2^k` for `k` in −1022 ..= 1023 (a normal `f64`), built from its bits.
-fn pow2(k: i32) -> f64 {
-    debug_assert!((-1022..=1023).contains(&k));
+const fn pow2(k: i32) -> f64 {
+    debug_assert!(-1022 <= k && k <= 1023);
     f64::from_bits(((k + 1023) as u64) << 52)
 }
 
@@ -322,12 +382,15 @@ impl Accel {
     pub fn ray_crossings(&self, ray: &Ray) -> Result<RayCrossings, QueryError> {
         self.check_ray(ray, 0)?;
         self.require_closed()?;
-        let (ray, t_scale) = unit_scaled(ray);
-        let ray = &ray;
+        let ray_given = *ray;
+        let (scaled, t_scale) = unit_scaled(ray);
+        let decide = &deciding_ray(ray, &scaled, t_scale);
+        let ray = &scaled;
         let mut on_boundary = false;
         let mut hits: Vec<(f64, u32, Sign)> = Vec::new();
-        self.traverse(ray, f64::INFINITY, &mut (), |i, _| {
-            match self.hit_triangle::<true>(ray, i) {
+        let exact = scales_exactly(&ray_given, ray, t_scale);
+        self.traverse(ray, exact, f64::INFINITY, &mut (), |i, _| {
+            match self.hit_triangle::<true>(decide, i) {
                 TriHit::Miss => {}
                 TriHit::Origin => on_boundary = true,
                 TriHit::Cross(s) => hits.push((self.t_of(ray, i), i, s)),
@@ -445,22 +508,35 @@ impl Accel {
 
     #[inline(always)]
     fn first_hit_tallied(&self, ray: &Ray, tally: &mut impl Tally) -> Option<Crossing> {
-        let (ray, t_scale) = unit_scaled(ray);
-        let ray = &ray;
+        self.first_best(ray, tally)
+            .map(|(t, i, s)| self.crossing(t, i, s))
+    }
+
+    /// The first crossing of `ray` (checked valid) as its rounded `t` in the
+    /// caller's units, triangle and sign, walking one ray at a time.
+    #[inline(always)]
+    pub(super) fn first_best(&self, ray: &Ray, tally: &mut impl Tally) -> BestHit {
+        let (scaled, t_scale) = unit_scaled(ray);
+        let exact = scales_exactly(ray, &scaled, t_scale);
+        let decide = &deciding_ray(ray, &scaled, t_scale);
+        let ray = &scaled;
         let mut best: BestHit = None;
-        self.traverse(ray, f64::INFINITY, tally, |i, t_max| {
-            self.consider_for_first_hit(ray, i, &mut best, t_max)
+        self.traverse(ray, exact, f64::INFINITY, tally, |i, t_max| {
+            self.consider_for_first_hit(ray, decide, i, &mut best, t_max)
         });
-        best.map(|(t, i, s)| self.crossing(unscaled_t(t, t_scale), i, s))
+        best.map(|(t, i, s)| (unscaled_t(t, t_scale), i, s))
     }
 
     /// Tests triangle `i` for the first hit of `ray`, updating `best`;
     /// returns the new limit `t` (the best crossing's, or `t_max` when it
-    /// did not change).
+    /// did not change). `t` is measured along `ray` (scaled by
+    /// [`unit_scaled`]); the crossing is decided with `decide`, the same
+    /// half-line exactly ([`deciding_ray`]).
     #[inline(always)]
     pub(super) fn consider_for_first_hit(
         &self,
         ray: &Ray,
+        decide: &Ray,
         i: u32,
         best: &mut BestHit,
         t_max: f64,
@@ -483,7 +559,7 @@ impl Accel {
             }
             None => None,
         };
-        if let TriHit::Cross(s) = self.hit_triangle::<false>(ray, i) {
+        if let TriHit::Cross(s) = self.hit_triangle::<false>(decide, i) {
             let raw = raw.unwrap_or_else(|| self.plane_t(ray, i));
             let t = if raw > 0.0 { raw } else { f64::MIN_POSITIVE };
             let better = match *best {
@@ -529,12 +605,27 @@ impl Accel {
     }
 
     /// The rounded parameter of the ray's crossing with triangle `i`'s
-    /// plane, unclamped (any sign, `±∞` or NaN for a parallel ray).
+    /// plane, unclamped (any sign, `±∞` or NaN for a parallel ray). `ray`
+    /// is scaled by [`unit_scaled`] (largest direction component in
+    /// `[1, 2)`).
+    ///
+    /// `t = n·(a − o) / n·d` with `n = (b − a) × (c − a)`. When the
+    /// denominator is at least `2⁻⁶⁰⁰` and nothing overflowed, every
+    /// component of `n` that matters is far above the subnormal range and
+    /// the quotient is accurate; otherwise (triangles of size `1e-160` or
+    /// `1e200`, origins near `f64::MAX`) it is recomputed with the edges
+    /// and `a − o` brought to unit size by powers of two
+    /// ([`plane_t_rescaled`]).
     #[inline(always)]
     fn plane_t(&self, ray: &Ray, i: u32) -> f64 {
         let [a, b, c] = self.tris[i as usize].corners();
         let n = (b - a).cross(c - a);
-        n.dot(a - ray.origin) / n.dot(ray.direction)
+        let (num, den) = (n.dot(a - ray.origin), n.dot(ray.direction));
+        if den.abs() >= PLANE_T_DENOMINATOR && num.is_finite() && den.is_finite() {
+            num / den
+        } else {
+            plane_t_rescaled([a, b, c], ray)
+        }
     }
 
     /// How `ray` meets triangle `i`; with `ORIGIN = false` the (costlier)
@@ -610,13 +701,20 @@ impl Accel {
     /// [`TriPacket`](super::tri_packet::TriPacket) proves missed.
     /// `visit(i, t_max)` returns the new limit (a `t`). Deferred children
     /// are kept with their entry parameter, so that one beyond the limit is
-    /// dropped without touching its node or packet. Nodes are opened with
+    /// dropped without touching its node or packet. The leaves' filter
+    /// drops triangles only when `filter_misses` (its proof is for a ray
+    /// [`unit_scaled`] without rounding, [`scales_exactly`]); the box tests
+    /// are conservative for the caller's ray either way (a component that
+    /// rounds is below `2⁻¹⁰²²`, so its slab's entry beyond a box plane is
+    /// past `2⁸⁷³` — beyond every finite `f32` limit — exactly or rounded to
+    /// 0). Nodes are opened with
     /// AVX2 where the processor has it (see `node_open`); the walk is the
     /// same either way.
     #[inline(always)]
     fn traverse(
         &self,
         ray: &Ray,
+        filter_misses: bool,
         t_max: f64,
         tally: &mut impl Tally,
         visit: impl FnMut(u32, f64) -> f64,
@@ -624,10 +722,10 @@ impl Accel {
         #[cfg(target_arch = "x86_64")]
         if let Some(lanes) = Avx2::detect() {
             // SAFETY: AVX2 was detected.
-            unsafe { self.traverse_avx2(lanes, ray, t_max, tally, visit) };
+            unsafe { self.traverse_avx2(lanes, ray, filter_misses, t_max, tally, visit) };
             return;
         }
-        self.traverse_with(Portable, ray, t_max, tally, visit);
+        self.traverse_with(Portable, ray, filter_misses, t_max, tally, visit);
     }
 
     /// [`Accel::traverse`] compiled for AVX2, so that the node opening is
@@ -638,11 +736,12 @@ impl Accel {
         &self,
         lanes: Avx2,
         ray: &Ray,
+        filter_misses: bool,
         t_max: f64,
         tally: &mut impl Tally,
         visit: impl FnMut(u32, f64) -> f64,
     ) {
-        self.traverse_with(lanes, ray, t_max, tally, visit);
+        self.traverse_with(lanes, ray, filter_misses, t_max, tally, visit);
     }
 
     /// [`Accel::traverse`] with nodes opened by `lanes`.
@@ -651,12 +750,16 @@ impl Accel {
         &self,
         lanes: impl NodeLanes,
         ray: &Ray,
+        filter_misses: bool,
         t_max: f64,
         tally: &mut impl Tally,
         mut visit: impl FnMut(u32, f64) -> f64,
     ) {
         let rb = RayBox::new(ray, &self.frame);
-        let pr = PacketRay::new(ray, self.frame.scale);
+        let mut pr = PacketRay::new(ray, self.frame.scale);
+        if !filter_misses {
+            pr = pr.blind();
+        }
         let mut t_limit = t_max;
         let mut limit = rb.limit(t_limit);
         let mut local = [Deferred::EMPTY; LOCAL_STACK];

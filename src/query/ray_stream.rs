@@ -21,7 +21,7 @@ use super::accel::{LEAF, Node8, YzTri};
 use super::node_open::Avx2;
 use super::node_open::{NodeLanes, Portable};
 use super::ray_solid::{
-    BestHit, Crossing, Deferred, RayBox, prefetch_bytes, unit_scaled, unscaled_t,
+    BestHit, Crossing, Deferred, RayBox, prefetch_bytes, scales_exactly, unit_scaled, unscaled_t,
 };
 use super::tri_packet::{PacketRay, TriPacket};
 
@@ -66,12 +66,12 @@ struct Walk {
 }
 
 impl Walk {
-    /// The walk of ray `index`, `r`, with room for the deepest path of
-    /// `accel`'s tree, the root opened.
+    /// A walk with nothing to do yet, with room for the deepest path of
+    /// `accel`'s tree.
     #[inline(always)]
-    fn new(lanes: impl NodeLanes, index: usize, r: &Ray, accel: &Accel) -> Walk {
+    fn idle(accel: &Accel) -> Walk {
         let ray = Ray::new(glam::DVec3::ZERO, glam::DVec3::X);
-        let mut walk = Walk {
+        Walk {
             ray: 0,
             scaled: ray,
             t_scale: 1.0,
@@ -83,16 +83,22 @@ impl Walk {
             pending: (0, 0),
             stack: vec![Deferred::EMPTY; accel.stack_len],
             top: 0,
-        };
-        walk.start(lanes, index, r, accel);
-        walk
+        }
     }
 
-    /// Starts the walk of ray `index`, `r`, in place (the stack's memory is
-    /// reused): the root is opened at once (it stays in cache).
+    /// Starts the walk of ray `index`, already scaled by [`unit_scaled`]
+    /// into `scaled` without rounding (factor `t_scale`), in place (the
+    /// stack's memory is reused): the root is opened at once (it stays in
+    /// cache).
     #[inline(always)]
-    fn start(&mut self, lanes: impl NodeLanes, index: usize, r: &Ray, accel: &Accel) {
-        let (scaled, t_scale) = unit_scaled(r);
+    fn start(
+        &mut self,
+        lanes: impl NodeLanes,
+        index: usize,
+        scaled: Ray,
+        t_scale: f64,
+        accel: &Accel,
+    ) {
         self.ray = index;
         self.scaled = scaled;
         self.t_scale = t_scale;
@@ -167,10 +173,16 @@ impl Accel {
         // face is looked up after all walks, where the lookups (a cache miss
         // each on large meshes) overlap instead of stalling the walks.
         let mut best: Vec<BestHit> = vec![None; rays.len()];
-        let mut walks: Vec<Walk> = (0..rays.len().min(LANES))
-            .map(|k| Walk::new(lanes, k, &rays[k], self))
-            .collect();
-        let (mut fed, mut live, mut k) = (walks.len(), walks.len(), 0);
+        let mut fed = 0;
+        let mut walks: Vec<Walk> = Vec::with_capacity(LANES);
+        while walks.len() < LANES.min(rays.len()) {
+            let mut w = Walk::idle(self);
+            if !self.feed(lanes, &mut w, rays, &mut fed, &mut best) {
+                break;
+            }
+            walks.push(w);
+        }
+        let (mut live, mut k) = (walks.len(), 0);
         // `walks[..live]` are under way, taken in turn.
         while live > 0 {
             if k >= live {
@@ -179,10 +191,7 @@ impl Accel {
             let w = &mut walks[k];
             if self.step::<ASK_AHEAD>(lanes, w) {
                 best[w.ray] = w.best.map(|(t, i, s)| (unscaled_t(t, w.t_scale), i, s));
-                if fed < rays.len() {
-                    w.start(lanes, fed, &rays[fed], self);
-                    fed += 1;
-                } else {
+                if !self.feed(lanes, w, rays, &mut fed, &mut best) {
                     live -= 1;
                     walks.swap(k, live);
                     continue;
@@ -193,6 +202,33 @@ impl Accel {
         for (o, b) in out.iter_mut().zip(best) {
             o.write(b.map(|(t, i, s)| self.crossing(t, i, s)));
         }
+    }
+
+    /// Starts `w` on the next ray from `rays[*fed..]` whose direction
+    /// [`unit_scaled`] scales without rounding; the (rare) rays it would
+    /// round are answered on the way by the one-ray walk, which decides
+    /// with the caller's direction ([`Accel::first_best`]). Returns whether
+    /// a walk was started.
+    #[inline(always)]
+    fn feed(
+        &self,
+        lanes: impl NodeLanes,
+        w: &mut Walk,
+        rays: &[Ray],
+        fed: &mut usize,
+        best: &mut [BestHit],
+    ) -> bool {
+        while let Some(r) = rays.get(*fed) {
+            let index = *fed;
+            *fed += 1;
+            let (scaled, t_scale) = unit_scaled(r);
+            if scales_exactly(r, &scaled, t_scale) {
+                w.start(lanes, index, scaled, t_scale, self);
+                return true;
+            }
+            best[index] = self.first_best(r, &mut ());
+        }
+        false
     }
 
     /// One step of a walk: decide exactly the triangles the previous step's
@@ -208,7 +244,8 @@ impl Accel {
         while undecided != 0 {
             let i = first + undecided.trailing_zeros();
             undecided &= undecided - 1;
-            let t_new = self.consider_for_first_hit(&w.scaled, i, &mut w.best, w.t_limit);
+            let t_new =
+                self.consider_for_first_hit(&w.scaled, &w.scaled, i, &mut w.best, w.t_limit);
             if t_new != w.t_limit {
                 w.t_limit = t_new;
                 w.limit = w.rays_box.limit(t_new);

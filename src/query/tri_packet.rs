@@ -177,6 +177,20 @@ const SIDE_BOUND: f32 = 64.0 / (1u32 << 24) as f32;
 const TINY: f32 = f32::MIN_POSITIVE;
 
 impl PacketRay {
+    /// This ray with a filter that proves nothing (every triangle goes to
+    /// the exact test): for a ray whose direction [`unit_scaled`] had to
+    /// round, which the proof of [`TriPacket::undecided`] does not cover.
+    /// An infinite `S` makes the bound infinite.
+    ///
+    /// [`unit_scaled`]: super::ray_solid::unit_scaled
+    #[must_use]
+    pub(super) fn blind(self) -> PacketRay {
+        PacketRay {
+            length: f32::INFINITY,
+            ..self
+        }
+    }
+
     /// `ray` (with its direction scaled by
     /// [`unit_scaled`](super::ray_solid::unit_scaled)) against the packets
     /// of an accel with frame scale `scale`.
