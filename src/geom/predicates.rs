@@ -210,7 +210,7 @@ fn exact_orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
 ///
 /// Non-finite input gives an unspecified sign (never a panic).
 #[must_use]
-#[inline]
+#[inline(always)]
 pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     // Shewchuk's layout: differences against d, determinant sign negated.
     let ad = a - d;

@@ -279,12 +279,13 @@ pub(super) fn unit_scaled(ray: &Ray) -> (Ray, f64) {
     (Ray::new(ray.origin, direction), factor)
 }
 
-/// Whether [`unit_scaled`] turned `ray` into `scaled` without rounding:
-/// scaling back by the inverse power of two (exact: the scaled components
-/// are below 2) gives the caller's direction.
+/// Whether [`unit_scaled`] turned `ray` into `scaled` without rounding.
+/// Scaling up (`factor ≥ 1`) never rounds: nothing ends above 2. Scaling
+/// down rounded when scaling back by the inverse power of two (exact: the
+/// scaled components are below 2) does not give the caller's direction.
 #[inline(always)]
 pub(super) fn scales_exactly(ray: &Ray, scaled: &Ray, factor: f64) -> bool {
-    factor == 1.0 || scaled.direction * (1.0 / factor) == ray.direction
+    factor >= 1.0 || scaled.direction * (1.0 / factor) == ray.direction
 }
 
 /// The ray the exact tests decide with: `scaled` when [`unit_scaled`] made
@@ -610,7 +611,8 @@ impl Accel {
     /// `[1, 2)`).
     ///
     /// `t = n·(a − o) / n·d` with `n = (b − a) × (c − a)`. When the
-    /// denominator is at least `2⁻⁶⁰⁰` and nothing overflowed, every
+    /// denominator is at least `2⁻⁶⁰⁰` and `t` is finite (nothing
+    /// overflowed), every
     /// component of `n` that matters is far above the subnormal range and
     /// the quotient is accurate; otherwise (triangles of size `1e-160` or
     /// `1e200`, origins near `f64::MAX`) it is recomputed with the edges
@@ -620,9 +622,12 @@ impl Accel {
     fn plane_t(&self, ray: &Ray, i: u32) -> f64 {
         let [a, b, c] = self.tris[i as usize].corners();
         let n = (b - a).cross(c - a);
-        let (num, den) = (n.dot(a - ray.origin), n.dot(ray.direction));
-        if den.abs() >= PLANE_T_DENOMINATOR && num.is_finite() && den.is_finite() {
-            num / den
+        let den = n.dot(ray.direction);
+        let t = n.dot(a - ray.origin) / den;
+        // An overflow anywhere leaves `t` infinite or NaN (an infinite `n`
+        // meets a non-zero or a zero coordinate of `a − o`).
+        if den.abs() >= PLANE_T_DENOMINATOR && t.is_finite() {
+            t
         } else {
             plane_t_rescaled([a, b, c], ray)
         }

@@ -66,12 +66,12 @@ struct Walk {
 }
 
 impl Walk {
-    /// A walk with nothing to do yet, with room for the deepest path of
-    /// `accel`'s tree.
+    /// The walk of ray `index`, `r`, with room for the deepest path of
+    /// `accel`'s tree, the root opened.
     #[inline(always)]
-    fn idle(accel: &Accel) -> Walk {
+    fn new(lanes: impl NodeLanes, index: usize, r: &Ray, accel: &Accel) -> Walk {
         let ray = Ray::new(glam::DVec3::ZERO, glam::DVec3::X);
-        Walk {
+        let mut walk = Walk {
             ray: 0,
             scaled: ray,
             t_scale: 1.0,
@@ -83,23 +83,25 @@ impl Walk {
             pending: (0, 0),
             stack: vec![Deferred::EMPTY; accel.stack_len],
             top: 0,
-        }
+        };
+        walk.start(lanes, index, r, accel);
+        walk
     }
 
-    /// Starts the walk of ray `index`, already scaled by [`unit_scaled`]
-    /// into `scaled` without rounding (factor `t_scale`), in place (the
-    /// stack's memory is reused): the root is opened at once (it stays in
-    /// cache).
+    /// Starts the walk of ray `index`, `r`, in place (the stack's memory is
+    /// reused): the root is opened at once (it stays in cache). A ray whose
+    /// direction [`unit_scaled`] would round (rare: a component below
+    /// `2⁻¹⁰²²` of the largest) is answered here by the one-ray walk, which
+    /// decides with the caller's direction ([`Accel::first_best`]); its walk
+    /// is then over at its first step.
     #[inline(always)]
-    fn start(
-        &mut self,
-        lanes: impl NodeLanes,
-        index: usize,
-        scaled: Ray,
-        t_scale: f64,
-        accel: &Accel,
-    ) {
+    fn start(&mut self, lanes: impl NodeLanes, index: usize, r: &Ray, accel: &Accel) {
+        let (scaled, t_scale) = unit_scaled(r);
         self.ray = index;
+        if !scales_exactly(r, &scaled, t_scale) {
+            self.answer_alone(r, accel);
+            return;
+        }
         self.scaled = scaled;
         self.t_scale = t_scale;
         self.rays_box = RayBox::new(&scaled, &accel.frame);
@@ -109,6 +111,17 @@ impl Walk {
         self.limit = self.rays_box.limit(f64::INFINITY);
         self.pending = (0, 0);
         self.top = accel.open_node(lanes, &self.rays_box, 0, self.limit, &mut self.stack, 0);
+    }
+
+    /// The answer for `r` by [`Accel::first_best`], left as this walk's
+    /// best (in the caller's units: `t_scale` 1) with nothing to visit.
+    #[cold]
+    #[inline(never)]
+    fn answer_alone(&mut self, r: &Ray, accel: &Accel) {
+        self.best = accel.first_best(r, &mut ());
+        self.t_scale = 1.0;
+        self.pending = (0, 0);
+        self.top = 0;
     }
 }
 
@@ -173,16 +186,10 @@ impl Accel {
         // face is looked up after all walks, where the lookups (a cache miss
         // each on large meshes) overlap instead of stalling the walks.
         let mut best: Vec<BestHit> = vec![None; rays.len()];
-        let mut fed = 0;
-        let mut walks: Vec<Walk> = Vec::with_capacity(LANES);
-        while walks.len() < LANES.min(rays.len()) {
-            let mut w = Walk::idle(self);
-            if !self.feed(lanes, &mut w, rays, &mut fed, &mut best) {
-                break;
-            }
-            walks.push(w);
-        }
-        let (mut live, mut k) = (walks.len(), 0);
+        let mut walks: Vec<Walk> = (0..rays.len().min(LANES))
+            .map(|k| Walk::new(lanes, k, &rays[k], self))
+            .collect();
+        let (mut fed, mut live, mut k) = (walks.len(), walks.len(), 0);
         // `walks[..live]` are under way, taken in turn.
         while live > 0 {
             if k >= live {
@@ -191,7 +198,10 @@ impl Accel {
             let w = &mut walks[k];
             if self.step::<ASK_AHEAD>(lanes, w) {
                 best[w.ray] = w.best.map(|(t, i, s)| (unscaled_t(t, w.t_scale), i, s));
-                if !self.feed(lanes, w, rays, &mut fed, &mut best) {
+                if fed < rays.len() {
+                    w.start(lanes, fed, &rays[fed], self);
+                    fed += 1;
+                } else {
                     live -= 1;
                     walks.swap(k, live);
                     continue;
@@ -202,33 +212,6 @@ impl Accel {
         for (o, b) in out.iter_mut().zip(best) {
             o.write(b.map(|(t, i, s)| self.crossing(t, i, s)));
         }
-    }
-
-    /// Starts `w` on the next ray from `rays[*fed..]` whose direction
-    /// [`unit_scaled`] scales without rounding; the (rare) rays it would
-    /// round are answered on the way by the one-ray walk, which decides
-    /// with the caller's direction ([`Accel::first_best`]). Returns whether
-    /// a walk was started.
-    #[inline(always)]
-    fn feed(
-        &self,
-        lanes: impl NodeLanes,
-        w: &mut Walk,
-        rays: &[Ray],
-        fed: &mut usize,
-        best: &mut [BestHit],
-    ) -> bool {
-        while let Some(r) = rays.get(*fed) {
-            let index = *fed;
-            *fed += 1;
-            let (scaled, t_scale) = unit_scaled(r);
-            if scales_exactly(r, &scaled, t_scale) {
-                w.start(lanes, index, scaled, t_scale, self);
-                return true;
-            }
-            best[index] = self.first_best(r, &mut ());
-        }
-        false
     }
 
     /// One step of a walk: decide exactly the triangles the previous step's
