@@ -629,7 +629,7 @@ impl Accel {
         if den.abs() >= PLANE_T_DENOMINATOR && t.is_finite() {
             t
         } else {
-            plane_t_rescaled([a, b, c], ray)
+            plane_t_rescaled(self.tris[i as usize].corners(), ray)
         }
     }
 
