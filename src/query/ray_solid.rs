@@ -288,17 +288,6 @@ pub(super) fn scales_exactly(ray: &Ray, scaled: &Ray, factor: f64) -> bool {
     factor >= 1.0 || scaled.direction * (1.0 / factor) == ray.direction
 }
 
-/// The ray the exact tests decide with: `scaled` when [`unit_scaled`] made
-/// it without rounding, else the caller's `ray` (the same half-line).
-#[inline(always)]
-pub(super) fn deciding_ray(ray: &Ray, scaled: &Ray, factor: f64) -> Ray {
-    if scales_exactly(ray, scaled, factor) {
-        *scaled
-    } else {
-        *ray
-    }
-}
-
 /// `2⁻⁶⁰⁰`: below this denominator [`Accel::plane_t`]'s plain formula may
 /// have lost `n` to underflow.
 const PLANE_T_DENOMINATOR: f64 = pow2(-600);
@@ -383,13 +372,13 @@ impl Accel {
     pub fn ray_crossings(&self, ray: &Ray) -> Result<RayCrossings, QueryError> {
         self.check_ray(ray, 0)?;
         self.require_closed()?;
-        let ray_given = *ray;
         let (scaled, t_scale) = unit_scaled(ray);
-        let decide = &deciding_ray(ray, &scaled, t_scale);
+        // Decided with the caller's ray when the scaling rounded.
+        let exact = scales_exactly(ray, &scaled, t_scale);
+        let decide = if exact { &scaled } else { ray };
         let ray = &scaled;
         let mut on_boundary = false;
         let mut hits: Vec<(f64, u32, Sign)> = Vec::new();
-        let exact = scales_exactly(&ray_given, ray, t_scale);
         self.traverse(ray, exact, f64::INFINITY, &mut (), |i, _| {
             match self.hit_triangle::<true>(decide, i) {
                 TriHit::Miss => {}
@@ -518,8 +507,9 @@ impl Accel {
     #[inline(always)]
     pub(super) fn first_best(&self, ray: &Ray, tally: &mut impl Tally) -> BestHit {
         let (scaled, t_scale) = unit_scaled(ray);
+        // Decided with the caller's ray when the scaling rounded.
         let exact = scales_exactly(ray, &scaled, t_scale);
-        let decide = &deciding_ray(ray, &scaled, t_scale);
+        let decide = if exact { &scaled } else { ray };
         let ray = &scaled;
         let mut best: BestHit = None;
         self.traverse(ray, exact, f64::INFINITY, tally, |i, t_max| {
@@ -532,7 +522,8 @@ impl Accel {
     /// returns the new limit `t` (the best crossing's, or `t_max` when it
     /// did not change). `t` is measured along `ray` (scaled by
     /// [`unit_scaled`]); the crossing is decided with `decide`, the same
-    /// half-line exactly ([`deciding_ray`]).
+    /// half-line exactly (the caller's ray when [`scales_exactly`] says
+    /// the scaling rounded).
     #[inline(always)]
     pub(super) fn consider_for_first_hit(
         &self,

@@ -234,6 +234,37 @@ mod tests {
     }
 
     #[test]
+    fn volume_sign_over_the_whole_range() {
+        // Cubes whose triple products underflow (2^-400: 2^-1200 per term)
+        // or overflow (2^400), one far from its size (2^250 at 2^300: the
+        // rounded sum cancels to nothing), and a flat shell at 2^-1000
+        // (exact zero).
+        let scale = |k: i32| 2f64.powi(k);
+        for (offset, size) in [
+            (DVec3::ZERO, scale(-400)),
+            (DVec3::splat(scale(-399)), scale(-400)),
+            (DVec3::ZERO, scale(400)),
+            (DVec3::new(scale(300), 0., 0.), scale(250)),
+        ] {
+            for outward in [true, false] {
+                let want = if outward {
+                    Sign::Positive
+                } else {
+                    Sign::Negative
+                };
+                let c = cube(offset, size, outward);
+                assert_eq!(volume_sign(&c), want, "{offset} {size:e} {outward}");
+            }
+        }
+        let p = |x: f64, y: f64| DVec3::new(x, y, 0.0) * scale(-1000);
+        let flat = [
+            [p(0., 0.), p(1., 0.), p(0., 1.)],
+            [p(0., 0.), p(0., 1.), p(1., 0.)],
+        ];
+        assert_eq!(volume_sign(&flat), Sign::Zero);
+    }
+
+    #[test]
     fn exact_fallback_for_a_flat_shell() {
         // A doubly covered triangle encloses nothing: the sum is exactly 0.
         let t = [
