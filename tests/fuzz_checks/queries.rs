@@ -16,8 +16,8 @@
 //! - the CSG trees refuse non-finite points and invalid rays (the `try_`
 //!   forms); their spans are strictly ascending with `t > 0`, the first hit
 //!   is the first span boundary, and on exact leaves a point strictly inside
-//!   or outside agrees with the spans of a ray from it (within
-//!   [`in_csg_checked_range`]).
+//!   or outside agrees with the spans of a ray from it (both are boolean
+//!   combinations of the leaves' exact decisions, for every finite ray).
 //!
 //! Coordinates are decoded from the bytes: one tag byte picks a special
 //! value (NaN, ±∞, ±0, subnormals, ±1e308, the solids' vertex coordinates,
@@ -178,24 +178,6 @@ fn check_point(solid: &Fixed, p: DVec3) {
         Err(QueryError::NotConvex(_)) => assert!(!solid.convex, "{}", solid.name),
         Err(e) => panic!("{}: normals at {p:?}: {e}", solid.name),
     }
-}
-
-/// Whether the CSG tree's point-versus-span agreement is asserted for this
-/// ray: every origin coordinate 0 or of magnitude `1e-90 ..= 1e90`, and every
-/// direction component 0 or at least `1e-90` of the largest. The tree merges
-/// its leaves' crossings by their rounded `t` and its primitives compute
-/// `t` in floating point; this is the range in which that check has been
-/// fuzzed clean. (The accel's own answers are checked for every finite ray,
-/// in [`check_ray`].)
-fn in_csg_checked_range(ray: &Ray) -> bool {
-    let ok = |x: f64| x == 0.0 || (1e-90..=1e90).contains(&x.abs());
-    let largest = ray.direction.abs().max_element();
-    ray.origin.to_array().into_iter().all(ok)
-        && ray
-            .direction
-            .to_array()
-            .into_iter()
-            .all(|d| d == 0.0 || d.abs() / largest >= 1e-90)
 }
 
 fn check_ray(solid: &Fixed, ray: &Ray) {
@@ -368,7 +350,6 @@ fn check_tree(tree: &Csg, exact: bool, p: DVec3, ray: &Ray) {
         let _ = tree.hit_normal(ray, &hit, &mut stats);
     }
     let _ = (spans.intervals(), spans.total_length());
-    let exact = exact && in_csg_checked_range(&Ray::new(p, ray.direction));
     if let (true, Ok(class)) = (exact, class) {
         let from_p = tree.spans(&Ray::new(p, ray.direction), &mut stats);
         match class {
