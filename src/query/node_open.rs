@@ -58,8 +58,8 @@ impl NodeLanes for Portable {
             let mut t0 = F32x4::splat(0.0);
             let mut t1 = F32x4::splat(limit);
             for a in 0..3 {
-                let near = lanes(&n.bounds[rb.near_row[a]]);
-                let far = lanes(&n.bounds[rb.far_row[a]]);
+                let near = lanes(&n.bounds[rb.near_row[a].index()]);
+                let far = lanes(&n.bounds[rb.far_row[a].index()]);
                 let tn = near
                     .sub(F32x4::splat(rb.o_near[a]))
                     .mul(F32x4::splat(rb.inv_near[a]));
@@ -121,13 +121,33 @@ mod avx2 {
     /// Node opening with AVX2; a value exists only when the processor has
     /// AVX2 ([`Avx2::detect`]).
     #[derive(Clone, Copy, Debug)]
-    pub(in super::super) struct Avx2(());
+    pub(in super::super) struct Avx2 {
+        /// Whether the processor also runs the AVX-512 instructions the
+        /// walks are compiled for where offered (`avx512f`, `avx512vl`,
+        /// `avx512bw`, `avx512dq`, with `bmi2` and `fma`): the same lane
+        /// operations in their EVEX forms, with 32 vector registers and
+        /// broadcasts folded into the arithmetic.
+        avx512: bool,
+    }
 
     impl Avx2 {
         /// `Some` when this processor runs AVX2 instructions.
         #[inline]
         pub(in super::super) fn detect() -> Option<Avx2> {
-            is_x86_feature_detected!("avx2").then_some(Avx2(()))
+            is_x86_feature_detected!("avx2").then(|| Avx2 {
+                avx512: is_x86_feature_detected!("avx512f")
+                    && is_x86_feature_detected!("avx512vl")
+                    && is_x86_feature_detected!("avx512bw")
+                    && is_x86_feature_detected!("avx512dq")
+                    && is_x86_feature_detected!("bmi2")
+                    && is_x86_feature_detected!("fma"),
+            })
+        }
+
+        /// Whether the walks may run their AVX-512 builds.
+        #[inline]
+        pub(in super::super) fn avx512(self) -> bool {
+            self.avx512
         }
     }
 
@@ -173,8 +193,8 @@ mod avx2 {
             let mut t0 = arch::_mm256_setzero_ps();
             let mut t1 = arch::_mm256_set1_ps(limit);
             for a in 0..3 {
-                let near = arch::_mm256_load_ps(n.bounds[rb.near_row[a]].as_ptr());
-                let far = arch::_mm256_load_ps(n.bounds[rb.far_row[a]].as_ptr());
+                let near = arch::_mm256_load_ps(n.bounds[rb.near_row[a].index()].as_ptr());
+                let far = arch::_mm256_load_ps(n.bounds[rb.far_row[a].index()].as_ptr());
                 let tn = arch::_mm256_mul_ps(
                     arch::_mm256_sub_ps(near, arch::_mm256_set1_ps(rb.o_near[a])),
                     arch::_mm256_set1_ps(rb.inv_near[a]),

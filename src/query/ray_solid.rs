@@ -2,7 +2,7 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use glam::DVec3;
+use glam::{BVec4A, DVec3, Vec4};
 use rayon::prelude::*;
 
 use crate::geom::exact::{line_side_filter_scalar, triangle_edge_sides};
@@ -140,20 +140,21 @@ impl Tally for TraversalStats {
 /// `f64` rounding of the best `t` itself.
 pub(super) struct RayBox {
     /// The origin in the frame, rounded (per axis) away from the near
-    /// planes: used for entries.
-    pub o_near: [f32; 3],
+    /// planes: used for entries. (Lane 3 of this and the next three
+    /// arrays is unused.)
+    pub o_near: [f32; 4],
     /// The origin in the frame, rounded towards the near planes: used for
     /// exits.
-    pub o_far: [f32; 3],
+    pub o_far: [f32; 4],
     /// `1/d'ₐ` rounded towards zero (exactly `±∞` when `d'ₐ = 0`).
-    pub inv_near: [f32; 3],
+    pub inv_near: [f32; 4],
     /// `1/d'ₐ · (1 + 2⁻²⁰)` rounded away from zero.
-    pub inv_far: [f32; 3],
+    pub inv_far: [f32; 4],
     /// Per axis, the row of [`Node8::bounds`](super::accel::Node8::bounds) holding the near planes
     /// (lower bounds when the ray runs up the axis).
-    pub near_row: [usize; 3],
+    pub near_row: [Row; 3],
     /// Per axis, the row holding the far planes.
-    pub far_row: [usize; 3],
+    pub far_row: [Row; 3],
     /// `scale`: the factor from `t` to `s`.
     t_to_s: f64,
 }
@@ -175,54 +176,47 @@ impl RayBox {
     pub(super) fn new(ray: &Ray, frame: &BoxFrame) -> RayBox {
         let d = ray.direction;
         debug_assert!((1.0..2.0).contains(&d.abs().max_element()), "{d}");
-        let (mut o_near, mut o_far) = ([0.0f32; 3], [0.0f32; 3]);
-        let (mut inv_near, mut inv_far) = ([0.0f32; 3], [0.0f32; 3]);
-        let (mut near_row, mut far_row) = ([0; 3], [0; 3]);
-        for a in 0..3 {
-            let o = frame.in_frame(ray.origin[a], a);
-            // The origin widened by `|f|·2⁻²² + 2⁻¹²⁶` either way (see
-            // `RayBox`): covers the rounding to `f32` (at most `|f|·2⁻²⁴`,
-            // or 2⁻¹⁵⁰ below the normal range), the `f64` rounding of `o`
-            // and the rounding of the widening itself. Beyond the `f32`
-            // range: no constraint at all.
-            let f = o as f32;
-            let (lo, hi) = if f.is_finite() {
-                let m = f.abs() * ORIGIN_WIDEN + f32::MIN_POSITIVE;
-                (f - m, f + m)
-            } else {
-                (f32::NEG_INFINITY, f32::INFINITY)
-            };
-            let da = d[a];
-            let recip = (1.0 / da.abs()) as f32;
-            let (inv_lo, inv_hi) = if da == 0.0 {
-                (f32::INFINITY, f32::INFINITY)
-            } else {
-                ((recip * INV_SHRINK).min(f32::MAX), recip * INV_GROW)
-            };
-            // Going down the axis (`d'ₐ` negative, or −0), the ray enters
-            // through the upper plane: `(upper − o) · (−|inv|)` is smallest
-            // for the smallest origin. Selected by index, without branches:
-            // the signs of random directions are not predictable.
-            let down = (da.to_bits() >> 63) as u32;
-            let pick = |up: f32, down_value: f32| {
-                let take_down = 0u32.wrapping_sub(down);
-                f32::from_bits((up.to_bits() & !take_down) | (down_value.to_bits() & take_down))
-            };
-            o_near[a] = pick(hi, lo);
-            o_far[a] = pick(lo, hi);
-            let sign = down << 31;
-            inv_near[a] = f32::from_bits(inv_lo.to_bits() | sign);
-            inv_far[a] = f32::from_bits(inv_hi.to_bits() | sign);
-            near_row[a] = a + 3 * down as usize;
-            far_row[a] = a + 3 * (1 - down as usize);
-        }
+        // The three axes side by side (lane 3 is unused). `d32` carries the
+        // sign of each `dₐ`, −0 included (rounding to `f32` keeps it).
+        let d32 = d.as_vec3().extend(1.0);
+        // The origin in the frame, rounded to `f32`, widened by
+        // `|f|·2⁻²² + 2⁻¹²⁶` either way (see `RayBox`): covers the rounding
+        // to `f32` (at most `|f|·2⁻²⁴`, or 2⁻¹⁵⁰ below the normal range),
+        // the `f64` rounding of `o` and the rounding of the widening itself.
+        // Beyond the `f32` range: no constraint at all. Going down the axis
+        // (`d'ₐ` negative, or −0), the ray enters through the upper plane:
+        // `(upper − o) · (−|inv|)` is smallest for the smallest origin, so
+        // the near origin is `f − m` and the far one `f + m` (the widening
+        // takes the sign of `dₐ`: no branch on the signs of random
+        // directions, which are not predictable).
+        let f = ((ray.origin - frame.centre) * frame.scale)
+            .as_vec3()
+            .extend(0.0);
+        let widen = (f.abs() * ORIGIN_WIDEN + Vec4::splat(f32::MIN_POSITIVE)).copysign(d32);
+        let unbounded = Vec4::INFINITY.copysign(d32);
+        let finite = f.is_finite_mask();
+        let o_near = Vec4::select(finite, f + widen, unbounded);
+        let o_far = Vec4::select(finite, f - widen, -unbounded);
+        // `1/|dₐ|` rounded to `f32`, shrunk and grown (see the constants);
+        // exactly `+∞` for a zero component. Then the sign of `dₐ`.
+        let recip = (DVec3::ONE / d.abs()).as_vec3().extend(1.0);
+        let zero = d.cmpeq(DVec3::ZERO);
+        let zero = BVec4A::new(zero.x, zero.y, zero.z, false);
+        let inv_lo = Vec4::select(
+            zero,
+            Vec4::INFINITY,
+            (recip * INV_SHRINK).min(Vec4::splat(f32::MAX)),
+        );
+        let inv_hi = Vec4::select(zero, Vec4::INFINITY, recip * INV_GROW);
+        let down = d32.is_negative_bitmask();
+        let row = |a: usize, upper: bool| Row::of(a, upper);
         RayBox {
-            o_near,
-            o_far,
-            inv_near,
-            inv_far,
-            near_row,
-            far_row,
+            o_near: o_near.to_array(),
+            o_far: o_far.to_array(),
+            inv_near: inv_lo.copysign(d32).to_array(),
+            inv_far: inv_hi.copysign(d32).to_array(),
+            near_row: [0, 1, 2].map(|a| row(a, down >> a & 1 == 1)),
+            far_row: [0, 1, 2].map(|a| row(a, down >> a & 1 == 0)),
             t_to_s: frame.scale,
         }
     }
@@ -235,6 +229,49 @@ impl RayBox {
         // rounded it is at least `x (1 + 2⁻²⁰)`; `+ 2⁻¹²⁶` covers `x` below
         // the normal range. `+∞` stays `+∞`.
         ((t * self.t_to_s) as f32) * INV_GROW + f32::MIN_POSITIVE
+    }
+}
+
+/// A row of [`Node8::bounds`](super::accel::Node8::bounds): the lower
+/// (`Lower*`) or upper (`Upper*`) bounds of the children along one axis.
+/// An enum rather than an index, so that a row is always in range (the
+/// slab tests index the rows without a bounds check).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub(super) enum Row {
+    /// Lower bounds along `x`.
+    LowerX = 0,
+    /// Lower bounds along `y`.
+    LowerY = 1,
+    /// Lower bounds along `z`.
+    LowerZ = 2,
+    /// Upper bounds along `x`.
+    UpperX = 3,
+    /// Upper bounds along `y`.
+    UpperY = 4,
+    /// Upper bounds along `z`.
+    UpperZ = 5,
+}
+
+impl Row {
+    /// The row of the bounds along axis `a` (0, 1 or 2): the upper ones
+    /// when `upper`.
+    #[inline(always)]
+    fn of(a: usize, upper: bool) -> Row {
+        match (a, upper) {
+            (0, false) => Row::LowerX,
+            (1, false) => Row::LowerY,
+            (2, false) => Row::LowerZ,
+            (0, true) => Row::UpperX,
+            (1, true) => Row::UpperY,
+            _ => Row::UpperZ,
+        }
+    }
+
+    /// The row's index into [`Node8::bounds`](super::accel::Node8::bounds).
+    #[inline(always)]
+    pub(super) fn index(self) -> usize {
+        self as usize
     }
 }
 
@@ -758,6 +795,7 @@ impl Accel {
         }
         let mut t_limit = t_max;
         let mut limit = rb.limit(t_limit);
+        let mut key = limit_key(limit);
         let mut local = [Deferred::EMPTY; LOCAL_STACK];
         let mut heap = Vec::new();
         let stack: &mut [Deferred] = if self.stack_len <= LOCAL_STACK {
@@ -770,7 +808,7 @@ impl Accel {
         let mut sp = self.open_node(lanes, &rb, 0, limit, stack, 0);
         while sp > 0 {
             sp -= 1;
-            let Some(child) = stack[sp].reached(limit) else {
+            let Some(child) = stack[sp].reached(key) else {
                 continue;
             };
             if child & LEAF == 0 {
@@ -791,6 +829,7 @@ impl Accel {
                 if t_new != t_limit {
                     t_limit = t_new;
                     limit = rb.limit(t_limit);
+                    key = limit_key(limit);
                 }
             }
         }
@@ -830,16 +869,29 @@ impl Deferred {
     /// An unused stack slot.
     pub(super) const EMPTY: Deferred = Deferred { child: 0, key: 0 };
 
-    /// The child, unless its box is entered beyond `limit`: the key without
-    /// its slot bits, read as an `f32`, is at most the child's entry (so
-    /// culling with it stays conservative).
+    /// The child, unless its box is entered beyond the limit whose
+    /// [`limit_key`] is `limit_key`: the key without its slot bits, read as
+    /// an `f32`, is at most the child's entry (so culling with it stays
+    /// conservative).
     #[inline(always)]
-    pub(super) fn reached(self, limit: f32) -> Option<u32> {
-        if f32::from_bits(self.key & !KEY_SLOT_BITS) > limit {
-            return None;
-        }
-        Some(self.child)
+    pub(super) fn reached(self, limit_key: u32) -> Option<u32> {
+        (self.key <= limit_key).then_some(self.child)
     }
+}
+
+/// The culling limit `limit` (a non-negative `f32` or `+∞`, never NaN) as a
+/// key: a [`Deferred`] child is within the limit exactly when its key is at
+/// most this, compared as integers.
+///
+/// A key's bits without the slot bits, `k = key & !15`, are those of a
+/// non-negative `f32`, and so is `L = limit.to_bits()`: for such values the
+/// bits order as the numbers do, so `f32::from_bits(k) ≤ limit` is `k ≤ L`.
+/// As `k` is a multiple of 16, `k ≤ L` holds exactly when `k ≤ L & !15`,
+/// that is when `key = k | slot ≤ L | 15`.
+#[inline(always)]
+pub(super) fn limit_key(limit: f32) -> u32 {
+    debug_assert!(limit >= 0.0, "{limit}");
+    limit.to_bits() | KEY_SLOT_BITS
 }
 
 /// Traversal stacks at most this long live on the call stack; longer ones
@@ -937,6 +989,7 @@ mod tests {
     use crate::mesh::builders;
     use crate::query::accel::{Node8, WIDTH};
     use crate::query::node_open::for_each_lanes;
+    use crate::query::ray_stream;
     use std::mem::MaybeUninit;
 
     /// The `f32` slab test never rejects a box the exact ray enters: boxes
@@ -1069,6 +1122,120 @@ mod tests {
             assert_eq!(cast(&|r, o| accel.first_hits_with(lanes, r, o)), portable);
         });
         for (ray, hit) in rays.iter().zip(&portable).step_by(5) {
+            assert_eq!(accel.first_hit(ray).unwrap(), *hit);
+        }
+    }
+
+    /// `RayBox::new` works on the three axes side by side; its values are
+    /// bit for bit those of the per-axis definition written out here:
+    /// origins near and far (beyond the `f32` range too), directions with
+    /// zero, negative-zero, tiny and unit-size components.
+    #[test]
+    fn ray_box_lanes_equal_the_per_axis_definition() {
+        fn per_axis(ray: &Ray, frame: &BoxFrame) -> ([[u32; 3]; 4], [Row; 3], [Row; 3]) {
+            let mut values = [[0u32; 3]; 4];
+            let (mut near_row, mut far_row) = ([Row::LowerX; 3], [Row::LowerX; 3]);
+            for a in 0..3 {
+                let f = frame.in_frame(ray.origin[a], a) as f32;
+                let (lo, hi) = if f.is_finite() {
+                    let m = f.abs() * ORIGIN_WIDEN + f32::MIN_POSITIVE;
+                    (f - m, f + m)
+                } else {
+                    (f32::NEG_INFINITY, f32::INFINITY)
+                };
+                let da = ray.direction[a];
+                let recip = (1.0 / da.abs()) as f32;
+                let (inv_lo, inv_hi) = if da == 0.0 {
+                    (f32::INFINITY, f32::INFINITY)
+                } else {
+                    ((recip * INV_SHRINK).min(f32::MAX), recip * INV_GROW)
+                };
+                let down = da.is_sign_negative();
+                let sign = u32::from(down) << 31;
+                let (o_near, o_far) = if down { (lo, hi) } else { (hi, lo) };
+                values[0][a] = o_near.to_bits();
+                values[1][a] = o_far.to_bits();
+                values[2][a] = inv_lo.to_bits() | sign;
+                values[3][a] = inv_hi.to_bits() | sign;
+                near_row[a] = Row::of(a, down);
+                far_row[a] = Row::of(a, !down);
+            }
+            (values, near_row, far_row)
+        }
+        let frames = [
+            BoxFrame {
+                centre: DVec3::ZERO,
+                scale: 1.0,
+            },
+            BoxFrame {
+                centre: DVec3::new(3.5, -2.25, 1e10),
+                scale: 2f64.powi(-33),
+            },
+            BoxFrame {
+                centre: DVec3::new(-1e-300, 0.0, 7.0),
+                scale: 2f64.powi(900),
+            },
+        ];
+        let mut uniform = crate::test_rng::uniform(0x510E_527F_ADE6_82D1);
+        let special = [
+            0.0, -0.0, 1e-300, -1e-300, 5e-324, 1.0, -1.5, 1e38, 1e300, -1e300,
+        ];
+        let mut checked = 0;
+        for case in 0..4000usize {
+            let mut pick = |k: usize| {
+                if (case + k).is_multiple_of(3) {
+                    special[(case / 3 + k) % special.len()]
+                } else {
+                    (uniform() - 0.5) * 8.0
+                }
+            };
+            let origin = DVec3::new(pick(0), pick(1), pick(2));
+            let direction = DVec3::new(pick(3), pick(4), pick(5));
+            let ray = Ray::new(origin, direction);
+            if !ray.is_valid() {
+                continue;
+            }
+            let (ray, _) = unit_scaled(&ray);
+            for frame in &frames {
+                let rb = RayBox::new(&ray, frame);
+                let lanes = [rb.o_near, rb.o_far, rb.inv_near, rb.inv_far]
+                    .map(|v| [v[0].to_bits(), v[1].to_bits(), v[2].to_bits()]);
+                assert_eq!(
+                    (lanes, rb.near_row, rb.far_row),
+                    per_axis(&ray, frame),
+                    "case {case}: {ray:?}"
+                );
+                assert_eq!(rb.t_to_s, frame.scale);
+                checked += 1;
+            }
+        }
+        assert!(checked > 9000, "{checked}");
+    }
+
+    /// A tree whose traversal stack would not fit the interleaved walk's
+    /// is cast one ray at a time, with the same answers.
+    #[test]
+    fn batches_over_trees_too_deep_to_interleave_give_the_same_hits() {
+        let mut accel = Accel::new(&builders::sphere(24));
+        let mut uniform = crate::test_rng::uniform(0x9B05_688C_2B3E_6C1F);
+        let mut rand = || DVec3::new(uniform(), uniform(), uniform()) * 4.0 - DVec3::splat(2.0);
+        let rays: Vec<Ray> = (0..2 * STREAM_CHUNK + 57)
+            .map(|_| {
+                let origin = rand();
+                Ray::new(origin, rand() * 0.25 - origin)
+            })
+            .filter(Ray::is_valid)
+            .collect();
+        let interleaved = accel.first_hit_batch(&rays).unwrap();
+        let hits = interleaved.iter().filter(|h| h.is_some()).count();
+        assert!(hits > rays.len() / 2, "{hits} of {}", rays.len());
+        // The longest stack the interleaved walk holds, and one more (a
+        // longer stack length still bounds the tree's stacks).
+        for stack_len in [ray_stream::STACK, ray_stream::STACK + 1] {
+            accel.stack_len = stack_len;
+            assert_eq!(accel.first_hit_batch(&rays).unwrap(), interleaved);
+        }
+        for (ray, hit) in rays.iter().zip(&interleaved).step_by(7) {
             assert_eq!(accel.first_hit(ray).unwrap(), *hit);
         }
     }

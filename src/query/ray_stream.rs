@@ -16,17 +16,23 @@ use std::mem::MaybeUninit;
 use crate::geom::Ray;
 
 use super::Accel;
-use super::accel::{LEAF, Node8, YzTri};
+use super::accel::{LEAF, Node8, WIDTH, YzTri};
 #[cfg(target_arch = "x86_64")]
 use super::node_open::Avx2;
 use super::node_open::{NodeLanes, Portable};
 use super::ray_solid::{
-    BestHit, Crossing, Deferred, RayBox, prefetch_bytes, scales_exactly, unit_scaled, unscaled_t,
+    BestHit, Crossing, Deferred, RayBox, limit_key, prefetch_bytes, scales_exactly, unit_scaled,
+    unscaled_t,
 };
 use super::tri_packet::{PacketRay, TriPacket};
 
 /// Rays walked in turn.
 const LANES: usize = 8;
+
+/// The deepest traversal stack a walk holds (a power of two): enough for
+/// trees of up to 35 levels (see `Accel::stack_len`). Deeper trees are
+/// walked one ray at a time.
+pub(super) const STACK: usize = 256;
 
 /// Accels at least this large (about the size of a core's L2 cache) are
 /// walked asking ahead for memory; smaller ones stay in cache, where the
@@ -57,11 +63,16 @@ struct Walk {
     t_limit: f64,
     /// `t_limit` as the slab tests see it ([`RayBox::limit`]).
     limit: f32,
+    /// `limit` as the stack's culling sees it ([`limit_key`]).
+    limit_key: u32,
     /// The leaf filtered by the last step: its first triangle and the mask
     /// of its triangles still to decide (requested from memory).
     pending: (u32, u32),
-    /// Children still to visit, nearest on top; `stack[..top]` is live.
-    stack: Vec<Deferred>,
+    /// Children still to visit, nearest on top; `stack[..top]` is live,
+    /// `top ≤ accel.stack_len ≤ STACK`, and a node opening writes at most
+    /// `WIDTH` entries from `top` on. Indices are taken modulo `STACK`
+    /// (which changes none of them) so that no access needs a bounds check.
+    stack: [Deferred; STACK + WIDTH],
     top: usize,
 }
 
@@ -80,8 +91,9 @@ impl Walk {
             best: None,
             t_limit: f64::INFINITY,
             limit: f32::INFINITY,
+            limit_key: limit_key(f32::INFINITY),
             pending: (0, 0),
-            stack: vec![Deferred::EMPTY; accel.stack_len],
+            stack: [Deferred::EMPTY; STACK + WIDTH],
             top: 0,
         };
         walk.start(lanes, index, r, accel);
@@ -109,6 +121,7 @@ impl Walk {
         self.best = None;
         self.t_limit = f64::INFINITY;
         self.limit = self.rays_box.limit(f64::INFINITY);
+        self.limit_key = limit_key(self.limit);
         self.pending = (0, 0);
         self.top = accel.open_node(lanes, &self.rays_box, 0, self.limit, &mut self.stack, 0);
     }
@@ -137,11 +150,30 @@ impl Accel {
     ) {
         #[cfg(target_arch = "x86_64")]
         if let Some(lanes) = Avx2::detect() {
-            // SAFETY: AVX2 was detected.
-            unsafe { self.first_hits_avx2(lanes, rays, out) };
+            if lanes.avx512() {
+                // SAFETY: the AVX-512 features were detected.
+                unsafe { self.first_hits_avx512(lanes, rays, out) };
+            } else {
+                // SAFETY: AVX2 was detected.
+                unsafe { self.first_hits_avx2(lanes, rays, out) };
+            }
             return;
         }
         self.first_hits_with(Portable, rays, out);
+    }
+
+    /// [`Accel::first_hits_interleaved`] compiled for AVX-512: the same
+    /// code as [`Accel::first_hits_avx2`], encoded with the extra
+    /// registers and folded broadcasts (3–5% faster on AMD Zen 4).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,popcnt,fma,bmi1,bmi2,lzcnt,avx512f,avx512vl,avx512bw,avx512dq")]
+    fn first_hits_avx512(
+        &self,
+        lanes: Avx2,
+        rays: &[Ray],
+        out: &mut [MaybeUninit<Option<Crossing>>],
+    ) {
+        self.first_hits_with(lanes, rays, out);
     }
 
     /// [`Accel::first_hits_interleaved`] compiled for AVX2, so that the
@@ -165,7 +197,14 @@ impl Accel {
         rays: &[Ray],
         out: &mut [MaybeUninit<Option<Crossing>>],
     ) {
-        if self.stats.memory_bytes >= ASK_AHEAD_BYTES {
+        if self.stack_len > STACK {
+            for (o, r) in out.iter_mut().zip(rays) {
+                o.write(
+                    self.first_best(r, &mut ())
+                        .map(|(t, i, s)| self.crossing(t, i, s)),
+                );
+            }
+        } else if self.stats.memory_bytes >= ASK_AHEAD_BYTES {
             self.walk_interleaved::<true>(lanes, rays, out);
         } else {
             self.walk_interleaved::<false>(lanes, rays, out);
@@ -189,13 +228,14 @@ impl Accel {
         let mut walks: Vec<Walk> = (0..rays.len().min(LANES))
             .map(|k| Walk::new(lanes, k, &rays[k], self))
             .collect();
+        // The walks under way are `walks[order[..live]]`, taken in turn.
+        let mut order: [usize; LANES] = std::array::from_fn(|k| k);
         let (mut fed, mut live, mut k) = (walks.len(), walks.len(), 0);
-        // `walks[..live]` are under way, taken in turn.
         while live > 0 {
             if k >= live {
                 k = 0;
             }
-            let w = &mut walks[k];
+            let w = &mut walks[order[k]];
             if self.step::<ASK_AHEAD>(lanes, w) {
                 best[w.ray] = w.best.map(|(t, i, s)| (unscaled_t(t, w.t_scale), i, s));
                 if fed < rays.len() {
@@ -203,7 +243,7 @@ impl Accel {
                     fed += 1;
                 } else {
                     live -= 1;
-                    walks.swap(k, live);
+                    order.swap(k, live);
                     continue;
                 }
             }
@@ -232,6 +272,7 @@ impl Accel {
             if t_new != w.t_limit {
                 w.t_limit = t_new;
                 w.limit = w.rays_box.limit(t_new);
+                w.limit_key = limit_key(w.limit);
             }
         }
         let child = loop {
@@ -239,7 +280,7 @@ impl Accel {
                 return true;
             }
             w.top -= 1;
-            if let Some(child) = w.stack[w.top].reached(w.limit) {
+            if let Some(child) = w.stack[w.top % STACK].reached(w.limit_key) {
                 break child;
             }
         };
@@ -261,10 +302,11 @@ impl Accel {
             }
             w.pending = (packet.first, undecided);
         } else {
-            w.top = self.open_node(lanes, &w.rays_box, child, w.limit, &mut w.stack, w.top);
+            let sp = w.top % STACK;
+            w.top = self.open_node(lanes, &w.rays_box, child, w.limit, &mut w.stack, sp);
         }
         if ASK_AHEAD && w.top > 0 {
-            let next = w.stack[w.top - 1].child;
+            let next = w.stack[(w.top - 1) % STACK].child;
             // A node or a packet: the address is selected without a branch
             // (which kind comes next is not predictable). A node's four
             // lines are asked for; a packet's three, then its first again
