@@ -228,10 +228,17 @@ pub(super) struct Node8 {
     /// Per child: [`LEAF`] plus the index of a leaf's [`TriPacket`], or the
     /// index of an inner node; `u32::MAX` for an empty slot.
     pub child: [u32; WIDTH],
+    /// Per octant of ray directions (bit `a` set when the direction runs
+    /// down axis `a`), the slots in the order the AVX-512 opener pushes
+    /// them: nibble `k` (bits `4k .. 4k + 4`) holds the `k`-th slot in its
+    /// low three bits, farthest first along the octant's diagonal (by the
+    /// projection of the boxes' centres, ties by slot), and bit 3 set for
+    /// an empty slot (these come first).
+    pub order: [u32; WIDTH],
 }
 
 impl Node8 {
-    const EMPTY: Node8 = Node8 {
+    pub(super) const EMPTY: Node8 = Node8 {
         bounds: [
             [f32::INFINITY; WIDTH],
             [f32::INFINITY; WIDTH],
@@ -241,7 +248,49 @@ impl Node8 {
             [f32::NEG_INFINITY; WIDTH],
         ],
         child: [u32::MAX; WIDTH],
+        order: [0xFEDC_BA98; WIDTH],
     };
+
+    /// Fills [`Node8::order`] from the slots' boxes.
+    pub(super) fn order_children(&mut self) {
+        // Twice each box's centre; empty slots come first (their flag
+        // keeps them from ever being pushed).
+        let centre: [[f64; 3]; WIDTH] = std::array::from_fn(|k| {
+            std::array::from_fn(|a| f64::from(self.bounds[a][k]) + f64::from(self.bounds[3 + a][k]))
+        });
+        let empty: [bool; WIDTH] = std::array::from_fn(|k| self.child[k] == u32::MAX);
+        let flag = |slot: usize| slot as u32 | if empty[slot] { 8 } else { 0 };
+        // The opposite octant (every sign flipped) takes the reverse order.
+        for octant in 0..WIDTH / 2 {
+            let along: [f64; WIDTH] = std::array::from_fn(|k| {
+                if empty[k] {
+                    return f64::INFINITY;
+                }
+                (0..3)
+                    .map(|a| {
+                        if octant >> a & 1 == 1 {
+                            -centre[k][a]
+                        } else {
+                            centre[k][a]
+                        }
+                    })
+                    .sum()
+            });
+            // Each slot's place by descending projection (ties by slot),
+            // counted without branches (a sort's comparisons are not
+            // predictable, and this runs for every node).
+            let (mut forward, mut backward) = (0, 0);
+            for k in 0..WIDTH {
+                let place = (0..WIDTH)
+                    .filter(|&j| along[j] > along[k] || (along[j] == along[k] && j < k))
+                    .count();
+                forward |= flag(k) << (4 * place);
+                backward |= flag(k) << (4 * (WIDTH - 1 - place));
+            }
+            self.order[octant] = forward;
+            self.order[WIDTH - 1 - octant] = backward;
+        }
+    }
 
     fn set(&mut self, k: usize, n: &Node, child: u32) {
         for a in 0..3 {
@@ -361,7 +410,9 @@ fn to_node8(
         let n = &nodes[j];
         TriPacket::new(tris, n.first, n.count, scale)
     }));
-    (c.out, packets, depth)
+    let mut out = c.out;
+    out.par_iter_mut().for_each(Node8::order_children);
+    (out, packets, depth)
 }
 
 /// The state of [`to_node8`]'s pass over the binary tree.

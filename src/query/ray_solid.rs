@@ -12,7 +12,7 @@ use crate::mesh::FaceId;
 
 use super::accel::{BoxFrame, LEAF};
 #[cfg(target_arch = "x86_64")]
-use super::node_open::Avx2;
+use super::node_open::{Avx2, Avx512};
 use super::node_open::{KEY_SLOT_BITS, NodeLanes, Portable};
 use super::tri_packet::PacketRay;
 use super::{Accel, Containment, QueryError};
@@ -157,6 +157,9 @@ pub(super) struct RayBox {
     pub far_row: [Row; 3],
     /// `scale`: the factor from `t` to `s`.
     t_to_s: f64,
+    /// The octant of the direction: bit `a` set when it runs down axis `a`
+    /// (see [`Node8::order`](super::accel::Node8::order)).
+    pub octant: usize,
 }
 
 /// `2⁻²²`: the relative widening of the origin (see [`RayBox`]).
@@ -218,6 +221,7 @@ impl RayBox {
             near_row: [0, 1, 2].map(|a| row(a, down >> a & 1 == 1)),
             far_row: [0, 1, 2].map(|a| row(a, down >> a & 1 == 0)),
             t_to_s: frame.scale,
+            octant: (down & 7) as usize,
         }
     }
 
@@ -754,11 +758,31 @@ impl Accel {
     ) {
         #[cfg(target_arch = "x86_64")]
         if let Some(lanes) = Avx2::detect() {
-            // SAFETY: AVX2 was detected.
-            unsafe { self.traverse_avx2(lanes, ray, filter_misses, t_max, tally, visit) };
+            if let Some(lanes) = lanes.avx512() {
+                // SAFETY: the AVX-512 features were detected.
+                unsafe { self.traverse_avx512(lanes, ray, filter_misses, t_max, tally, visit) };
+            } else {
+                // SAFETY: AVX2 was detected.
+                unsafe { self.traverse_avx2(lanes, ray, filter_misses, t_max, tally, visit) };
+            }
             return;
         }
         self.traverse_with(Portable, ray, filter_misses, t_max, tally, visit);
+    }
+
+    /// [`Accel::traverse`] compiled for AVX-512, with its node opener.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,popcnt,fma,bmi1,bmi2,lzcnt,avx512f,avx512vl,avx512bw,avx512dq")]
+    fn traverse_avx512(
+        &self,
+        lanes: Avx512,
+        ray: &Ray,
+        filter_misses: bool,
+        t_max: f64,
+        tally: &mut impl Tally,
+        visit: impl FnMut(u32, f64) -> f64,
+    ) {
+        self.traverse_with(lanes, ray, filter_misses, t_max, tally, visit);
     }
 
     /// [`Accel::traverse`] compiled for AVX2, so that the node opening is
@@ -1020,8 +1044,8 @@ mod tests {
             direction *= 2f64.powi((uniform() * 200.0) as i32 - 100);
             let ray = Ray::new(origin, direction);
             let mut node = Node8 {
-                bounds: [[f32::INFINITY; WIDTH]; 6],
                 child: [0; WIDTH],
+                ..Node8::EMPTY
             };
             for a in 0..3 {
                 node.bounds[a] = [f32::INFINITY; WIDTH];
