@@ -277,8 +277,11 @@ pub fn triangle_edge_sides(d: [f64; 3], u: [f64; 3], v: [f64; 3], w: [f64; 3]) -
             + d[2] * (p[0] * q[1] - p[1] * q[0])
     };
     let det = [side(u, v), side(v, w), side(w, u)];
-    let m3 = |p: [f64; 3]| p[0].abs().max(p[1].abs()).max(p[2].abs());
-    let m = m3(u).max(m3(v)).max(m3(w));
+    // Differences of finite numbers are never NaN: a plain comparison
+    // takes the larger (`f64::max` would pay for NaN handling).
+    let larger = |a: f64, b: f64| if a > b { a } else { b };
+    let m3 = |p: [f64; 3]| larger(larger(p[0].abs(), p[1].abs()), p[2].abs());
+    let m = larger(larger(m3(u), m3(v)), m3(w));
     let s = d[0].abs() + d[1].abs() + d[2].abs();
     let bound = SHARED_SIDE_BOUND * s * (m * m) + UNDERFLOW * (s + 1.0);
     EdgeSides { det, bound }

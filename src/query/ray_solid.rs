@@ -14,6 +14,7 @@ use super::accel::{BoxFrame, LEAF};
 #[cfg(target_arch = "x86_64")]
 use super::node_open::{Avx2, Avx512};
 use super::node_open::{KEY_SLOT_BITS, NodeLanes, Portable};
+use super::ray_stream::WalkScratch;
 use super::tri_packet::PacketRay;
 use super::{Accel, Containment, QueryError};
 
@@ -298,7 +299,10 @@ pub(super) type BestHit = Option<(f64, u32, Sign)>;
 /// direction's length, symbolic perturbation included).
 #[inline(always)]
 pub(super) fn unit_scaled(ray: &Ray) -> (Ray, f64) {
-    let largest = ray.direction.abs().max_element();
+    // A checked ray's direction is finite: plain comparisons.
+    let d = ray.direction.abs();
+    let larger = |a: f64, b: f64| if a > b { a } else { b };
+    let largest = larger(larger(d.x, d.y), d.z);
     // `largest` is finite and non-zero (a checked ray): its binary exponent
     // `e` lies in −1074 ..= 1023; read from the bits for normal numbers.
     let biased = ((largest.to_bits() >> 52) & 0x7ff) as i32;
@@ -486,12 +490,13 @@ impl Accel {
             .par_chunks_mut(STREAM_CHUNK)
             .zip(rays.par_chunks(STREAM_CHUNK))
             .enumerate()
-            .for_each(
-                |(chunk, (o, r))| match r.iter().position(|r| !r.is_valid()) {
+            .for_each_init(
+                || WalkScratch::new(STREAM_CHUNK),
+                |scratch, (chunk, (o, r))| match r.iter().position(|r| !r.is_valid()) {
                     Some(k) => {
                         first_invalid.fetch_min(chunk * STREAM_CHUNK + k, Ordering::Relaxed);
                     }
-                    None => self.first_hits_interleaved(r, o),
+                    None => self.first_hits_interleaved(r, o, scratch),
                 },
             );
         let first_invalid = first_invalid.into_inner();
@@ -669,7 +674,7 @@ impl Accel {
     /// test of the origin lying on the triangle is skipped and reported as
     /// a miss — what first-hit queries need, which list no crossing at the
     /// origin.
-    #[inline]
+    #[inline(always)]
     fn hit_triangle<const ORIGIN: bool>(&self, ray: &Ray, i: u32) -> TriHit {
         let [a, b, c] = &self.tris[i as usize].corners();
         let (o, d) = (&ray.origin, &ray.direction);
@@ -1139,11 +1144,16 @@ mod tests {
                 .map(|o| unsafe { o.assume_init() })
                 .collect::<Vec<_>>()
         };
-        let portable = cast(&|r, o| accel.first_hits_with(Portable, r, o));
+        let scratch = std::cell::RefCell::new(WalkScratch::new(rays.len()));
+        let portable =
+            cast(&|r, o| accel.first_hits_with(Portable, r, o, &mut scratch.borrow_mut()));
         let hits = portable.iter().filter(|h| h.is_some()).count();
         assert!(hits > rays.len() / 2, "{hits} of {}", rays.len());
         for_each_lanes!(|lanes| {
-            assert_eq!(cast(&|r, o| accel.first_hits_with(lanes, r, o)), portable);
+            assert_eq!(
+                cast(&|r, o| accel.first_hits_with(lanes, r, o, &mut scratch.borrow_mut())),
+                portable
+            );
         });
         for (ray, hit) in rays.iter().zip(&portable).step_by(5) {
             assert_eq!(accel.first_hit(ray).unwrap(), *hit);

@@ -76,18 +76,39 @@ struct Walk {
     top: usize,
 }
 
+/// The memory of one worker's interleaved walks, kept from one chunk of
+/// rays to the next (a walk's stack is 2 KiB; making and clearing eight of
+/// them for every chunk of 512 rays cost 65 instructions per ray).
+pub(super) struct WalkScratch {
+    walks: Vec<Walk>,
+    /// Each ray's best crossing, `t` already in the caller's units.
+    best: Vec<BestHit>,
+}
+
+impl WalkScratch {
+    /// Scratch memory for walks of up to `rays` rays a chunk.
+    pub(super) fn new(rays: usize) -> WalkScratch {
+        WalkScratch {
+            walks: (0..LANES).map(|_| Walk::idle()).collect(),
+            best: Vec::with_capacity(rays),
+        }
+    }
+}
+
 impl Walk {
-    /// The walk of ray `index`, `r`, with room for the deepest path of
-    /// `accel`'s tree, the root opened.
-    #[inline(always)]
-    fn new(lanes: impl NodeLanes, index: usize, r: &Ray, accel: &Accel) -> Walk {
+    /// A walk with nothing to do (the next [`Walk::start`] gives it a ray).
+    fn idle() -> Walk {
         let ray = Ray::new(glam::DVec3::ZERO, glam::DVec3::X);
-        let mut walk = Walk {
+        let frame = super::accel::BoxFrame {
+            centre: glam::DVec3::ZERO,
+            scale: 1.0,
+        };
+        Walk {
             ray: 0,
             scaled: ray,
             t_scale: 1.0,
-            rays_box: RayBox::new(&ray, &accel.frame),
-            packet_ray: PacketRay::new(&ray, accel.frame.scale),
+            rays_box: RayBox::new(&ray, &frame),
+            packet_ray: PacketRay::new(&ray, frame.scale),
             best: None,
             t_limit: f64::INFINITY,
             limit: f32::INFINITY,
@@ -95,9 +116,7 @@ impl Walk {
             pending: (0, 0),
             stack: [Deferred::EMPTY; STACK + WIDTH],
             top: 0,
-        };
-        walk.start(lanes, index, r, accel);
-        walk
+        }
     }
 
     /// Starts the walk of ray `index`, `r`, in place (the stack's memory is
@@ -147,19 +166,20 @@ impl Accel {
         &self,
         rays: &[Ray],
         out: &mut [MaybeUninit<Option<Crossing>>],
+        scratch: &mut WalkScratch,
     ) {
         #[cfg(target_arch = "x86_64")]
         if let Some(lanes) = Avx2::detect() {
             if let Some(lanes) = lanes.avx512() {
                 // SAFETY: the AVX-512 features were detected.
-                unsafe { self.first_hits_avx512(lanes, rays, out) };
+                unsafe { self.first_hits_avx512(lanes, rays, out, scratch) };
             } else {
                 // SAFETY: AVX2 was detected.
-                unsafe { self.first_hits_avx2(lanes, rays, out) };
+                unsafe { self.first_hits_avx2(lanes, rays, out, scratch) };
             }
             return;
         }
-        self.first_hits_with(Portable, rays, out);
+        self.first_hits_with(Portable, rays, out, scratch);
     }
 
     /// [`Accel::first_hits_interleaved`] compiled for AVX-512, with its
@@ -173,8 +193,9 @@ impl Accel {
         lanes: Avx512,
         rays: &[Ray],
         out: &mut [MaybeUninit<Option<Crossing>>],
+        scratch: &mut WalkScratch,
     ) {
-        self.first_hits_with(lanes, rays, out);
+        self.first_hits_with(lanes, rays, out, scratch);
     }
 
     /// [`Accel::first_hits_interleaved`] compiled for AVX2, so that the
@@ -186,8 +207,9 @@ impl Accel {
         lanes: Avx2,
         rays: &[Ray],
         out: &mut [MaybeUninit<Option<Crossing>>],
+        scratch: &mut WalkScratch,
     ) {
-        self.first_hits_with(lanes, rays, out);
+        self.first_hits_with(lanes, rays, out, scratch);
     }
 
     /// [`Accel::first_hits_interleaved`] with nodes opened by `lanes`.
@@ -197,6 +219,7 @@ impl Accel {
         lanes: impl NodeLanes,
         rays: &[Ray],
         out: &mut [MaybeUninit<Option<Crossing>>],
+        scratch: &mut WalkScratch,
     ) {
         if self.stack_len > STACK {
             for (o, r) in out.iter_mut().zip(rays) {
@@ -206,9 +229,9 @@ impl Accel {
                 );
             }
         } else if self.stats.memory_bytes >= ASK_AHEAD_BYTES {
-            self.walk_interleaved::<true>(lanes, rays, out);
+            self.walk_interleaved::<true>(lanes, rays, out, scratch);
         } else {
-            self.walk_interleaved::<false>(lanes, rays, out);
+            self.walk_interleaved::<false>(lanes, rays, out, scratch);
         }
     }
 
@@ -220,18 +243,22 @@ impl Accel {
         lanes: impl NodeLanes,
         rays: &[Ray],
         out: &mut [MaybeUninit<Option<Crossing>>],
+        scratch: &mut WalkScratch,
     ) {
         debug_assert_eq!(rays.len(), out.len());
-        // Each ray's best crossing, `t` already in the caller's units; its
-        // face is looked up after all walks, where the lookups (a cache miss
-        // each on large meshes) overlap instead of stalling the walks.
-        let mut best: Vec<BestHit> = vec![None; rays.len()];
-        let mut walks: Vec<Walk> = (0..rays.len().min(LANES))
-            .map(|k| Walk::new(lanes, k, &rays[k], self))
-            .collect();
+        // Each ray's best crossing; its face is looked up after all walks,
+        // where the lookups (a cache miss each on large meshes) overlap
+        // instead of stalling the walks.
+        let WalkScratch { walks, best } = scratch;
+        best.clear();
+        best.resize(rays.len(), None);
+        let started = rays.len().min(LANES);
+        for (k, w) in walks.iter_mut().enumerate().take(started) {
+            w.start(lanes, k, &rays[k], self);
+        }
         // The walks under way are `walks[order[..live]]`, taken in turn.
         let mut order: [usize; LANES] = std::array::from_fn(|k| k);
-        let (mut fed, mut live, mut k) = (walks.len(), walks.len(), 0);
+        let (mut fed, mut live, mut k) = (started, started, 0);
         while live > 0 {
             if k >= live {
                 k = 0;
@@ -250,7 +277,7 @@ impl Accel {
             }
             k += 1;
         }
-        for (o, b) in out.iter_mut().zip(best) {
+        for (o, b) in out.iter_mut().zip(best.iter()) {
             o.write(b.map(|(t, i, s)| self.crossing(t, i, s)));
         }
     }

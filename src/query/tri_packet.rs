@@ -130,7 +130,9 @@ impl TriPacket {
     #[inline(always)]
     pub(super) fn undecided(&self, r: &PacketRay) -> u32 {
         let v = ((r.origin - self.centre) * r.scale).as_vec3().to_array();
-        let reach = self.extent + v[0].abs().max(v[1].abs()).max(v[2].abs());
+        // `v` is never NaN (a finite difference, scaled): plain comparisons.
+        let larger = |a: f32, b: f32| if a > b { a } else { b };
+        let reach = self.extent + larger(larger(v[0].abs(), v[1].abs()), v[2].abs());
         let bound = SIDE_BOUND * r.length * reach * self.extent
             + TINY * (1.0 + r.length * (reach + self.extent));
         let (pos, neg) = (F32x4::splat(bound), F32x4::splat(-bound));
