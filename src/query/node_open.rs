@@ -1,6 +1,7 @@
 //! Opening a BVH node for one ray: the slab tests of its eight children
 //! side by side, and the children entered pushed onto the traversal stack,
-//! the nearest on top.
+//! the nearest on top (by entry parameter, or with AVX-512 along the ray's
+//! octant).
 //!
 //! Each child entered is keyed by the bits of its entry parameter (a
 //! non-negative `f32`, clamped to finite, whose bits order as the values
@@ -28,7 +29,7 @@
 //! ([`Node8::order`]: farthest first along the octant's diagonal), packing
 //! the children entered with a compress instruction: no sorting network.
 //! Measured against the AVX2 network (both in the AVX-512 build of the
-//! interleaved walk, 1 thread, six alternated pairs, 2026-11-24): 6% less
+//! interleaved walk, 1 thread, six alternated pairs, 2026-11-24): 7% less
 //! time per ray on fandisk and on sphere_80k. Pushing in slot order with
 //! no ordering at all took 35% more time (walks visit more nodes), so the
 //! octant order keeps what the sorting bought.
