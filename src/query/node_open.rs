@@ -1,38 +1,37 @@
 //! Opening a BVH node for one ray: the slab tests of its eight children
 //! side by side, and the children entered pushed onto the traversal stack,
-//! the nearest on top (by entry parameter, or with AVX-512 along the ray's
-//! octant).
+//! the nearest on top (by entry parameter, or along the ray's octant).
 //!
 //! Each child entered is keyed by the bits of its entry parameter (a
 //! non-negative `f32`, clamped to finite, whose bits order as the values
 //! do) with the low four bits replaced by `8 | slot`. Keys are distinct and
 //! never 0. The order of the pushes decides only how soon a walk finds its
 //! answer, never the answer (a first-hit walk keeps the nearest crossing
-//! found, ties by triangle; culling by key is conservative). Two
-//! implementations push farthest first by key, so the nearest is on top,
-//! and give the same stack, entry for entry:
+//! found, ties by triangle; culling by key is conservative). Three
+//! implementations:
 //!
-//! - [`Avx2`], on `x86_64` processors that have AVX2 (detected at run time):
-//!   the eight children in one 256-bit register per operation; children not
-//!   entered get the key 0, and a sorting network of six shuffle rounds
-//!   orders all eight without a branch on their order (a ray's walk is too
-//!   irregular for such branches to be predicted);
+//! - [`Avx512`], on `x86_64` processors with AVX-512 (detected at run
+//!   time): the eight slab tests in one 256-bit register per operation,
+//!   the results permuted into the node's precomputed order for the ray's
+//!   octant ([`Node8::order`]: farthest first along the octant's
+//!   diagonal), and the children entered packed with a compress
+//!   instruction — no sorting;
+//! - [`Avx2`], on `x86_64` processors with AVX2 but not AVX-512: the same
+//!   octant order, the children entered packed by a permutation looked up
+//!   in a 256-entry table by the mask of the children entered;
 //! - [`Portable`], everywhere: the children in two halves of four
-//!   [`F32x4`] lanes, then each child entered inserted into place (a ray
-//!   enters two or three of eight on average). Measured on sphere_80k, one
-//!   thread: 0.36–0.40 s for 1M rays with insertion, 0.70–0.74 s with a
-//!   scalar sorting network of all eight; AVX2 with the insertion instead
-//!   of its network took 0.36–0.40 s against 0.29–0.32 s.
+//!   [`F32x4`] lanes, then each child entered inserted into place by key,
+//!   the nearest on top (a ray enters two or three of eight on average).
 //!
-//! A third, [`Avx512`] (on processors with AVX-512, detected at run time),
-//! pushes in the node's precomputed order for the ray's octant
-//! ([`Node8::order`]: farthest first along the octant's diagonal), packing
-//! the children entered with a compress instruction: no sorting network.
-//! Measured against the AVX2 network (both in the AVX-512 build of the
-//! interleaved walk, 1 thread, six alternated pairs, 2026-11-24): 7% less
-//! time per ray on fandisk and on sphere_80k. Pushing in slot order with
-//! no ordering at all took 35% more time (walks visit more nodes), so the
-//! octant order keeps what the sorting bought.
+//! Measured (1 thread, 1M peer rays, alternated pairs, 2026-11-24): the
+//! AVX-512 opener took 7% less time per ray than a bitonic network sorting
+//! all eight keys (six shuffle rounds) on fandisk and on sphere_80k; on the
+//! AVX2 path the table packing took 2–5% less than the same network (on
+//! fandisk, spot, sphere_80k). Pushing in slot order with no ordering at
+//! all took 35% more time (walks visit more nodes), so the octant order
+//! keeps what sorting bought. Earlier (sphere_80k, one thread): 0.36–0.40 s
+//! for 1M rays with the insertion, 0.70–0.74 s with a scalar sorting
+//! network, 0.29–0.32 s with the AVX2 network.
 
 use super::accel::{Node8, WIDTH};
 use super::lanes::F32x4;
@@ -151,7 +150,8 @@ mod avx2 {
     use super::{Deferred, KEY_SLOT_BITS, Node8, NodeLanes, RayBox, WIDTH};
 
     /// Node opening with AVX2; a value exists only when the processor has
-    /// AVX2 ([`Avx2::detect`]). Pushes by key (see the module docs).
+    /// AVX2 ([`Avx2::detect`]). Pushes in the octant order (see the module
+    /// docs).
     #[derive(Clone, Copy, Debug)]
     pub(in super::super) struct Avx2 {
         /// Whether the processor also runs the AVX-512 instructions the
@@ -215,7 +215,7 @@ mod avx2 {
 
     impl NodeLanes for Avx2 {
         #[cfg(test)]
-        const ORDER: PushOrder = PushOrder::ByKey;
+        const ORDER: PushOrder = PushOrder::Octant;
         #[inline(always)]
         fn enter(self, rb: &RayBox, n: &Node8, limit: f32) -> ([f32; WIDTH], u32) {
             // SAFETY: an `Avx2` value proves the processor has AVX2.
@@ -322,23 +322,39 @@ mod avx2 {
         // children, eight `u32`s 32-byte aligned; `out` is eight `Deferred`s,
         // each two `u32`s in order (`repr(C)`), 64 bytes written unaligned.
         unsafe {
-            let (t0, entered) = slab_test(rb, n, limit);
+            let (t0, t1) = slab_bounds(rb, n, limit);
+            let shifts = arch::_mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28);
+            let nibbles = arch::_mm256_and_si256(
+                arch::_mm256_srlv_epi32(
+                    arch::_mm256_set1_epi32(n.order[rb.octant & 7] as i32),
+                    shifts,
+                ),
+                arch::_mm256_set1_epi32(15),
+            );
+            let empty = arch::_mm256_castsi256_ps(arch::_mm256_cmpgt_epi32(
+                nibbles,
+                arch::_mm256_set1_epi32(7),
+            ));
+            let t0 = arch::_mm256_permutevar8x32_ps(t0, nibbles);
+            let t1 = arch::_mm256_permutevar8x32_ps(t1, nibbles);
+            let entered =
+                arch::_mm256_andnot_ps(empty, arch::_mm256_cmp_ps::<{ arch::_CMP_LE_OQ }>(t0, t1));
+            let mask = arch::_mm256_movemask_ps(entered) as usize;
             let entry =
                 arch::_mm256_castps_si256(arch::_mm256_min_ps(t0, arch::_mm256_set1_ps(f32::MAX)));
             let keys = arch::_mm256_or_si256(
                 arch::_mm256_and_si256(entry, arch::_mm256_set1_epi32(!KEY_SLOT_BITS as i32)),
-                arch::_mm256_setr_epi32(8, 9, 10, 11, 12, 13, 14, 15),
+                arch::_mm256_or_si256(nibbles, arch::_mm256_set1_epi32(8)),
             );
-            let keys = sorted_descending(arch::_mm256_and_si256(
-                keys,
-                arch::_mm256_castps_si256(entered),
-            ));
-            // The children in the keys' order, each beside its key.
-            let children = arch::_mm256_load_si256(n.child.as_ptr().cast());
             let children = arch::_mm256_permutevar8x32_epi32(
-                children,
-                arch::_mm256_and_si256(keys, arch::_mm256_set1_epi32(7)),
+                arch::_mm256_load_si256(n.child.as_ptr().cast()),
+                nibbles,
             );
+            // The lanes entered, packed low in order.
+            let packed =
+                arch::_mm256_srlv_epi32(arch::_mm256_set1_epi32(PACK[mask & 0xFF] as i32), shifts);
+            let keys = arch::_mm256_permutevar8x32_epi32(keys, packed);
+            let children = arch::_mm256_permutevar8x32_epi32(children, packed);
             let low = arch::_mm256_unpacklo_epi32(children, keys);
             let high = arch::_mm256_unpackhi_epi32(children, keys);
             let out = out.as_mut_ptr().cast::<arch::__m256i>();
@@ -347,9 +363,29 @@ mod avx2 {
                 out.add(1),
                 arch::_mm256_permute2x128_si256::<0x31>(low, high),
             );
-            sp + (arch::_mm256_movemask_ps(entered) as u32).count_ones() as usize
+            sp + (mask as u32).count_ones() as usize
         }
     }
+
+    /// For each mask of eight lanes, the lanes set, in order, as nibbles
+    /// (lane of the `k`-th set bit in bits `4k ..`; the rest 0).
+    pub(in super::super) static PACK: [u32; 256] = {
+        let mut table = [0u32; 256];
+        let mut mask = 0;
+        while mask < 256 {
+            let (mut bits, mut k, mut lane) = (0u32, 0, 0);
+            while lane < 8 {
+                if mask >> lane & 1 == 1 {
+                    bits |= (lane as u32) << (4 * k);
+                    k += 1;
+                }
+                lane += 1;
+            }
+            table[mask] = bits;
+            mask += 1;
+        }
+        table
+    };
 
     /// [`NodeLanes::open`] in the octant order, with AVX-512.
     ///
@@ -405,51 +441,6 @@ mod avx2 {
             );
             arch::_mm512_storeu_si512(out.as_mut_ptr().cast(), pairs);
             sp + entered.count_ones() as usize
-        }
-    }
-
-    /// Blend mask of a bitonic round comparing lanes `j` apart within
-    /// blocks of `k`, sorting descending: lane `i` takes the larger key when
-    /// it is the lower lane of its pair in a descending block, or the upper
-    /// one in an ascending block.
-    const fn takes_larger(j: usize, k: usize) -> i32 {
-        let mut mask = 0;
-        let mut i = 0;
-        while i < WIDTH {
-            if ((i & j) == 0) != ((i & k) != 0) {
-                mask |= 1 << i;
-            }
-            i += 1;
-        }
-        mask
-    }
-
-    /// Eight non-negative keys sorted largest first: a bitonic network of
-    /// six rounds, each a shuffle to the partner lane, a `min`, a `max` and
-    /// a blend.
-    #[inline(always)]
-    pub(in super::super) unsafe fn sorted_descending(v: arch::__m256i) -> arch::__m256i {
-        // Partners one and two lanes apart stay within 128-bit halves; four
-        // apart is the swap of the halves.
-        const NEXT: i32 = 0b10_11_00_01; // [v1, v0, v3, v2] per half
-        const PAIR: i32 = 0b01_00_11_10; // [v2, v3, v0, v1] per half
-        macro_rules! round {
-            ($v:expr, $partner:expr, $j:literal, $k:literal) => {{
-                let (v, p) = ($v, $partner);
-                arch::_mm256_blend_epi32::<{ takes_larger($j, $k) }>(
-                    arch::_mm256_min_epu32(v, p),
-                    arch::_mm256_max_epu32(v, p),
-                )
-            }};
-        }
-        // SAFETY: AVX2 (the caller's contract).
-        unsafe {
-            let v = round!(v, arch::_mm256_shuffle_epi32::<NEXT>(v), 1, 2);
-            let v = round!(v, arch::_mm256_shuffle_epi32::<PAIR>(v), 2, 4);
-            let v = round!(v, arch::_mm256_shuffle_epi32::<NEXT>(v), 1, 4);
-            let v = round!(v, arch::_mm256_permute2x128_si256::<0x01>(v, v), 4, 8);
-            let v = round!(v, arch::_mm256_shuffle_epi32::<PAIR>(v), 2, 8);
-            round!(v, arch::_mm256_shuffle_epi32::<NEXT>(v), 1, 8)
         }
     }
 }
@@ -638,30 +629,19 @@ mod tests {
         }
     }
 
+    /// The AVX2 opener's packing table lists, for every mask of eight
+    /// lanes, exactly the lanes set, in ascending order.
     #[cfg(target_arch = "x86_64")]
     #[test]
-    fn the_avx2_sorting_network_sorts() {
-        use std::arch::x86_64 as arch;
-        if Avx2::detect().is_none() {
-            return;
-        }
-        let mut inputs: Vec<[u32; WIDTH]> = (0..256u32)
-            .map(|bits| std::array::from_fn(|k| (bits >> k) & 1))
-            .collect();
-        let mut uniform = crate::test_rng::uniform(0x6A09_E667_F3BC_C908);
-        inputs.extend((0..1000).map(|_| std::array::from_fn(|_| (uniform() * 1e9) as u32)));
-        for keys in inputs {
-            let mut want = keys;
-            want.sort_unstable_by(|a, b| b.cmp(a));
-            let mut out = [0u32; WIDTH];
-            // SAFETY: AVX2 was detected; loads and stores are of eight
-            // `u32`s, unaligned.
-            unsafe {
-                let v = arch::_mm256_loadu_si256(keys.as_ptr().cast());
-                let v = avx2::sorted_descending(v);
-                arch::_mm256_storeu_si256(out.as_mut_ptr().cast(), v);
+    fn the_packing_table_lists_the_lanes_set_in_order() {
+        for mask in 0..256usize {
+            let want: Vec<u32> = (0..8).filter(|&lane| mask >> lane & 1 == 1).collect();
+            let bits = avx2::PACK[mask];
+            let got: Vec<u32> = (0..want.len()).map(|k| (bits >> (4 * k)) & 15).collect();
+            assert_eq!(got, want, "mask {mask:#010b}");
+            if want.len() < 8 {
+                assert_eq!(bits >> (4 * want.len()), 0, "mask {mask:#010b}");
             }
-            assert_eq!(out, want, "{keys:?}");
         }
     }
 }
