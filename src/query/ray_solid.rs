@@ -1013,13 +1013,32 @@ fn alternate(hits: &mut [(f64, u32, Sign)], mut inside: bool) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::mesh::builders;
     use crate::query::accel::{Node8, WIDTH};
     use crate::query::node_open::for_each_lanes;
     use crate::query::ray_stream;
     use std::mem::MaybeUninit;
+
+    /// `count` rays (those valid) from anywhere in `[-2, 2]³` towards points
+    /// within `spread` of the origin: around and through a unit solid
+    /// centred there, seeded.
+    pub(in crate::query) fn rays_towards_the_centre(
+        seed: u64,
+        count: usize,
+        spread: f64,
+    ) -> Vec<Ray> {
+        let mut uniform = crate::test_rng::uniform(seed);
+        let mut rand = || DVec3::new(uniform(), uniform(), uniform()) * 4.0 - DVec3::splat(2.0);
+        (0..count)
+            .map(|_| {
+                let origin = rand();
+                Ray::new(origin, rand() * spread - origin)
+            })
+            .filter(Ray::is_valid)
+            .collect()
+    }
 
     /// The `f32` slab test never rejects a box the exact ray enters: boxes
     /// and rays at many scales and offsets, including rays grazing a box's
@@ -1099,17 +1118,9 @@ mod tests {
     #[test]
     fn a_batch_answers_as_single_queries() {
         let accel = Accel::new(&builders::sphere(24));
-        let mut uniform = crate::test_rng::uniform(0xD1B5_4A32_D192_ED03);
-        let mut rand = || DVec3::new(uniform(), uniform(), uniform()) * 4.0 - DVec3::splat(2.0);
         // From anywhere around the unit sphere towards points near its
         // centre; several stream chunks and a partial one.
-        let rays: Vec<Ray> = (0..5 * STREAM_CHUNK + 123)
-            .map(|_| {
-                let origin = rand();
-                Ray::new(origin, rand() * 0.25 - origin)
-            })
-            .filter(Ray::is_valid)
-            .collect();
+        let rays = rays_towards_the_centre(0xD1B5_4A32_D192_ED03, 5 * STREAM_CHUNK + 123, 0.25);
         let batch = accel.first_hit_batch(&rays).unwrap();
         assert_eq!(batch.len(), rays.len());
         for (ray, hit) in rays.iter().zip(&batch) {
@@ -1124,15 +1135,7 @@ mod tests {
     #[test]
     fn both_node_openers_give_the_same_hits() {
         let accel = Accel::new(&builders::sphere(24));
-        let mut uniform = crate::test_rng::uniform(0x3C6E_F372_FE94_F82B);
-        let mut rand = || DVec3::new(uniform(), uniform(), uniform()) * 4.0 - DVec3::splat(2.0);
-        let rays: Vec<Ray> = (0..4000)
-            .map(|_| {
-                let origin = rand();
-                Ray::new(origin, rand() * 0.5 - origin)
-            })
-            .filter(Ray::is_valid)
-            .collect();
+        let rays = rays_towards_the_centre(0x3C6E_F372_FE94_F82B, 4000, 0.5);
         // Slots made initialised, so reading them back is sound whatever
         // the walk wrote.
         type Slots = [MaybeUninit<Option<Crossing>>];
@@ -1251,15 +1254,7 @@ mod tests {
     #[test]
     fn batches_over_trees_too_deep_to_interleave_give_the_same_hits() {
         let mut accel = Accel::new(&builders::sphere(24));
-        let mut uniform = crate::test_rng::uniform(0x9B05_688C_2B3E_6C1F);
-        let mut rand = || DVec3::new(uniform(), uniform(), uniform()) * 4.0 - DVec3::splat(2.0);
-        let rays: Vec<Ray> = (0..2 * STREAM_CHUNK + 57)
-            .map(|_| {
-                let origin = rand();
-                Ray::new(origin, rand() * 0.25 - origin)
-            })
-            .filter(Ray::is_valid)
-            .collect();
+        let rays = rays_towards_the_centre(0x9B05_688C_2B3E_6C1F, 2 * STREAM_CHUNK + 57, 0.25);
         let interleaved = accel.first_hit_batch(&rays).unwrap();
         let hits = interleaved.iter().filter(|h| h.is_some()).count();
         assert!(hits > rays.len() / 2, "{hits} of {}", rays.len());

@@ -370,7 +370,7 @@ mod tests {
     use super::*;
     use crate::mesh::builders;
     use crate::query::node_open::for_each_lanes;
-    use glam::DVec3;
+    use crate::query::ray_solid::tests::rays_towards_the_centre;
 
     /// Every form of the interleaved walk (asking ahead or not, 8 or 16
     /// walks in turn) answers each ray as the one-ray walk does, whatever
@@ -379,15 +379,7 @@ mod tests {
     #[test]
     fn every_form_of_the_walk_answers_as_the_one_ray_walk() {
         let accel = Accel::new(&builders::sphere(24));
-        let mut uniform = crate::test_rng::uniform(0x4A7C_15D2_6E3B_90F1);
-        let mut rand = || DVec3::new(uniform(), uniform(), uniform()) * 4.0 - DVec3::splat(2.0);
-        let rays: Vec<Ray> = (0..1_000)
-            .map(|_| {
-                let origin = rand();
-                Ray::new(origin, rand() * 0.3 - origin)
-            })
-            .filter(Ray::is_valid)
-            .collect();
+        let rays = rays_towards_the_centre(0x4A7C_15D2_6E3B_90F1, 1_000, 0.3);
         let want: Vec<Option<Crossing>> =
             rays.iter().map(|r| accel.first_hit(r).unwrap()).collect();
         let hits = want.iter().filter(|h| h.is_some()).count();
