@@ -31,7 +31,7 @@ const SAFE_MIN: f64 = 1.0 / (1u128 << 125) as f64 / (1u128 << 125) as f64;
 /// `2²⁵⁰`.
 const SAFE_MAX: f64 = (1u128 << 125) as f64 * (1u128 << 125) as f64;
 
-/// Whether every value is 0 or of magnitude within [`SAFE_RANGE`]: then the
+/// Whether every value is 0 or of magnitude within [`SAFE_MIN`] ..= [`SAFE_MAX`]: then the
 /// expansion fallbacks are exact; otherwise (subnormal, tiny, huge or
 /// non-finite values) the dyadic one is needed.
 #[must_use]

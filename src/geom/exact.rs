@@ -14,8 +14,8 @@
 //! Expansion arithmetic is exact only while no intermediate product
 //! overflows or underflows; entries outside the range where that is certain
 //! (`dyadic`) are decided by exact big-integer arithmetic instead, and the
-//! filters allow for roundings in the subnormal range
-//! ([`UNDERFLOW`](super::predicates::UNDERFLOW)). So every sign here is
+//! filters allow for roundings in the subnormal range (the predicates'
+//! `UNDERFLOW`). So every sign here is
 //! exact for every finite input.
 
 use glam::{DVec2, DVec3};
@@ -265,7 +265,8 @@ const SHARED_SIDE_BOUND: f64 = DET3_BOUND * 2.0 * (1.0 + 64.0 * f64::EPSILON);
 /// the bound returned is at least `DET3_BOUND · P` for each determinant, and
 /// a sign it certifies is the exact sign. Roundings in the subnormal range
 /// add at most `(1 + ε)³ · 2η · s + 3η(1 + ε)²` to each determinant's error
-/// (`η = 2⁻¹⁰⁷⁵`, see [`UNDERFLOW`]), covered by the term `UNDERFLOW · (s + 1)`;
+/// (`η = 2⁻¹⁰⁷⁵`, see the predicates' `UNDERFLOW`), covered by the term
+/// `UNDERFLOW · (s + 1)`;
 /// overflow makes the bound or a determinant infinite or NaN, which
 /// certifies nothing.
 #[must_use]
