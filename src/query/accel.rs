@@ -229,11 +229,17 @@ pub(super) struct Node8 {
     /// index of an inner node; `u32::MAX` for an empty slot.
     pub child: [u32; WIDTH],
     /// Per octant of ray directions (bit `a` set when the direction runs
-    /// down axis `a`), the slots in the order the AVX-512 opener pushes
-    /// them: nibble `k` (bits `4k .. 4k + 4`) holds the `k`-th slot in its
-    /// low three bits, farthest first along the octant's diagonal (by the
-    /// projection of the boxes' centres, ties by slot), and bit 3 set for
-    /// an empty slot (these come first).
+    /// down axis `a`), the slots in the order the AVX-512 and AVX2 openers
+    /// push them: nibble `k` (bits `4k .. 4k + 4`) holds the `k`-th slot in
+    /// its low three bits, farthest first along the octant's diagonal (by
+    /// the projection of the boxes' centres), and bit 3 set for an empty
+    /// slot (never pushed, wherever it stands).
+    ///
+    /// # Invariants
+    ///
+    /// The low three bits of each entry's nibbles are a permutation of the
+    /// slots, whatever the boxes (infinite or NaN centres included): a slot
+    /// missing from the order would never be visited.
     pub order: [u32; WIDTH],
 }
 
@@ -277,12 +283,17 @@ impl Node8 {
                     .sum()
             });
             // Each slot's place by descending projection (ties by slot),
-            // counted without branches (a sort's comparisons are not
-            // predictable, and this runs for every node).
+            // counted rather than sorted (a sort's comparisons are not
+            // predictable, and this runs for every node). `total_cmp` is a
+            // total order, NaN included, so the places are a permutation.
             let (mut forward, mut backward) = (0, 0);
             for k in 0..WIDTH {
                 let place = (0..WIDTH)
-                    .filter(|&j| along[j] > along[k] || (along[j] == along[k] && j < k))
+                    .filter(|&j| match along[j].total_cmp(&along[k]) {
+                        std::cmp::Ordering::Greater => true,
+                        std::cmp::Ordering::Equal => j < k,
+                        std::cmp::Ordering::Less => false,
+                    })
                     .count();
                 forward |= flag(k) << (4 * place);
                 backward |= flag(k) << (4 * (WIDTH - 1 - place));
