@@ -23,7 +23,7 @@ use glam::{DVec2, DVec3};
 use super::dyadic::{self, Dyadic, in_safe_range};
 use super::expansion::Expansion;
 use super::predicates::{UNDERFLOW, count_fallback};
-use super::{Sign, orient2d};
+use super::{Sign, larger, orient2d};
 
 /// Half a unit in the last place of 1.0.
 const HALF_EPSILON: f64 = f64::EPSILON / 2.0;
@@ -278,9 +278,7 @@ pub fn triangle_edge_sides(d: [f64; 3], u: [f64; 3], v: [f64; 3], w: [f64; 3]) -
             + d[2] * (p[0] * q[1] - p[1] * q[0])
     };
     let det = [side(u, v), side(v, w), side(w, u)];
-    // Differences of finite numbers are never NaN: a plain comparison
-    // takes the larger (`f64::max` would pay for NaN handling).
-    let larger = |a: f64, b: f64| if a > b { a } else { b };
+    // Differences of finite numbers are never NaN.
     let m3 = |p: [f64; 3]| larger(larger(p[0].abs(), p[1].abs()), p[2].abs());
     let m = larger(larger(m3(u), m3(v)), m3(w));
     let s = d[0].abs() + d[1].abs() + d[2].abs();

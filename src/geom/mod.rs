@@ -28,6 +28,16 @@ pub use tolerance::Tolerance;
 
 use glam::{DVec2, DVec3};
 
+/// The larger of `a` and `b`, for values that are never NaN (differences
+/// and magnitudes of finite numbers): a plain comparison, where `f64::max`
+/// and `f32::max` spend several instructions on NaN handling. With a NaN it
+/// returns `b`.
+#[must_use]
+#[inline(always)]
+pub(crate) fn larger<T: PartialOrd>(a: T, b: T) -> T {
+    if a > b { a } else { b }
+}
+
 /// Whether three points are exactly collinear (coincident points included).
 ///
 /// Decided exactly: three points are collinear iff their projections onto all

@@ -322,37 +322,22 @@ mod avx2 {
         // children, eight `u32`s 32-byte aligned; `out` is eight `Deferred`s,
         // each two `u32`s in order (`repr(C)`), 64 bytes written unaligned.
         unsafe {
-            let (t0, t1) = slab_bounds(rb, n, limit);
-            let shifts = arch::_mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28);
-            let nibbles = arch::_mm256_and_si256(
-                arch::_mm256_srlv_epi32(
-                    arch::_mm256_set1_epi32(n.order[rb.octant & 7] as i32),
-                    shifts,
-                ),
-                arch::_mm256_set1_epi32(15),
-            );
+            let o = in_octant_order(rb, n, limit);
             let empty = arch::_mm256_castsi256_ps(arch::_mm256_cmpgt_epi32(
-                nibbles,
+                o.nibbles,
                 arch::_mm256_set1_epi32(7),
             ));
-            let t0 = arch::_mm256_permutevar8x32_ps(t0, nibbles);
-            let t1 = arch::_mm256_permutevar8x32_ps(t1, nibbles);
-            let entered =
-                arch::_mm256_andnot_ps(empty, arch::_mm256_cmp_ps::<{ arch::_CMP_LE_OQ }>(t0, t1));
+            let entered = arch::_mm256_andnot_ps(
+                empty,
+                arch::_mm256_cmp_ps::<{ arch::_CMP_LE_OQ }>(o.entry, o.exit),
+            );
             let mask = arch::_mm256_movemask_ps(entered) as usize;
-            let entry =
-                arch::_mm256_castps_si256(arch::_mm256_min_ps(t0, arch::_mm256_set1_ps(f32::MAX)));
-            let keys = arch::_mm256_or_si256(
-                arch::_mm256_and_si256(entry, arch::_mm256_set1_epi32(!KEY_SLOT_BITS as i32)),
-                arch::_mm256_or_si256(nibbles, arch::_mm256_set1_epi32(8)),
-            );
-            let children = arch::_mm256_permutevar8x32_epi32(
-                arch::_mm256_load_si256(n.child.as_ptr().cast()),
-                nibbles,
-            );
             // The lanes entered, packed low in order.
-            let packed =
-                arch::_mm256_srlv_epi32(arch::_mm256_set1_epi32(PACK[mask & 0xFF] as i32), shifts);
+            let packed = arch::_mm256_srlv_epi32(
+                arch::_mm256_set1_epi32(PACK[mask & 0xFF] as i32),
+                nibble_shifts(),
+            );
+            let (keys, children) = (o.keys, o.children);
             let keys = arch::_mm256_permutevar8x32_epi32(keys, packed);
             let children = arch::_mm256_permutevar8x32_epi32(children, packed);
             let low = arch::_mm256_unpacklo_epi32(children, keys);
@@ -364,6 +349,67 @@ mod avx2 {
                 arch::_mm256_permute2x128_si256::<0x31>(low, high),
             );
             sp + (mask as u32).count_ones() as usize
+        }
+    }
+
+    /// The shifts that bring nibble `k` of a word to the bottom of lane `k`.
+    #[inline(always)]
+    unsafe fn nibble_shifts() -> arch::__m256i {
+        // SAFETY: AVX (the caller's contract: AVX2).
+        unsafe { arch::_mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28) }
+    }
+
+    /// A node's children in the ray's octant order ([`Node8::order`]):
+    /// lane `k` holds the `k`-th slot of the order.
+    struct OctantLanes {
+        /// The order's nibbles: the slot in the low three bits, bit 3 set
+        /// for an empty slot.
+        nibbles: arch::__m256i,
+        /// Entry and exit parameters (see [`slab_bounds`]).
+        entry: arch::__m256,
+        exit: arch::__m256,
+        /// The children's keys (entry bits with `8 | slot` below them).
+        keys: arch::__m256i,
+        /// The children's [`Node8::child`] entries.
+        children: arch::__m256i,
+    }
+
+    /// The slab tests of node `n` and its children, permuted into the ray's
+    /// octant order: what both octant openers start from.
+    #[inline(always)]
+    unsafe fn in_octant_order(rb: &RayBox, n: &Node8, limit: f32) -> OctantLanes {
+        // SAFETY: AVX2 (the caller's contract); the load reads `n`'s
+        // children, eight `u32`s 32-byte aligned.
+        unsafe {
+            let (t0, t1) = slab_bounds(rb, n, limit);
+            let nibbles = arch::_mm256_and_si256(
+                arch::_mm256_srlv_epi32(
+                    arch::_mm256_set1_epi32(n.order[rb.octant & 7] as i32),
+                    nibble_shifts(),
+                ),
+                arch::_mm256_set1_epi32(15),
+            );
+            let entry = arch::_mm256_permutevar8x32_ps(t0, nibbles);
+            let exit = arch::_mm256_permutevar8x32_ps(t1, nibbles);
+            let bits = arch::_mm256_castps_si256(arch::_mm256_min_ps(
+                entry,
+                arch::_mm256_set1_ps(f32::MAX),
+            ));
+            let keys = arch::_mm256_or_si256(
+                arch::_mm256_and_si256(bits, arch::_mm256_set1_epi32(!KEY_SLOT_BITS as i32)),
+                arch::_mm256_or_si256(nibbles, arch::_mm256_set1_epi32(8)),
+            );
+            let children = arch::_mm256_permutevar8x32_epi32(
+                arch::_mm256_load_si256(n.child.as_ptr().cast()),
+                nibbles,
+            );
+            OctantLanes {
+                nibbles,
+                entry,
+                exit,
+                keys,
+                children,
+            }
         }
     }
 
@@ -406,34 +452,15 @@ mod avx2 {
         // `Deferred`s, each two `u32`s in order (`repr(C)`), 64 bytes
         // written unaligned.
         unsafe {
-            let (t0, t1) = slab_bounds(rb, n, limit);
-            // Lane `k` takes the `k`-th slot of the octant's order; a slot
-            // flagged empty (nibble bit 3) is never entered.
-            let nibbles = arch::_mm256_and_si256(
-                arch::_mm256_srlv_epi32(
-                    arch::_mm256_set1_epi32(n.order[rb.octant & 7] as i32),
-                    arch::_mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28),
-                ),
-                arch::_mm256_set1_epi32(15),
-            );
-            let filled = arch::_mm256_testn_epi32_mask(nibbles, arch::_mm256_set1_epi32(8));
-            let t0 = arch::_mm256_permutevar8x32_ps(t0, nibbles);
-            let t1 = arch::_mm256_permutevar8x32_ps(t1, nibbles);
-            let entered = arch::_mm256_mask_cmp_ps_mask::<{ arch::_CMP_LE_OQ }>(filled, t0, t1);
-            let entry =
-                arch::_mm256_castps_si256(arch::_mm256_min_ps(t0, arch::_mm256_set1_ps(f32::MAX)));
-            let keys = arch::_mm256_or_si256(
-                arch::_mm256_and_si256(entry, arch::_mm256_set1_epi32(!KEY_SLOT_BITS as i32)),
-                arch::_mm256_or_si256(nibbles, arch::_mm256_set1_epi32(8)),
-            );
-            let children = arch::_mm256_permutevar8x32_epi32(
-                arch::_mm256_load_si256(n.child.as_ptr().cast()),
-                nibbles,
-            );
+            let o = in_octant_order(rb, n, limit);
+            // A slot flagged empty (nibble bit 3) is never entered.
+            let filled = arch::_mm256_testn_epi32_mask(o.nibbles, arch::_mm256_set1_epi32(8));
+            let entered =
+                arch::_mm256_mask_cmp_ps_mask::<{ arch::_CMP_LE_OQ }>(filled, o.entry, o.exit);
             // The children entered, in order, packed into the low lanes,
             // each beside its key.
-            let keys = arch::_mm256_maskz_compress_epi32(entered, keys);
-            let children = arch::_mm256_maskz_compress_epi32(entered, children);
+            let keys = arch::_mm256_maskz_compress_epi32(entered, o.keys);
+            let children = arch::_mm256_maskz_compress_epi32(entered, o.children);
             let pairs = arch::_mm512_permutex2var_epi32(
                 arch::_mm512_castsi256_si512(children),
                 arch::_mm512_setr_epi32(0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23),

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use crate::geom::exact::{line_side_filter_scalar, triangle_edge_sides};
 use crate::geom::polygon::coplanar_point_in_closed_triangle;
-use crate::geom::{Ray, Sign, line_side_sos, orient3d};
+use crate::geom::{Ray, Sign, larger, line_side_sos, orient3d};
 use crate::mesh::FaceId;
 
 use super::accel::{BoxFrame, LEAF};
@@ -213,14 +213,13 @@ impl RayBox {
         );
         let inv_hi = Vec4::select(zero, Vec4::INFINITY, recip * INV_GROW);
         let down = d32.is_negative_bitmask();
-        let row = |a: usize, upper: bool| Row::of(a, upper);
         RayBox {
             o_near: o_near.to_array(),
             o_far: o_far.to_array(),
             inv_near: inv_lo.copysign(d32).to_array(),
             inv_far: inv_hi.copysign(d32).to_array(),
-            near_row: [0, 1, 2].map(|a| row(a, down >> a & 1 == 1)),
-            far_row: [0, 1, 2].map(|a| row(a, down >> a & 1 == 0)),
+            near_row: [0, 1, 2].map(|a| Row::of(a, down >> a & 1 == 1)),
+            far_row: [0, 1, 2].map(|a| Row::of(a, down >> a & 1 == 0)),
             t_to_s: frame.scale,
             octant: (down & 7) as usize,
         }
@@ -299,9 +298,8 @@ pub(super) type BestHit = Option<(f64, u32, Sign)>;
 /// direction's length, symbolic perturbation included).
 #[inline(always)]
 pub(super) fn unit_scaled(ray: &Ray) -> (Ray, f64) {
-    // A checked ray's direction is finite: plain comparisons.
+    // A checked ray's direction is finite, never NaN.
     let d = ray.direction.abs();
-    let larger = |a: f64, b: f64| if a > b { a } else { b };
     let largest = larger(larger(d.x, d.y), d.z);
     // `largest` is finite and non-zero (a checked ray): its binary exponent
     // `e` lies in −1074 ..= 1023; read from the bits for normal numbers.
@@ -538,7 +536,7 @@ impl Accel {
         Ok((hit, stats))
     }
 
-    fn first_hit_unchecked(&self, ray: &Ray) -> Option<Crossing> {
+    pub(super) fn first_hit_unchecked(&self, ray: &Ray) -> Option<Crossing> {
         self.first_hit_tallied(ray, &mut ())
     }
 

@@ -233,10 +233,7 @@ impl Accel {
     ) {
         if self.stack_len > STACK {
             for (o, r) in out.iter_mut().zip(rays) {
-                o.write(
-                    self.first_best(r, &mut ())
-                        .map(|(t, i, s)| self.crossing(t, i, s)),
-                );
+                o.write(self.first_hit_unchecked(r));
             }
         } else if self.stats.memory_bytes >= MANY_LANES_BYTES {
             self.walk_interleaved::<true, MANY_LANES>(lanes, rays, out, scratch);

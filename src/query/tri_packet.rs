@@ -18,7 +18,7 @@
 
 use glam::DVec3;
 
-use crate::geom::Ray;
+use crate::geom::{Ray, larger};
 
 use super::accel::YzTri;
 use super::lanes::F32x4;
@@ -130,8 +130,7 @@ impl TriPacket {
     #[inline(always)]
     pub(super) fn undecided(&self, r: &PacketRay) -> u32 {
         let v = ((r.origin - self.centre) * r.scale).as_vec3().to_array();
-        // `v` is never NaN (a finite difference, scaled): plain comparisons.
-        let larger = |a: f32, b: f32| if a > b { a } else { b };
+        // `v` is never NaN (a finite difference, scaled).
         let reach = self.extent + larger(larger(v[0].abs(), v[1].abs()), v[2].abs());
         let bound = SIDE_BOUND * r.length * reach * self.extent
             + TINY * (1.0 + r.length * (reach + self.extent));
