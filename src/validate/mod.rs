@@ -14,6 +14,7 @@
 mod checks;
 mod context;
 mod exact;
+mod json;
 mod report;
 mod solid_view;
 
@@ -23,6 +24,7 @@ use crate::geom::Tolerance;
 use crate::io::ObjImport;
 use crate::mesh::{PolygonSoup, Solid};
 
+pub use json::report_json;
 pub use report::{Report, Rule, ShellSummary, Validity, Violation};
 
 /// What to judge and how strictly.

@@ -1,0 +1,50 @@
+//! numpy arrays in and out.
+//!
+//! The Python wrapper hands over C-contiguous `float64` arrays of shape
+//! `(n, 3)` (it converts other float and integer dtypes, exactly); this file
+//! checks the shape once more, so that no caller of the native module can
+//! make it panic, and copies the rows into `DVec3`s.
+
+use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use wingedge::glam::DVec3;
+
+/// The rows of an `(n, 3)` array as points, copied (any memory layout).
+///
+/// # Errors
+///
+/// `ValueError` naming `what` when the array is not of shape `(n, 3)`.
+pub(crate) fn points(array: &PyReadonlyArray2<'_, f64>, what: &str) -> PyResult<Vec<DVec3>> {
+    let shape = array.shape();
+    if shape[1] != 3 {
+        return Err(PyValueError::new_err(format!(
+            "{what} must have shape (n, 3), got ({}, {})",
+            shape[0], shape[1]
+        )));
+    }
+    let view = array.as_array();
+    Ok(view
+        .rows()
+        .into_iter()
+        .map(|r| DVec3::new(r[0], r[1], r[2]))
+        .collect())
+}
+
+/// A flat index array as `usize`s, refusing negative entries.
+///
+/// # Errors
+///
+/// `ValueError` naming `what` and the first negative entry.
+pub(crate) fn indices(array: &PyReadonlyArray1<'_, i64>, what: &str) -> PyResult<Vec<usize>> {
+    array
+        .as_array()
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| {
+            usize::try_from(v).map_err(|_| {
+                PyValueError::new_err(format!("{what}[{i}] is {v}: an index is never negative"))
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,59 @@
+//! The exceptions: one base class, `wingedge.WingedgeError` (a
+//! `ValueError`), and one subclass per kind of failure, each carrying the
+//! crate's located message (file, OBJ line, element ids, JSON path).
+
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+create_exception!(
+    wingedge,
+    WingedgeError,
+    PyValueError,
+    "Base class of every wingedge error (a ValueError)."
+);
+create_exception!(
+    wingedge,
+    ObjError,
+    WingedgeError,
+    "An OBJ file could not be read: the message names the file and line."
+);
+create_exception!(
+    wingedge,
+    ValidationError,
+    WingedgeError,
+    "Input that cannot be a winged-edge solid (bad indices, non-finite \
+     positions, non-manifold edges): the message names the elements."
+);
+create_exception!(
+    wingedge,
+    QueryError,
+    WingedgeError,
+    "A query that cannot be answered (non-finite point, zero ray direction, \
+     an open solid asked for parity): the message names the query's index."
+);
+
+/// Adds the exception classes to the module.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("WingedgeError", py.get_type::<WingedgeError>())?;
+    m.add("ObjError", py.get_type::<ObjError>())?;
+    m.add("ValidationError", py.get_type::<ValidationError>())?;
+    m.add("QueryError", py.get_type::<QueryError>())?;
+    Ok(())
+}
+
+/// A query error as a Python exception.
+pub(crate) fn query(e: wingedge::query::QueryError) -> PyErr {
+    QueryError::new_err(e.to_string())
+}
+
+/// A build error as a Python exception.
+pub(crate) fn build(e: wingedge::mesh::BuildError) -> PyErr {
+    ValidationError::new_err(e.to_string())
+}
+
+/// A build error of the solid read from `path`, naming the file.
+pub(crate) fn build_in(path: &std::path::Path, e: wingedge::mesh::BuildError) -> PyErr {
+    ValidationError::new_err(format!("{}: not a winged-edge solid: {e}", path.display()))
+}
