@@ -352,4 +352,40 @@ mod tests {
             "{e}"
         );
     }
+
+    #[test]
+    fn a_path_is_a_scene_or_a_mesh_as_a_one_leaf_scene() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let scene = Scene::from_path(&root.join("fixtures/scenes/drilled_cube.json")).unwrap();
+        assert!(scene.csg.leaves().len() > 1);
+        assert!(scene.shadows);
+        let mesh = Scene::from_path(&root.join("fixtures/valid/cube.obj")).unwrap();
+        assert_eq!(mesh.csg.leaves().len(), 1);
+        assert_eq!(mesh.csg.leaves()[0].label, "root.mesh");
+        assert_eq!(
+            mesh.csg
+                .single_leaf()
+                .and_then(|l| l.primitive.exact_volume()),
+            Some(8.0)
+        );
+        assert!(mesh.camera.is_none() && mesh.light.is_none() && !mesh.shadows);
+
+        // A defective mesh is refused with the validator's verdict, naming
+        // the mesh file once and no scene.
+        let hole = root.join("tests/bad_inputs/hole.obj");
+        let e = Scene::from_path(&hole).unwrap_err();
+        assert!(matches!(e, SceneError::MeshFile { .. }), "{e}");
+        let text = e.to_string();
+        let file = hole.display().to_string();
+        assert!(
+            text.starts_with(&format!("{file}: not a valid closed solid")),
+            "{text}"
+        );
+        // The reader's message already names the file: not repeated.
+        let index_zero = root.join("tests/bad_inputs/index_zero.obj");
+        let text = Scene::from_path(&index_zero).unwrap_err().to_string();
+        let file = index_zero.display().to_string();
+        assert!(text.starts_with(&format!("{file}:5: ")), "{text}");
+        assert_eq!(text.matches(&file).count(), 1, "{text}");
+    }
 }

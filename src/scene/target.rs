@@ -208,3 +208,142 @@ impl Target {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fixture(path: &str) -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+    }
+
+    fn x_ray(y: f64, z: f64) -> Ray {
+        Ray::new(DVec3::new(-3.0, y, z), DVec3::X)
+    }
+
+    #[test]
+    fn a_mesh_answers_by_its_solid() {
+        let target = Target::try_load(&fixture("fixtures/valid/cube.obj")).unwrap();
+        assert!(target.scene().is_none());
+        let mut stats = Stats::default();
+        let points = [DVec3::ZERO, DVec3::splat(3.0), DVec3::new(1.0, 0.0, 0.0)];
+        for method in [Method::Parity, Method::Normals, Method::Winding] {
+            assert_eq!(
+                target.classify(&points, method, &mut stats).unwrap(),
+                [
+                    Containment::Inside,
+                    Containment::Outside,
+                    Containment::OnBoundary
+                ]
+            );
+        }
+        let answers = target.rays(&[x_ray(0.75, 0.75)], &mut stats).unwrap();
+        assert_eq!(answers[0].to_string(), "outside 2.0 4.0");
+        // A mesh does no CSG work.
+        assert_eq!(stats, Stats::default());
+    }
+
+    #[test]
+    fn a_scene_answers_by_its_tree() {
+        let target = Target::try_load(&fixture("fixtures/scenes/drilled_cube.json")).unwrap();
+        assert!(target.scene().is_some());
+        let mut stats = Stats::default();
+        // The drills remove the centre; the wall between them stays.
+        let points = [DVec3::ZERO, DVec3::splat(0.9), DVec3::splat(3.0)];
+        assert_eq!(
+            target
+                .classify(&points, Method::Parity, &mut stats)
+                .unwrap(),
+            [
+                Containment::Outside,
+                Containment::Inside,
+                Containment::Outside
+            ]
+        );
+        let answers = target
+            .rays(&[x_ray(0.75, 0.75), x_ray(0.0, 0.0)], &mut stats)
+            .unwrap();
+        assert_eq!(answers[0].to_string(), "outside [2, 4]");
+        assert_eq!(answers[1].to_string(), "outside");
+        assert!(stats.primitive_ray_tests > 0, "{stats}");
+    }
+
+    #[test]
+    fn refusals_name_the_file_and_the_query() {
+        let scene = fixture("fixtures/scenes/drilled_cube.json");
+        let target = Target::try_load(&scene).unwrap();
+        let mut stats = Stats::default();
+        let e = target
+            .classify(
+                &[DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 0.0)],
+                Method::Parity,
+                &mut stats,
+            )
+            .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TargetError::Query {
+                    source: QueryError::NonFinitePoint { index: 1, .. },
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(e.to_string().starts_with(&scene.display().to_string()));
+        let e = target
+            .rays(
+                &[x_ray(0.0, 0.0), Ray::new(DVec3::ZERO, DVec3::ZERO)],
+                &mut stats,
+            )
+            .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TargetError::Query {
+                    source: QueryError::InvalidRay { index: 1, .. },
+                    ..
+                }
+            ),
+            "{e}"
+        );
+
+        // An open mesh loads (the winding number answers it) but has no
+        // parity and no crossings.
+        let hole = fixture("tests/bad_inputs/hole.obj");
+        let target = Target::try_load(&hole).unwrap();
+        let inside = DVec3::splat(0.1);
+        assert!(
+            target
+                .classify(&[inside], Method::Winding, &mut stats)
+                .is_ok()
+        );
+        let e = target.rays(&[x_ray(0.1, 0.1)], &mut stats).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TargetError::Query {
+                    source: QueryError::NotClosed { .. },
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(
+            e.to_string().contains("hole.obj: the solid is not closed"),
+            "{e}"
+        );
+
+        let missing = fixture("tests/bad_inputs/missing.obj");
+        let e = Target::try_load(&missing).unwrap_err();
+        assert!(matches!(e, TargetError::Obj(_)), "{e}");
+        assert!(e.to_string().contains("missing.obj: cannot read"), "{e}");
+        let e = Target::try_load(&fixture("tests/bad_inputs/negative_radius.json")).unwrap_err();
+        assert!(matches!(e, TargetError::Scene(_)), "{e}");
+        assert!(
+            e.to_string()
+                .contains("root.difference[1].sphere.radius: expected a positive number"),
+            "{e}"
+        );
+    }
+}
