@@ -19,17 +19,15 @@ pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: boo
         s.x.max(s.y).max(s.z) / DEFAULT_CELLS
     });
     // A lone polyhedron or analytic solid has a closed form: print it.
-    let exact = scene
-        .csg
-        .single_leaf()
-        .and_then(|l| l.primitive.exact_volume());
+    let single = scene.csg.single_leaf();
+    let exact = single.and_then(|l| l.primitive.exact_volume());
     let mut out = Out::new();
-    if let (Some(v), false) = (exact, integrate) {
+    if let (Some(leaf), Some(v), false) = (single, exact, integrate) {
         out.write(format_args!("{v}\n"))?;
         out.finish()?;
         eprintln!(
             "closed-form volume of the single {} (--integrate to cast rays)",
-            scene.csg.leaves()[0].label
+            leaf.label
         );
         return Ok(ExitCode::SUCCESS);
     }
