@@ -86,10 +86,23 @@ pub fn run(args: &[&str], stdin: &str, env: &[(&str, &str)]) -> Outcome {
             .expect("stderr is readable");
         bytes
     });
+    let status = wait_or_kill(&mut child, args);
+    feeder.join().expect("stdin feeder");
+    Outcome {
+        code: status.code().unwrap_or(-1),
+        stdout: stdout.join().expect("stdout reader"),
+        stderr: String::from_utf8_lossy(&stderr.join().expect("stderr reader")).into_owned(),
+    }
+}
+
+/// Waits for `child` (running `wingedge ARGS`); kills it and panics if it
+/// runs longer than [`HUNG_AFTER`].
+#[cfg(feature = "cli")]
+fn wait_or_kill(child: &mut std::process::Child, args: &[&str]) -> std::process::ExitStatus {
     let started = Instant::now();
-    let status = loop {
+    loop {
         if let Some(status) = child.try_wait().expect("the child can be waited for") {
-            break status;
+            return status;
         }
         if started.elapsed() > HUNG_AFTER {
             let _ = child.kill();
@@ -97,12 +110,6 @@ pub fn run(args: &[&str], stdin: &str, env: &[(&str, &str)]) -> Outcome {
             panic!("wingedge {args:?} still running after {HUNG_AFTER:?}: killed");
         }
         std::thread::sleep(Duration::from_millis(5));
-    };
-    feeder.join().expect("stdin feeder");
-    Outcome {
-        code: status.code().unwrap_or(-1),
-        stdout: stdout.join().expect("stdout reader"),
-        stderr: String::from_utf8_lossy(&stderr.join().expect("stderr reader")).into_owned(),
     }
 }
 
@@ -200,18 +207,7 @@ pub fn run_first_line_only(args: &[&str]) -> Outcome {
             .expect("stdout is readable");
         // Dropping the reader closes the pipe.
     }
-    let started = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().expect("the child can be waited for") {
-            break status;
-        }
-        if started.elapsed() > HUNG_AFTER {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("wingedge {args:?} still running after {HUNG_AFTER:?}: killed");
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    };
+    let status = wait_or_kill(&mut child, args);
     Outcome {
         code: status.code().unwrap_or(-1),
         stdout: first,
