@@ -9,9 +9,10 @@ use std::time::Instant;
 
 use glam::DVec3;
 use rayon::prelude::*;
-use wingedge::csg::{AxisBox, Csg, CsgExpr, HalfSpace, Polyhedron, Scene, Sphere, Stats};
+use wingedge::csg::{AxisBox, Csg, CsgExpr, HalfSpace, Polyhedron, Sphere, Stats};
 use wingedge::geom::Ray;
 use wingedge::mesh::{Solid, builders};
+use wingedge::scene::Scene;
 
 /// A cheap seeded generator (xorshift), so every run casts the same rays.
 struct Rng(u64);

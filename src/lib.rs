@@ -18,7 +18,8 @@
 //! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out) →
 //! [`validate`] (named checks and a graded verdict) → [`query`] (line–face,
 //! ray–solid, point-in-polyhedron) → [`csg`] (ray-cast CSG: primitives,
-//! trees, scenes) → [`render`] (images).
+//! trees, the span merge) → [`scene`] (the JSON scene format; a mesh or a
+//! scene as one query target) → [`render`] (images).
 #![warn(missing_docs)]
 
 pub mod csg;
@@ -29,6 +30,7 @@ pub mod io;
 pub mod mesh;
 pub mod query;
 pub mod render;
+pub mod scene;
 #[cfg(test)]
 mod test_rng;
 pub mod validate;

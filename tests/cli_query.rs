@@ -119,3 +119,31 @@ fn raycast_prints_origin_and_crossings() {
         "outside 2.0 4.0\ninside 1.0\nboundary\noutside 1.0 3.0\n"
     );
 }
+
+#[test]
+fn a_reader_that_goes_away_ends_the_output_quietly() {
+    // `wingedge classify … | head -1`: far more output than a pipe holds,
+    // and the reader closes it after the first line. The command stops
+    // writing and succeeds; it does not panic or report an error.
+    let dir = TempDir::new("cli-pipe");
+    let cube = dir.write("cube.obj", to_obj_string(&builders::cube()));
+    let points = dir.write("points.txt", "0 0 0\n3 3 3\n".repeat(100_000));
+    let rays = dir.write("rays.txt", "-3 0.75 0.75 1 0 0\n".repeat(100_000));
+    let (cube, points, rays) = (
+        cube.to_str().expect("path"),
+        points.to_str().expect("path"),
+        rays.to_str().expect("path"),
+    );
+    let scene = "fixtures/scenes/drilled_cube.json";
+    for (args, first) in [
+        (["classify", cube, points], "inside\n"),
+        (["raycast", cube, rays], "outside 2.0 4.0\n"),
+        (["classify", scene, points], "outside\n"),
+        (["raycast", scene, rays], "outside [2, 4]\n"),
+    ] {
+        let o = common::cli::run_first_line_only(&args);
+        assert_eq!(o.out(), first, "{args:?}");
+        assert_eq!(o.code, 0, "{args:?}: {}", o.stderr);
+        assert!(o.stderr.is_empty(), "{args:?}: {}", o.stderr);
+    }
+}

@@ -7,9 +7,10 @@ mod common;
 
 use common::cli::TempDir;
 use glam::DVec3;
-use wingedge::csg::{AxisBox, Containment, Csg, CsgExpr, Polyhedron, Scene, Stats};
+use wingedge::csg::{AxisBox, Containment, Csg, CsgExpr, Polyhedron, Stats};
 use wingedge::geom::Ray;
 use wingedge::mesh::{Solid, builders};
+use wingedge::scene::Scene;
 
 fn mesh(solid: Solid) -> CsgExpr {
     CsgExpr::leaf(Polyhedron::try_new(solid).unwrap())

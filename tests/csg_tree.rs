@@ -398,7 +398,7 @@ fn the_many_leaves_scene_has_the_sum_of_its_leaves_volumes() {
         env!("CARGO_MANIFEST_DIR"),
         "/fixtures/scenes/many_leaves.json"
     );
-    let scene = wingedge::csg::Scene::from_file(std::path::Path::new(path)).unwrap();
+    let scene = wingedge::scene::Scene::from_file(std::path::Path::new(path)).unwrap();
     let exact: f64 = scene
         .csg
         .leaves()

@@ -12,8 +12,8 @@ mod common;
 use std::path::Path;
 
 use common::cli::{TempDir, peak_child_rss_bytes, run};
-use wingedge::csg::{Scene, SceneError};
 use wingedge::io::{ObjError, ObjOptions, import_obj};
+use wingedge::scene::{Scene, SceneError};
 
 /// Size of the garbage files.
 const GARBAGE_BYTES: usize = 50 * 1024 * 1024;

@@ -11,12 +11,13 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use serde_json::Value;
-use wingedge::csg::{Scene, Stats};
+use wingedge::csg::Stats;
 use wingedge::geom::Ray;
 use wingedge::glam::DVec3;
 use wingedge::io::{ObjOptions, import_obj, read_obj};
 use wingedge::mesh::Solid;
 use wingedge::query::{Accel, Containment};
+use wingedge::scene::Scene;
 use wingedge::validate::{Options, validate_import};
 
 /// Runs the oracle once per test binary and returns its output folder.

@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use wingedge::csg::Scene;
 use wingedge::render::{RenderOptions, render};
+use wingedge::scene::Scene;
 
 fn scene(shadows: bool) -> Scene {
     let text = format!(

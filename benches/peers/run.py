@@ -3,7 +3,8 @@
 
     python3 benches/peers/run.py --out /tmp/peers
 
-builds the examples (`cargo build --release --examples`), makes the inputs
+builds the examples and the parry harness (`cargo build --release --examples`,
+`cargo build --release -p wingedge-peers-parry`), makes the inputs
 (seeded; see inputs.py) under OUT/inputs — the meshes sphere_80k, torus_knot
 and sphere_1m, and the real models fandisk and spot when the team's shared
 models folder is next to the repository — then for each mesh:
@@ -13,9 +14,10 @@ models folder is next to the repository — then for each mesh:
   (c) import + validation of the mesh's OBJ file,
 
 by wingedge (examples/peers_wingedge.rs), parry3d and parry3d-f64
-(examples/peers_parry.rs), trimesh with Embree, libigl's fast winding number,
-open3d's RaycastingScene and manifold3d (python_peers.py). Everyone gets 2
-threads (RAYON_NUM_THREADS, OMP_NUM_THREADS, open3d's nthreads); every
+(benches/peers/parry/, a crate of its own in the workspace), trimesh with
+Embree, libigl's fast winding number, open3d's RaycastingScene and
+manifold3d (python_peers.py). Everyone gets 2 threads (RAYON_NUM_THREADS,
+OMP_NUM_THREADS, open3d's nthreads); every
 timing is the best of 3 unless a run takes over 5 s, and wingedge and
 open3d (the closest in speed) take turns over --rounds rounds (3), each
 keeping its best, so that a slow spell of the shared machine does not fall
@@ -57,6 +59,10 @@ import report  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXAMPLES = os.path.join(ROOT, "target", "release", "examples")
+# The parry harness is a workspace member: its binary sits in target/release.
+PEERS_PARRY = os.path.join(ROOT, "target", "release", "peers_parry")
+BUILD_COMMANDS = [["cargo", "build", "--release", "--examples"],
+                  ["cargo", "build", "--release", "-p", "wingedge-peers-parry"]]
 # The three shared meshes, then the team's real models that fit in
 # the caches (a CAD part and a remeshed scan) when their folder is there.
 DEFAULT_MESHES = ["sphere_80k", "torus_knot", "sphere_1m"] + (
@@ -190,7 +196,7 @@ def queries_for_mesh(name, directory, args, rng):
                  setup_s=ours_line["accel_s"], seconds=ours_line[task + "_s"], queries=ours_line[task],
                  answers=ours[task]) for task in ("points", "rays")]
     log(name, "parry")
-    for line in run_json_lines([os.path.join(EXAMPLES, "peers_parry"), "queries", directory,
+    for line in run_json_lines([PEERS_PARRY, "queries", directory,
                                 str(args.parry_points), name]):
         tag = line["library"]
         label = {"parry_f32": "parry3d", "parry_f64": "parry3d-f64"}[tag]
@@ -247,7 +253,7 @@ def validation_for_mesh(name, directory):
     commands = {
         "wingedge": [os.path.join(EXAMPLES, "peers_wingedge"), "validate", path],
         "trimesh.load + manifold3d Manifold": [sys.executable, os.path.abspath(__file__), "--validate-with-python-peers", path],
-        "tobj + parry3d-f64 TriMesh topology": [os.path.join(EXAMPLES, "peers_parry"), "validate", path],
+        "tobj + parry3d-f64 TriMesh topology": [PEERS_PARRY, "validate", path],
     }
     best = {}
     for _ in range(VALIDATE_ROUNDS):
@@ -301,15 +307,16 @@ def main():
     ap.add_argument("--arbitrate", type=int, default=200, help="disputed queries settled exactly per mesh and task")
     ap.add_argument("--rounds", type=int, default=3,
                     help="rounds in which wingedge and open3d take turns (each keeps its best)")
-    ap.add_argument("--no-build", action="store_true", help="skip cargo build (examples already built)")
+    ap.add_argument("--no-build", action="store_true", help="skip cargo build (examples and parry harness already built)")
     args = ap.parse_args()
     started = time.perf_counter()
     load_at_start = os.getloadavg()[0]
     directory = os.path.join(os.path.abspath(args.out), "inputs")
     os.makedirs(directory, exist_ok=True)
     if not args.no_build:
-        log("cargo build --release --examples")
-        subprocess.run(["cargo", "build", "--release", "--examples"], cwd=ROOT, check=True)
+        for command in BUILD_COMMANDS:
+            log(" ".join(command))
+            subprocess.run(command, cwd=ROOT, check=True)
     if args.meshes:
         names = [n for n in args.meshes.split(",") if n]
     elif args.inputs:

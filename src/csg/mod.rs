@@ -12,7 +12,8 @@
 //!   integrating span lengths ([`VolumeEstimate`]).
 //! - Every query adds to a [`Stats`] value, so tests can check that only the
 //!   needed work was done.
-//! - [`Scene`] reads the JSON scene format.
+//!
+//! Scene files (JSON) are read one layer up, in `wingedge::scene`.
 
 mod axis_box;
 mod classify;
@@ -21,8 +22,6 @@ mod halfspace;
 mod merge;
 mod polyhedron;
 mod primitive;
-mod scene;
-
 mod sphere;
 mod stats;
 mod trace;
@@ -39,8 +38,6 @@ pub use halfspace::{HalfSpace, HalfSpaceError};
 pub use merge::{CsgOp, Hit, MergeState, merge, oriented_normal};
 pub use polyhedron::{Polyhedron, PolyhedronError};
 pub use primitive::{Crossing, Primitive, SurfaceId, normal_alignment, perturbed_side};
-pub use scene::{CameraSpec, DEFAULT_AMBIENT, LightSpec, Scene, SceneError};
-
 pub use sphere::{Sphere, SphereError};
 pub use stats::Stats;
 pub use trace::{FirstHit, Spans};

@@ -53,9 +53,9 @@ pub struct Polyhedron {
 }
 
 impl Polyhedron {
-    /// A leaf of a closed solid (validate imported meshes first: see
-    /// [`Scene`](super::Scene), which refuses a defective mesh with the
-    /// validator's report). Builds the query acceleration once.
+    /// A leaf of a closed solid (validate imported meshes first, as the
+    /// scene layer does: it refuses a defective mesh with the validator's
+    /// report). Builds the query acceleration once.
     ///
     /// # Errors
     ///

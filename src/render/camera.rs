@@ -2,8 +2,8 @@
 
 use glam::DVec3;
 
-use crate::csg::CameraSpec;
 use crate::geom::{Aabb, Ray};
+use crate::scene::CameraSpec;
 
 /// A pinhole camera: an eye, an orthonormal frame and a field of view.
 ///

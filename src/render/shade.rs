@@ -4,8 +4,9 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::{Camera, Image};
-use crate::csg::{DEFAULT_AMBIENT, LeafId, LightSpec, Scene, Stats};
+use crate::csg::{LeafId, Stats};
 use crate::geom::Ray;
+use crate::scene::{DEFAULT_AMBIENT, LightSpec, Scene};
 
 /// How to render.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,5 +1,7 @@
-//! Running the `wingedge` binary from tests, and scratch folders that
-//! remove themselves.
+//! Running the `wingedge` binary from tests (built with the `cli`
+//! feature only), and scratch folders that remove themselves.
+
+#![cfg_attr(not(feature = "cli"), allow(unused_imports))]
 
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
@@ -32,6 +34,7 @@ impl Outcome {
 
 /// Runs `wingedge ARGS` in the crate root with empty standard input;
 /// returns the exit code, standard output and standard error.
+#[cfg(feature = "cli")]
 pub fn wingedge(args: &[&str]) -> (i32, String, String) {
     let o = run(args, "", &[]);
     let out = o.out();
@@ -39,6 +42,7 @@ pub fn wingedge(args: &[&str]) -> (i32, String, String) {
 }
 
 /// Runs `wingedge ARGS` in the crate root with `stdin` as standard input.
+#[cfg(feature = "cli")]
 pub fn wingedge_stdin(args: &[&str], stdin: &str) -> (i32, String, String) {
     let o = run(args, stdin, &[]);
     let out = o.out();
@@ -48,6 +52,7 @@ pub fn wingedge_stdin(args: &[&str], stdin: &str) -> (i32, String, String) {
 /// Runs `wingedge ARGS` in the crate root with `stdin` as standard input
 /// and `env` added to the environment. Panics if it runs longer than
 /// [`HUNG_AFTER`] (after killing it).
+#[cfg(feature = "cli")]
 pub fn run(args: &[&str], stdin: &str, env: &[(&str, &str)]) -> Outcome {
     let mut child = Command::new(env!("CARGO_BIN_EXE_wingedge"))
         .args(args)
@@ -81,10 +86,23 @@ pub fn run(args: &[&str], stdin: &str, env: &[(&str, &str)]) -> Outcome {
             .expect("stderr is readable");
         bytes
     });
+    let status = wait_or_kill(&mut child, args);
+    feeder.join().expect("stdin feeder");
+    Outcome {
+        code: status.code().unwrap_or(-1),
+        stdout: stdout.join().expect("stdout reader"),
+        stderr: String::from_utf8_lossy(&stderr.join().expect("stderr reader")).into_owned(),
+    }
+}
+
+/// Waits for `child` (running `wingedge ARGS`); kills it and panics if it
+/// runs longer than [`HUNG_AFTER`].
+#[cfg(feature = "cli")]
+fn wait_or_kill(child: &mut std::process::Child, args: &[&str]) -> std::process::ExitStatus {
     let started = Instant::now();
-    let status = loop {
+    loop {
         if let Some(status) = child.try_wait().expect("the child can be waited for") {
-            break status;
+            return status;
         }
         if started.elapsed() > HUNG_AFTER {
             let _ = child.kill();
@@ -92,12 +110,6 @@ pub fn run(args: &[&str], stdin: &str, env: &[(&str, &str)]) -> Outcome {
             panic!("wingedge {args:?} still running after {HUNG_AFTER:?}: killed");
         }
         std::thread::sleep(Duration::from_millis(5));
-    };
-    feeder.join().expect("stdin feeder");
-    Outcome {
-        code: status.code().unwrap_or(-1),
-        stdout: stdout.join().expect("stdout reader"),
-        stderr: String::from_utf8_lossy(&stderr.join().expect("stderr reader")).into_owned(),
     }
 }
 
@@ -162,5 +174,43 @@ pub fn peak_child_rss_bytes() -> Option<u64> {
     #[cfg(not(target_os = "linux"))]
     {
         None
+    }
+}
+
+/// Runs `wingedge ARGS` in the crate root, reads its standard output up to
+/// the end of the first line, then closes it, as `wingedge ARGS | head -1`
+/// does. Returns the exit code, the first line and standard error.
+#[cfg(feature = "cli")]
+pub fn run_first_line_only(args: &[&str]) -> Outcome {
+    use std::io::BufRead;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_wingedge"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let mut stderr_pipe = child.stderr.take().expect("stderr is piped");
+    let stderr = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        stderr_pipe
+            .read_to_end(&mut bytes)
+            .expect("stderr is readable");
+        bytes
+    });
+    let mut first = Vec::new();
+    {
+        let mut reader = std::io::BufReader::new(child.stdout.take().expect("stdout is piped"));
+        reader
+            .read_until(b'\n', &mut first)
+            .expect("stdout is readable");
+        // Dropping the reader closes the pipe.
+    }
+    let status = wait_or_kill(&mut child, args);
+    Outcome {
+        code: status.code().unwrap_or(-1),
+        stdout: first,
+        stderr: String::from_utf8_lossy(&stderr.join().expect("stderr reader")).into_owned(),
     }
 }

@@ -6,10 +6,11 @@
 
 use std::path::Path;
 
-use wingedge::csg::{Scene, Stats};
+use wingedge::csg::Stats;
 use wingedge::geom::Ray;
 use wingedge::glam::DVec3;
 use wingedge::render::{RenderOptions, render};
+use wingedge::scene::Scene;
 
 /// Checks one input.
 pub fn run(data: &[u8], base: &Path) {

@@ -6,40 +6,34 @@ use std::process::ExitCode;
 use wingedge::io::{read_obj, write_obj};
 use wingedge::mesh::{Solid, builders};
 
-pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf>) -> ExitCode {
+use crate::output::{Out, Outcome};
+
+pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf>) -> Outcome {
     let (name, solid) = match (file, builtin) {
         (_, Some(name)) => match builders::by_name(&name) {
             Some(solid) => (name, solid),
             None => {
-                eprintln!(
-                    "error: unknown built-in solid '{name}'; choose one of: {}",
+                return Err(format!(
+                    "unknown built-in solid '{name}'; choose one of: {}",
                     builders::NAMES.join(", ")
-                );
-                return ExitCode::from(2);
+                ));
             }
         },
         (Some(path), None) => {
-            let solid = read_obj(&path).map_err(|e| e.to_string()).and_then(|soup| {
-                Solid::try_from_soup(&soup).map_err(|e| format!("{}: {e}", path.display()))
-            });
-            match solid {
-                Ok(solid) => (path.display().to_string(), solid),
-                Err(message) => {
-                    eprintln!("error: {message}");
-                    return ExitCode::from(2);
-                }
-            }
+            let soup = read_obj(&path).map_err(|e| e.to_string())?;
+            let solid =
+                Solid::try_from_soup(&soup).map_err(|e| format!("{}: {e}", path.display()))?;
+            (path.display().to_string(), solid)
         }
-        (None, None) => unreachable!("clap requires a file or --builtin"),
+        (None, None) => return Err("give an OBJ file or --builtin NAME".into()),
     };
-    print!("{}", describe(&name, &solid));
-    if let Some(out) = write
-        && let Err(e) = write_obj(&solid, &out)
-    {
-        eprintln!("error: {}: cannot write: {e}", out.display());
-        return ExitCode::from(2);
+    let mut out = Out::new();
+    out.write(describe(&name, &solid))?;
+    out.finish()?;
+    if let Some(path) = write {
+        write_obj(&solid, &path).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
     }
-    ExitCode::SUCCESS
+    Ok(ExitCode::SUCCESS)
 }
 
 fn describe(name: &str, solid: &Solid) -> String {

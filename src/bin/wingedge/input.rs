@@ -1,20 +1,5 @@
-//! Shared input handling for the query subcommands: loading a mesh and
-//! reading numeric lines from a file or standard input.
-
-use std::path::Path;
-
-use wingedge::io::read_obj;
-use wingedge::mesh::Solid;
-use wingedge::query::Accel;
-
-/// Reads an OBJ file and builds its solid and accel; the error is a message
-/// naming the file.
-pub fn load_mesh(path: &Path) -> Result<(Solid, Accel), String> {
-    let soup = read_obj(path).map_err(|e| e.to_string())?;
-    let solid = Solid::try_from_soup(&soup).map_err(|e| format!("{}: {e}", path.display()))?;
-    let accel = Accel::new(&solid);
-    Ok((solid, accel))
-}
+//! Shared input handling for the query subcommands: reading numeric lines
+//! from a file or standard input.
 
 /// Reads all of `source` (`-` for standard input) as text; bytes that are
 /// not UTF-8 are an error naming the first line that holds one.

@@ -5,15 +5,12 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-mod classify;
 mod info;
 mod input;
+mod output;
 mod progress;
-mod raycast;
+mod query;
 mod render;
-mod scene_classify;
-mod scene_raycast;
-mod target;
 mod validate;
 mod volume;
 
@@ -156,15 +153,9 @@ impl From<MethodArg> for wingedge::query::Method {
     }
 }
 
-/// Prints `error: message` and returns exit code 2.
-fn fail(message: &str) -> ExitCode {
-    eprintln!("error: {message}");
-    ExitCode::from(2)
-}
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command {
+    output::exit(match cli.command {
         Command::Info {
             file,
             builtin,
@@ -173,19 +164,10 @@ fn main() -> ExitCode {
         Command::Classify {
             mesh,
             points,
-            stats,
-            ..
-        } if target::is_scene(&mesh) => scene_classify::run(&mesh, &points, stats),
-        Command::Classify {
-            mesh,
-            points,
             method,
-            ..
-        } => classify::run(&mesh, &points, method.into()),
-        Command::Raycast { mesh, rays, stats } if target::is_scene(&mesh) => {
-            scene_raycast::run(&mesh, &rays, stats)
-        }
-        Command::Raycast { mesh, rays, .. } => raycast::run(&mesh, &rays),
+            stats,
+        } => query::classify(&mesh, &points, method.into(), stats),
+        Command::Raycast { mesh, rays, stats } => query::raycast(&mesh, &rays, stats),
         Command::Volume {
             target,
             spacing,
@@ -215,5 +197,5 @@ fn main() -> ExitCode {
             show,
             max_face_corners,
         }),
-    }
+    })
 }

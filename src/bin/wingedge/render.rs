@@ -3,9 +3,10 @@
 use std::path::Path;
 use std::process::ExitCode;
 
-use wingedge::csg::Scene;
 use wingedge::render::{RenderOptions, render};
+use wingedge::scene::Scene;
 
+use crate::output::Outcome;
 use crate::progress::Progress;
 
 /// Parses `WxH`.
@@ -21,11 +22,8 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     }
 }
 
-pub fn run(scene: &Path, out: &Path, size: (u32, u32), show_stats: bool) -> ExitCode {
-    let scene_data = match Scene::from_file(scene) {
-        Ok(s) => s,
-        Err(e) => return crate::fail(&e.to_string()),
-    };
+pub fn run(scene: &Path, out: &Path, size: (u32, u32), show_stats: bool) -> Outcome {
+    let scene_data = Scene::from_file(scene).map_err(|e| e.to_string())?;
     let options = RenderOptions {
         width: size.0,
         height: size.1,
@@ -35,9 +33,7 @@ pub fn run(scene: &Path, out: &Path, size: (u32, u32), show_stats: bool) -> Exit
     let started = std::time::Instant::now();
     let (image, stats) = render(&scene_data, &options, &|f| progress.update(f));
     progress.finish();
-    if let Err(e) = image.write_png(out) {
-        return crate::fail(&e.to_string());
-    }
+    image.write_png(out).map_err(|e| e.to_string())?;
     eprintln!(
         "{}: {}x{} in {:.2} s",
         out.display(),
@@ -48,5 +44,5 @@ pub fn run(scene: &Path, out: &Path, size: (u32, u32), show_stats: bool) -> Exit
     if show_stats {
         eprintln!("{stats}");
     }
-    ExitCode::SUCCESS
+    Ok(ExitCode::SUCCESS)
 }

@@ -8,6 +8,8 @@ use wingedge::geom::Tolerance;
 use wingedge::io::{ObjOptions, WeldMode, import_obj};
 use wingedge::validate::{Options, Report, Rule, validate_import};
 
+use crate::output::{Out, Outcome};
+
 /// The `validate` flags, as parsed by clap.
 pub struct Args {
     pub files: Vec<PathBuf>,
@@ -19,13 +21,12 @@ pub struct Args {
     pub max_face_corners: usize,
 }
 
-pub fn run(args: Args) -> ExitCode {
+pub fn run(args: Args) -> Outcome {
     for (flag, value) in [("--weld", args.weld), ("--planarity", args.planarity)] {
         if let Some(v) = value.filter(|v| !(v.is_finite() && *v >= 0.0)) {
-            eprintln!(
-                "error: {flag} {v}: a tolerance is a finite fraction of the bounding-box diagonal, at least 0"
-            );
-            return ExitCode::from(2);
+            return Err(format!(
+                "{flag} {v}: a tolerance is a finite fraction of the bounding-box diagonal, at least 0"
+            ));
         }
     }
     let mut tolerance = Tolerance::default();
@@ -47,6 +48,7 @@ pub fn run(args: Args) -> ExitCode {
     let mut unreadable = false;
     let mut invalid = false;
     let mut json_out = Vec::new();
+    let mut out = Out::new();
     for path in &args.files {
         let outcome = import_obj(
             path,
@@ -75,10 +77,10 @@ pub fn run(args: Args) -> ExitCode {
                         "violations": [],
                     }));
                 } else {
-                    emit(&format!(
+                    out.write(format_args!(
                         "{}: unreadable\n  error: {message}\n",
                         path.display()
-                    ));
+                    ))?;
                 }
             }
             Ok((import, report)) => {
@@ -86,34 +88,24 @@ pub fn run(args: Args) -> ExitCode {
                 if args.json {
                     json_out.push(to_json(path, &import.weld, &report));
                 } else {
-                    emit(&describe(path, &import.weld, &report, args.show));
+                    out.write(describe(path, &import.weld, &report, args.show))?;
                 }
             }
         }
     }
     if args.json {
-        match serde_json::to_string_pretty(&Value::Array(json_out)) {
-            Ok(text) => emit(&format!("{text}\n")),
-            Err(e) => {
-                eprintln!("error: cannot write JSON: {e}");
-                return ExitCode::from(2);
-            }
-        }
+        let text = serde_json::to_string_pretty(&Value::Array(json_out))
+            .map_err(|e| format!("cannot write JSON: {e}"))?;
+        out.write(format_args!("{text}\n"))?;
     }
-    if unreadable {
+    out.finish()?;
+    Ok(if unreadable {
         ExitCode::from(2)
     } else if invalid {
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS
-    }
-}
-
-/// Writes to standard output; a reader that went away (`| head`) is not an
-/// error worth a panic.
-fn emit(text: &str) {
-    use std::io::Write as _;
-    let _ = std::io::stdout().lock().write_all(text.as_bytes());
+    })
 }
 
 fn to_json(path: &std::path::Path, weld: &wingedge::io::WeldReport, report: &Report) -> Value {

@@ -3,34 +3,33 @@
 use std::path::Path;
 use std::process::ExitCode;
 
+use wingedge::scene::Scene;
+
+use crate::output::{Out, Outcome};
 use crate::progress::Progress;
-use crate::target;
 
 /// Grid cells across the longest side of the bounds when no spacing is given.
 const DEFAULT_CELLS: f64 = 400.0;
 
-pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: bool) -> ExitCode {
-    let scene = match target::load(target) {
-        Ok(s) => s,
-        Err(e) => return crate::fail(&e),
-    };
+pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: bool) -> Outcome {
+    let scene = Scene::from_path(target).map_err(|e| e.to_string())?;
     let bounds = scene.csg.bounds();
     let spacing = spacing.unwrap_or_else(|| {
         let s = bounds.size();
         s.x.max(s.y).max(s.z) / DEFAULT_CELLS
     });
     // A lone polyhedron or analytic solid has a closed form: print it.
-    let exact = scene
-        .csg
-        .single_leaf()
-        .and_then(|l| l.primitive.exact_volume());
-    if let (Some(v), false) = (exact, integrate) {
-        println!("{v}");
+    let single = scene.csg.single_leaf();
+    let exact = single.and_then(|l| l.primitive.exact_volume());
+    let mut out = Out::new();
+    if let (Some(leaf), Some(v), false) = (single, exact, integrate) {
+        out.write(format_args!("{v}\n"))?;
+        out.finish()?;
         eprintln!(
             "closed-form volume of the single {} (--integrate to cast rays)",
-            scene.csg.leaves()[0].label
+            leaf.label
         );
-        return ExitCode::SUCCESS;
+        return Ok(ExitCode::SUCCESS);
     }
     let progress = Progress::new("volume");
     let estimate = scene
@@ -39,7 +38,8 @@ pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: boo
     progress.finish();
     match estimate {
         Ok(v) => {
-            println!("{}", exact.unwrap_or(v.volume));
+            out.write(format_args!("{}\n", exact.unwrap_or(v.volume)))?;
+            out.finish()?;
             eprintln!(
                 "ray integration: {} with spacing {} ({} rays){}",
                 v.volume,
@@ -50,8 +50,8 @@ pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: boo
             if show_stats {
                 eprintln!("{}", v.stats);
             }
-            ExitCode::SUCCESS
+            Ok(ExitCode::SUCCESS)
         }
-        Err(e) => crate::fail(&format!("{}: {e}", target.display())),
+        Err(e) => Err(format!("{}: {e}", target.display())),
     }
 }

@@ -1,9 +1,10 @@
 //! parry3d (`f32`) and parry3d-f64 on the peer comparison's inputs
-//! (`benches/peers/run.py` runs it; parry is a dev-dependency only).
+//! (`benches/peers/run.py` runs it). A crate of its own in the workspace,
+//! so that parry is no dependency of the library.
 //!
 //! ```text
-//! cargo run --release --example peers_parry -- queries DIR POINTS NAME...
-//! cargo run --release --example peers_parry -- validate FILE.obj
+//! cargo run --release -p wingedge-peers-parry -- queries DIR POINTS NAME...
+//! cargo run --release -p wingedge-peers-parry -- validate FILE.obj
 //! ```
 //!
 //! **queries**: for each `NAME`, reads `DIR/NAME.obj` with tobj (timed as
@@ -34,7 +35,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 use serde_json::json;
 
-#[path = "common/peers_io.rs"]
+// The reading and writing it shares with `examples/peers_wingedge.rs`.
+#[path = "../../../../examples/common/peers_io.rs"]
 mod peers_io;
 
 use peers_io::{Result, peak_rss_mib, read_f64s, write_answers};

@@ -1,0 +1,145 @@
+//! Why a scene could not be loaded: every error names the scene file and
+//! the JSON path (or the JSON position for text that is not JSON).
+
+use std::path::{Path, PathBuf};
+
+use thiserror::Error;
+
+use crate::csg::CsgError;
+
+/// Why a scene could not be loaded.
+#[derive(Debug, Error)]
+pub enum SceneError {
+    /// The file could not be read.
+    #[error("{file}: cannot read: {source}")]
+    Read {
+        /// The scene file.
+        file: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The text is not JSON.
+    #[error("{file}: line {line}, column {column}: not valid JSON: {message}")]
+    Json {
+        /// The scene file (`<string>` for text).
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The parser's message.
+        message: String,
+    },
+    /// A value is missing, has the wrong type or is out of range.
+    #[error("{at}: {message}")]
+    Value {
+        /// The JSON path, e.g. `root.difference[1].sphere.radius`.
+        at: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A key the format does not have.
+    #[error("{at}: unknown key \"{key}\" (expected {expected})")]
+    UnknownKey {
+        /// The JSON path of the object.
+        at: String,
+        /// The key found.
+        key: String,
+        /// The keys allowed there.
+        expected: &'static str,
+    },
+    /// A mesh leaf could not be loaded or is not a valid closed solid.
+    #[error("{at}: mesh {file}: {message}")]
+    Mesh {
+        /// The JSON path of the node.
+        at: String,
+        /// The mesh file, resolved against the scene's folder.
+        file: PathBuf,
+        /// Why (the validator's report for a defective mesh).
+        message: String,
+    },
+    /// An OBJ file loaded as a one-leaf scene ([`Scene::from_path`]) could
+    /// not be read or is not a valid closed solid.
+    ///
+    /// [`Scene::from_path`]: super::Scene::from_path
+    #[error("{}", mesh_file_text(.file, .message))]
+    MeshFile {
+        /// The mesh file.
+        file: PathBuf,
+        /// Why (the reader's message, or the validator's report).
+        message: String,
+    },
+    /// A limit of the scene format was exceeded: nodes nested too deep,
+    /// too many nodes, or includes nested too deep (the error names which,
+    /// where, and the limit).
+    #[error("{at}: {what} exceeds the limit of {limit}")]
+    Limit {
+        /// The JSON path where the limit was crossed.
+        at: String,
+        /// What was counted.
+        what: &'static str,
+        /// The limit.
+        limit: usize,
+    },
+    /// A scene file includes itself, directly or through other files.
+    #[error("{at}: scene {} includes itself: {}", .chain.last().map_or(String::new(), |f| f.display().to_string()), chain_text(.chain))]
+    IncludeCycle {
+        /// The JSON path of the `scene` node that closes the cycle.
+        at: String,
+        /// The files of the cycle, from the first to the one included again.
+        chain: Vec<PathBuf>,
+    },
+    /// An included scene file is unreadable or wrong.
+    #[error("{at}: included scene: {source}")]
+    Include {
+        /// The JSON path of the `scene` node.
+        at: String,
+        /// What is wrong with the included file (naming it).
+        source: Box<SceneError>,
+    },
+    /// An error inside a scene file, with the file it is in.
+    #[error("{}: {source}", .file.display())]
+    InFile {
+        /// The scene file.
+        file: PathBuf,
+        /// The error, naming its JSON path.
+        source: Box<SceneError>,
+    },
+    /// The tree is malformed (a singular transform, an empty operator).
+    #[error("{0}")]
+    Csg(#[from] CsgError),
+}
+
+fn chain_text(chain: &[PathBuf]) -> String {
+    chain
+        .iter()
+        .map(|f| f.display().to_string())
+        .collect::<Vec<_>>()
+        .join(" → ")
+}
+
+/// `file: message`, or the message alone when it already starts with the
+/// file (the OBJ reader's messages do).
+fn mesh_file_text(file: &Path, message: &str) -> String {
+    let file = file.display().to_string();
+    if message.starts_with(&file) {
+        message.to_string()
+    } else {
+        format!("{file}: {message}")
+    }
+}
+
+/// Wraps an error found inside `file` so that it names the file (errors
+/// that already do are returned as they are).
+pub(super) fn in_file(file: &Path, error: SceneError) -> SceneError {
+    match error {
+        SceneError::Read { .. }
+        | SceneError::Json { .. }
+        | SceneError::InFile { .. }
+        | SceneError::MeshFile { .. } => error,
+        other => SceneError::InFile {
+            file: file.to_path_buf(),
+            source: Box::new(other),
+        },
+    }
+}
