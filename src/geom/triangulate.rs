@@ -196,7 +196,12 @@ pub fn triangulate(
         })
         .collect();
     let mut triangles = ears::triangulate_loops(&points, &loops)?;
-    delaunay::make_delaunay(&points, &loops, &mut triangles);
+    let ranges: Vec<std::ops::Range<usize>> = rings
+        .iter()
+        .zip(&offsets)
+        .map(|(ring, &start)| start..start + ring.len())
+        .collect();
+    delaunay::make_delaunay(&points, &ranges, &mut triangles);
     Ok(triangles)
 }
 

@@ -9,37 +9,86 @@
 //! strictly in the lifting to the paraboloid, so the flips end. Cocircular
 //! points (a zero sign) are left as they are.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 use glam::DVec2;
 
 use super::super::{Sign, incircle, orient2d};
 
-/// Flips the non-loop edges of `triangles` (counter-clockwise, indexing
-/// `points`) until every one is locally Delaunay.
-pub(super) fn make_delaunay(points: &[DVec2], loops: &[Vec<usize>], triangles: &mut [[usize; 3]]) {
-    let undirected = |a: usize, b: usize| (a.min(b), a.max(b));
-    let constrained: HashSet<(usize, usize)> = loops
-        .iter()
-        .flat_map(|l| (0..l.len()).map(move |k| undirected(l[k], l[(k + 1) % l.len()])))
-        .collect();
-    // Directed edge -> the triangle on its left.
-    let mut owner: HashMap<(usize, usize), usize> = HashMap::with_capacity(3 * triangles.len());
-    for (t, tri) in triangles.iter().enumerate() {
-        for k in 0..3 {
-            owner.insert((tri[k], tri[(k + 1) % 3]), t);
+/// Above this many triangles, directed edges are found through a hash map;
+/// below, a linear scan is cheaper (most faces are small).
+const LINEAR_SCAN_MAX: usize = 16;
+
+/// Which triangle lies left of a directed edge.
+struct Owners {
+    /// `None` for small triangulations, scanned linearly.
+    map: Option<HashMap<(usize, usize), usize>>,
+}
+
+impl Owners {
+    fn new(triangles: &[[usize; 3]]) -> Owners {
+        let map = (triangles.len() > LINEAR_SCAN_MAX).then(|| {
+            let mut map = HashMap::with_capacity(3 * triangles.len());
+            for (t, tri) in triangles.iter().enumerate() {
+                for k in 0..3 {
+                    map.insert((tri[k], tri[(k + 1) % 3]), t);
+                }
+            }
+            map
+        });
+        Owners { map }
+    }
+
+    fn get(&self, triangles: &[[usize; 3]], a: usize, b: usize) -> Option<usize> {
+        match &self.map {
+            Some(map) => map.get(&(a, b)).copied(),
+            None => triangles
+                .iter()
+                .position(|t| (0..3).any(|k| t[k] == a && t[(k + 1) % 3] == b)),
         }
     }
+
+    /// Records triangle `t`'s new corners `tri`, replacing the edge `a → b`
+    /// it no longer has.
+    fn set(&mut self, t: usize, tri: [usize; 3], gone: (usize, usize)) {
+        if let Some(map) = &mut self.map {
+            map.remove(&gone);
+            for k in 0..3 {
+                map.insert((tri[k], tri[(k + 1) % 3]), t);
+            }
+        }
+    }
+}
+
+/// Flips the non-loop edges of `triangles` (counter-clockwise, indexing
+/// `points`) until every one is locally Delaunay. Loop `r` is the index
+/// range `rings[r]` (in either direction).
+pub(super) fn make_delaunay(
+    points: &[DVec2],
+    rings: &[std::ops::Range<usize>],
+    triangles: &mut [[usize; 3]],
+) {
+    // Consecutive indices of one ring, or its first and last.
+    let on_loop = |a: usize, b: usize| {
+        let (lo, hi) = (a.min(b), a.max(b));
+        rings.iter().any(|r| {
+            r.contains(&lo)
+                && r.contains(&hi)
+                && (hi == lo + 1 || (lo == r.start && hi + 1 == r.end))
+        })
+    };
+    let mut owners = Owners::new(triangles);
     let mut stack: Vec<(usize, usize)> = triangles
         .iter()
         .flat_map(|tri| (0..3).map(move |k| (tri[k], tri[(k + 1) % 3])))
-        .filter(|&(a, b)| a < b && !constrained.contains(&(a, b)))
+        .filter(|&(a, b)| a < b && !on_loop(a, b))
         .collect();
     let third = |tri: [usize; 3], a: usize, b: usize| {
         tri.into_iter().find(|&x| x != a && x != b).unwrap_or(a)
     };
     while let Some((p, q)) = stack.pop() {
-        let (Some(&t1), Some(&t2)) = (owner.get(&(p, q)), owner.get(&(q, p))) else {
+        let (Some(t1), Some(t2)) = (owners.get(triangles, p, q), owners.get(triangles, q, p))
+        else {
             continue;
         };
         let r = third(triangles[t1], p, q);
@@ -54,17 +103,12 @@ pub(super) fn make_delaunay(points: &[DVec2], loops: &[Vec<usize>], triangles: &
             debug_assert!(false, "a non-Delaunay edge with a non-convex quadrilateral");
             continue;
         }
-        owner.remove(&(p, q));
-        owner.remove(&(q, p));
         triangles[t1] = [p, s, r];
         triangles[t2] = [s, q, r];
-        for (t, tri) in [(t1, triangles[t1]), (t2, triangles[t2])] {
-            for k in 0..3 {
-                owner.insert((tri[k], tri[(k + 1) % 3]), t);
-            }
-        }
+        owners.set(t1, triangles[t1], (p, q));
+        owners.set(t2, triangles[t2], (q, p));
         for (a, b) in [(p, s), (s, q), (q, r), (r, p)] {
-            if !constrained.contains(&undirected(a, b)) {
+            if !on_loop(a, b) {
                 stack.push((a, b));
             }
         }

@@ -226,50 +226,32 @@ fn clip_ears(polygon: &mut Polygon<'_>, start: usize) -> Result<Vec<[usize; 3]>,
 }
 
 /// Whether node `v` with its neighbours `a`, `b` is an ear: a strictly
-/// convex corner whose closed triangle holds no other vertex, and at whose
-/// corners no edge of a repeated vertex enters the triangle.
+/// convex corner whose closed triangle holds no other vertex.
+///
+/// Nodes at the position of a corner (the other copies of a bridge's ends)
+/// are not in the way: an edge from corner `a` or `b` into the triangle
+/// would have to end inside it (it cannot cross the polygon edge opposite),
+/// at a vertex this test finds; and the copies of `v` have their interior
+/// angles apart from this one's, so their edges stay out of it.
 fn is_ear(polygon: &Polygon<'_>, v: usize) -> bool {
     let Node { prev, next, .. } = polygon.nodes[v];
     let (a, p, b) = (polygon.at(prev), polygon.at(v), polygon.at(next));
     if orient2d(a, p, b) != Sign::Positive {
         return false;
     }
-    let inside = |x: DVec2| {
-        orient2d(a, p, x) != Sign::Negative
-            && orient2d(p, b, x) != Sign::Negative
-            && orient2d(b, a, x) != Sign::Negative
-    };
-    // Strictly inside the triangle's angle at a corner, given the corner
-    // and the next corner counter-clockwise and the previous one.
-    let enters = |corner: DVec2, x: DVec2| {
-        let (following, preceding) = if corner == a {
-            (p, b)
-        } else if corner == p {
-            (b, a)
-        } else {
-            (a, p)
-        };
-        orient2d(corner, following, x) == Sign::Positive
-            && orient2d(preceding, corner, x) == Sign::Positive
-    };
-    let mut w = next;
-    loop {
-        let Node {
-            next: after,
-            prev: before,
-            ..
-        } = polygon.nodes[w];
+    let mut w = polygon.nodes[next].next;
+    while w != prev {
         let q = polygon.at(w);
-        if q == a || q == p || q == b {
-            if enters(q, polygon.at(before)) || enters(q, polygon.at(after)) {
-                return false;
-            }
-        } else if inside(q) {
+        if q != a
+            && q != p
+            && q != b
+            && orient2d(a, p, q) != Sign::Negative
+            && orient2d(p, b, q) != Sign::Negative
+            && orient2d(b, a, q) != Sign::Negative
+        {
             return false;
         }
-        w = after;
-        if w == v {
-            return true;
-        }
+        w = polygon.nodes[w].next;
     }
+    true
 }
