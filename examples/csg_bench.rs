@@ -13,15 +13,19 @@ use wingedge::csg::{AxisBox, Csg, CsgExpr, HalfSpace, Polyhedron, Scene, Sphere,
 use wingedge::geom::Ray;
 use wingedge::mesh::{Solid, builders};
 
-/// A cheap seeded generator (xorshift), so every run casts the same rays.
-struct Rng(u64);
+#[path = "../src/test_rng.rs"]
+mod test_rng;
+
+/// The shared seeded generator, so every run casts the same rays.
+struct Rng(Box<dyn FnMut() -> f64>);
 
 impl Rng {
+    fn new(seed: u64) -> Rng {
+        Rng(Box::new(test_rng::uniform(seed)))
+    }
+
     fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        (self.0)()
     }
 
     fn unit(&mut self) -> DVec3 {
@@ -53,7 +57,7 @@ fn placed(solid: &Solid, scale: f64, offset: DVec3) -> Solid {
 /// Rays from a sphere of radius `r` around `centre`, aimed at random points
 /// of the ball of radius `r / 2`.
 fn rays(n: usize, centre: DVec3, r: f64, seed: u64) -> Vec<Ray> {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     (0..n)
         .map(|_| {
             let from = centre + rng.unit() * r;
@@ -131,7 +135,7 @@ fn hundred_polyhedra() -> Csg {
 /// A left-deep chain of 48 operators over boxes, balls and half-spaces that
 /// all overlap the middle, so that little can be culled.
 fn deep_tree() -> Csg {
-    let mut rng = Rng(7);
+    let mut rng = Rng::new(7);
     let mut expr = CsgExpr::leaf(AxisBox::try_new(DVec3::splat(-1.0), DVec3::ONE).expect("box"));
     for k in 0..48 {
         let c = (rng.unit() * 0.9).to_array();

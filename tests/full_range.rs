@@ -31,6 +31,9 @@ use wingedge::query::{Accel, Containment, Method, RayCrossings, Transition};
 use Containment::{Inside, OnBoundary, Outside};
 use Sign::{Negative, Positive, Zero};
 
+#[path = "../src/test_rng.rs"]
+mod test_rng;
+
 // ------------------------------------------------------------------ numbers
 
 /// `2^k` exactly, for `k` in `-1074..=1023` (subnormal below `-1022`).
@@ -65,12 +68,9 @@ fn sc(c: i64, k: i32) -> f64 {
     x
 }
 
-/// The next double away from zero / towards zero (finite, non-zero `x`).
-fn up(x: f64) -> f64 {
-    f64::from_bits(x.to_bits() + 1)
-}
-fn down(x: f64) -> f64 {
-    f64::from_bits(x.to_bits() - 1)
+/// The next double towards zero (finite, non-zero `x`).
+fn toward_zero(x: f64) -> f64 {
+    if x > 0.0 { x.next_down() } else { x.next_up() }
 }
 
 /// An assertion context: `c.eq(got, want, case)` names the case and `c`.
@@ -124,14 +124,14 @@ fn and_neighbours(p: I3) -> [I3; 7] {
     [p, e(0, 1), e(0, -1), e(1, 1), e(1, -1), e(2, 1), e(2, -1)]
 }
 
-/// xorshift64: deterministic small integers.
-struct Rng(u64);
+/// Deterministic small integers from the shared seeded generator.
+struct Rng(Box<dyn FnMut() -> u64>);
 impl Rng {
+    fn new(seed: u64) -> Rng {
+        Rng(Box::new(test_rng::bits(seed)))
+    }
     fn int(&mut self, r: i64) -> i64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 % (2 * r as u64 + 1)) as i64 - r
+        ((self.0)() % (2 * r as u64 + 1)) as i64 - r
     }
     fn v3(&mut self, r: i64) -> I3 {
         [self.int(r), self.int(r), self.int(r)]
@@ -143,7 +143,7 @@ impl Rng {
 
 /// `c` on the line through `a`, `b` (and off by a unit), and random triples.
 fn orient2d_cases() -> Vec<[I2; 3]> {
-    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut rng = Rng::new(0x2545_f491_4f6c_dd1d);
     let mut cases = vec![[[0, 0]; 3], [[1, 2], [1, 2], [-3, 7]]];
     for _ in 0..12 {
         let (a, b) = ([rng.int(256), rng.int(256)], [rng.int(256), rng.int(256)]);
@@ -159,7 +159,7 @@ fn orient2d_cases() -> Vec<[I2; 3]> {
 
 /// `d` in the plane of `a, b, c` (and off by a unit), and random quadruples.
 fn orient3d_cases() -> Vec<[I3; 4]> {
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
     let mut cases = vec![[[5; 3]; 4], [[1, 0, 0], [2, 0, 0], [3, 0, 0], [9; 3]]];
     for _ in 0..6 {
         let (a, b, c) = (rng.v3(100), rng.v3(100), rng.v3(100));
@@ -173,7 +173,7 @@ fn orient3d_cases() -> Vec<[I3; 4]> {
 /// `[origin, direction, a, b]`: `b` in the plane of the line and `a` (and
 /// off by a unit); `a`, `b` on the line; the origin on the segment's line.
 fn line_cases() -> Vec<[I3; 4]> {
-    let mut rng = Rng(0x1234_5678_9abc_def1);
+    let mut rng = Rng::new(0x1234_5678_9abc_def1);
     let mut cases = Vec::new();
     for _ in 0..6 {
         let (o, d, a) = (rng.v3(100), rng.v3(60), rng.v3(100));
@@ -188,7 +188,7 @@ fn line_cases() -> Vec<[I3; 4]> {
 
 /// `[p, q, n]` with `(p − q) · n = 0` (and off by `±n_i`).
 fn plane_cases() -> Vec<[I3; 3]> {
-    let mut rng = Rng(0x0dd_ba11_cafe_f00d);
+    let mut rng = Rng::new(0x0dd_ba11_cafe_f00d);
     let mut cases = Vec::new();
     for _ in 0..8 {
         let (q, n, m) = (rng.v3(256), rng.v3(16), rng.v3(16));
@@ -201,7 +201,7 @@ fn plane_cases() -> Vec<[I3; 3]> {
 /// Matrices of `[plus, minus]` entries, the third row a combination of the
 /// first two (and off by a unit).
 fn matrix_cases() -> Vec<[[I2; 3]; 3]> {
-    let mut rng = Rng(0xfeed_beef_1357_9bdf);
+    let mut rng = Rng::new(0xfeed_beef_1357_9bdf);
     let mut cases = Vec::new();
     for _ in 0..8 {
         let (r0, r1) = (rng.v3(100), rng.v3(100));
@@ -317,7 +317,7 @@ fn orient2d_is_scale_invariant_over_the_whole_range() {
 
 #[test]
 fn orient3d_is_scale_invariant_over_the_whole_range() {
-    let (cases, mut rng) = (orient3d_cases(), Rng(77));
+    let (cases, mut rng) = (orient3d_cases(), Rng::new(77));
     let mixed: Vec<[i32; 3]> = (0..60).map(|_| rng.pick(&MIX)).collect();
     for k in exponents().into_iter().map(|k| [k; 3]).chain(mixed) {
         cases.iter().for_each(|&c| check_orient3d(c, k));
@@ -326,7 +326,7 @@ fn orient3d_is_scale_invariant_over_the_whole_range() {
 
 #[test]
 fn line_side_is_scale_invariant_over_the_whole_range() {
-    let (cases, mut rng) = (line_cases(), Rng(78));
+    let (cases, mut rng) = (line_cases(), Rng::new(78));
     for k in exponents() {
         // Direction coordinates are below 2^6: scaled from 2^-1074 to 2^1017.
         for kd in [0, -1074 - k, (1017 - k).min(300), -300] {
@@ -343,7 +343,7 @@ fn line_side_is_scale_invariant_over_the_whole_range() {
 
 #[test]
 fn det3_and_det2_are_scale_invariant_over_the_whole_range() {
-    let (cases, mut rng) = (matrix_cases(), Rng(79));
+    let (cases, mut rng) = (matrix_cases(), Rng::new(79));
     for k in exponents() {
         cases.iter().for_each(|m| check_matrix(m, [k; 3], [0; 3]));
     }
@@ -356,7 +356,7 @@ fn det3_and_det2_are_scale_invariant_over_the_whole_range() {
 
 #[test]
 fn side_of_plane_and_dot_sign_are_scale_invariant_over_the_whole_range() {
-    let (cases, mut rng) = (plane_cases(), Rng(80));
+    let (cases, mut rng) = (plane_cases(), Rng::new(80));
     for k in exponents().into_iter().filter(|&k| k <= 1012) {
         // The normal scaled apart from the points: like them, to the bottom
         // of the range, and to near the top.
@@ -401,8 +401,16 @@ fn mixed_magnitudes_in_one_call() {
     for x in [pow2(900), big, max, -max] {
         let t = Ctx(format!("2^-1070 segment on y = x, far point at {x:e}"));
         t.eq(orient2d(a, b, p2(x, x)), Zero, "on y = x");
-        t.eq(orient2d(a, b, p2(x, down(x))), sgn(-x), "y one ulp in");
-        t.eq(orient2d(a, b, p2(down(x), x)), sgn(x), "x one ulp in");
+        t.eq(
+            orient2d(a, b, p2(x, toward_zero(x))),
+            sgn(-x),
+            "y one ulp in",
+        );
+        t.eq(
+            orient2d(a, b, p2(toward_zero(x), x)),
+            sgn(x),
+            "x one ulp in",
+        );
     }
     // The huge plane x = y (normal (1, −1, 0)), probed by subnormal offsets.
     let [a, b, c] = [p3(-max, -max, 0.0), p3(max, max, 0.0), p3(0.0, 0.0, max)];
@@ -446,8 +454,16 @@ fn mixed_magnitudes_in_one_call() {
     // Terms ±2·MAX (overflowing) and their difference.
     let s = |n| side_of_plane(p3(max, -max, o), p3(-max, max, o), n);
     t.eq(s(p3(l, l, o)), Zero, "2 MAX − 2 MAX");
-    t.eq(s(p3(l, up(l), o)), Negative, "2 MAX − 2 MAX·(1 + 2^-52)");
-    t.eq(s(p3(up(l), l, o)), Positive, "2 MAX·(1 + 2^-52) − 2 MAX");
+    t.eq(
+        s(p3(l, l.next_up(), o)),
+        Negative,
+        "2 MAX − 2 MAX·(1 + 2^-52)",
+    );
+    t.eq(
+        s(p3(l.next_up(), l, o)),
+        Positive,
+        "2 MAX·(1 + 2^-52) − 2 MAX",
+    );
     let s = |p| side_of_plane(p, p3(max, o, o), p3(o, big, max));
     t.eq(s(p3(-max, o, min)), Positive, "−2 MAX·0 + 2^-1074·MAX");
     let e = pow2(600);
@@ -480,10 +496,10 @@ fn one_ulp_off_collinear_and_coplanar_at_extreme_scales() {
         let t = Ctx(format!("(1,2) (3,5) (5,8) at 2^{k}, the third point"));
         t.eq(orient2d(a, b, c), Zero, "on the line");
         for (p, want) in [
-            ([c.x, up(c.y)], Positive),
-            ([c.x, down(c.y)], Negative),
-            ([up(c.x), c.y], Negative),
-            ([down(c.x), c.y], Positive),
+            ([c.x, c.y.next_up()], Positive),
+            ([c.x, c.y.next_down()], Negative),
+            ([c.x.next_up(), c.y], Negative),
+            ([c.x.next_down(), c.y], Positive),
         ] {
             t.eq(
                 orient2d(a, b, p.into()),
@@ -502,7 +518,10 @@ fn one_ulp_off_collinear_and_coplanar_at_extreme_scales() {
             t.eq(line_side(a, dir, c, d), Zero, m);
         }
         for (i, normal) in [(0, Negative), (1, Negative), (2, Positive)] {
-            for (f, want) in [(up as fn(f64) -> f64, normal), (down, -normal)] {
+            for (f, want) in [
+                (f64::next_up as fn(f64) -> f64, normal),
+                (f64::next_down, -normal),
+            ] {
                 let mut e = d;
                 e[i] = f(e[i]);
                 t.eq(orient3d(a, b, c, e), want, format!("orient3d, {e:?}"));
@@ -520,8 +539,8 @@ fn one_ulp_off_collinear_and_coplanar_at_extreme_scales() {
         let t = Ctx(format!("y = x through ±(2^1000, 3·2^1000), near {x:e}"));
         for (p, want) in [
             ([x, x], Zero),
-            ([x, down(x)], Negative),
-            ([down(x), x], Positive),
+            ([x, x.next_down()], Negative),
+            ([x.next_down(), x], Positive),
         ] {
             let p = DVec2::from_array(p);
             t.eq(orient2d(a, b, p), want, format!("{p:?}"));
@@ -667,10 +686,10 @@ fn check_box_classification(k: i32) {
             e
         };
         for (v, want, m) in [
-            (up(q(hi)), Outside, "above the max"),
-            (down(q(hi)), Inside, "below the max"),
-            (down(q(lo)), Outside, "below the min"),
-            (up(q(lo)), Inside, "above the min"),
+            (q(hi).next_up(), Outside, "above the max"),
+            (q(hi).next_down(), Inside, "below the max"),
+            (q(lo).next_down(), Outside, "below the min"),
+            (q(lo).next_up(), Inside, "above the min"),
         ] {
             b.at(moved(v), want, &format!("one ulp {m} of axis {i}"));
         }
@@ -691,10 +710,10 @@ fn check_l_prism_classification(k: i32) {
     l.at(p(2, 2, half), OnBoundary, "on the reflex edge");
     l.at(p(2, 3, half), OnBoundary, "on a face of the notch");
     let notch = |x| DVec3::new(x, q(3), half);
-    l.at(notch(up(one)), Outside, "one ulp into the notch");
-    l.at(notch(down(one)), Inside, "one ulp from the notch");
-    l.at(p(3, 1, up(one)), Outside, "one ulp above the top");
-    l.at(p(3, 1, down(one)), Inside, "one ulp below the top");
+    l.at(notch(one.next_up()), Outside, "one ulp into the notch");
+    l.at(notch(one.next_down()), Inside, "one ulp from the notch");
+    l.at(p(3, 1, one.next_up()), Outside, "one ulp above the top");
+    l.at(p(3, 1, one.next_down()), Inside, "one ulp below the top");
     l.at(p(3, 1, min), Inside, "2^-1074 above the bottom");
     l.at(p(3, 1, 0.0), OnBoundary, "on the bottom");
     l.at(p(3, 1, -min), Outside, "2^-1074 below the bottom");

@@ -15,6 +15,9 @@ use common::cli::{TempDir, peak_child_rss_bytes, run};
 use wingedge::csg::{Scene, SceneError};
 use wingedge::io::{ObjError, ObjOptions, import_obj};
 
+#[path = "../src/test_rng.rs"]
+mod test_rng;
+
 /// Size of the garbage files.
 const GARBAGE_BYTES: usize = 50 * 1024 * 1024;
 
@@ -22,14 +25,12 @@ const GARBAGE_BYTES: usize = 50 * 1024 * 1024;
 /// held once, and nothing grows with the number of errors in it.
 const RSS_BOUND: u64 = 512 * 1024 * 1024;
 
-/// Seeded pseudo-random bytes (xorshift64*).
-fn noise(len: usize, mut state: u64) -> Vec<u8> {
+/// Seeded pseudo-random bytes (the shared xorshift64).
+fn noise(len: usize, seed: u64) -> Vec<u8> {
+    let mut next = test_rng::bits(seed);
     let mut out = Vec::with_capacity(len + 8);
     while out.len() < len {
-        state ^= state >> 12;
-        state ^= state << 25;
-        state ^= state >> 27;
-        out.extend_from_slice(&state.wrapping_mul(0x2545_F491_4F6C_DD1D).to_le_bytes());
+        out.extend_from_slice(&next().to_le_bytes());
     }
     out.truncate(len);
     out

@@ -19,6 +19,9 @@ use wingedge::mesh::Solid;
 use wingedge::query::{Accel, Containment};
 use wingedge::validate::{Options, validate_import};
 
+#[path = "../src/test_rng.rs"]
+mod test_rng;
+
 /// Runs the oracle once per test binary and returns its output folder.
 fn oracle() -> &'static (PathBuf, Value) {
     static ORACLE: OnceLock<(PathBuf, Value)> = OnceLock::new();
@@ -324,13 +327,7 @@ fn csg_trees_agree_with_manifold3d_booleans() {
     let (dir, report) = oracle();
     let cases = report["csg"].as_array().expect("csg cases");
     assert!(cases.len() >= 3, "{} CSG cases", cases.len());
-    let mut rng = 0x5DEE_CE66_D1CE_4E5B_u64;
-    let mut uniform = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = test_rng::uniform(0x5DEE_CE66_D1CE_4E5B);
     for case in cases {
         let scene_name = case["scene"].as_str().expect("scene");
         let scene =

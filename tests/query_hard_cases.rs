@@ -12,16 +12,8 @@ use wingedge::query::{Accel, Containment, Method, QueryError, Transition};
 
 use Containment::{Inside, OnBoundary, Outside};
 
-/// The next `f64` above `x` (finite, non-zero `x`).
-fn up(x: f64) -> f64 {
-    let b = x.to_bits();
-    f64::from_bits(if x > 0.0 { b + 1 } else { b - 1 })
-}
-
-/// The next `f64` below `x` (finite, non-zero `x`).
-fn down(x: f64) -> f64 {
-    -up(-x)
-}
+#[path = "../src/test_rng.rs"]
+mod test_rng;
 
 fn classify_all(accel: &Accel, p: DVec3) -> Containment {
     let parity = accel.classify(p).unwrap();
@@ -79,32 +71,48 @@ fn points_on_faces_edges_and_vertices_are_boundary() {
 fn one_ulp_inside_and_outside_a_face() {
     let cube = Accel::new(&builders::cube());
     for (p, want) in [
-        (DVec3::new(down(1.0), 0.3, 0.2), Inside),
-        (DVec3::new(up(1.0), 0.3, 0.2), Outside),
-        (DVec3::new(up(-1.0), 0.3, 0.2), Inside),
-        (DVec3::new(down(-1.0), 0.3, 0.2), Outside),
-        (DVec3::new(0.3, 0.2, down(1.0)), Inside),
-        (DVec3::new(0.3, 0.2, up(1.0)), Outside),
+        (DVec3::new(1.0_f64.next_down(), 0.3, 0.2), Inside),
+        (DVec3::new(1.0_f64.next_up(), 0.3, 0.2), Outside),
+        (DVec3::new((-1.0_f64).next_up(), 0.3, 0.2), Inside),
+        (DVec3::new((-1.0_f64).next_down(), 0.3, 0.2), Outside),
+        (DVec3::new(0.3, 0.2, 1.0_f64.next_down()), Inside),
+        (DVec3::new(0.3, 0.2, 1.0_f64.next_up()), Outside),
         // One ulp off an edge and a vertex, inside and outside.
-        (DVec3::new(down(1.0), down(1.0), 0.0), Inside),
-        (DVec3::new(up(1.0), down(1.0), 0.0), Outside),
-        (DVec3::new(down(1.0), down(1.0), down(1.0)), Inside),
-        (DVec3::new(down(1.0), down(1.0), up(1.0)), Outside),
+        (
+            DVec3::new(1.0_f64.next_down(), 1.0_f64.next_down(), 0.0),
+            Inside,
+        ),
+        (
+            DVec3::new(1.0_f64.next_up(), 1.0_f64.next_down(), 0.0),
+            Outside,
+        ),
+        (
+            DVec3::new(
+                1.0_f64.next_down(),
+                1.0_f64.next_down(),
+                1.0_f64.next_down(),
+            ),
+            Inside,
+        ),
+        (
+            DVec3::new(1.0_f64.next_down(), 1.0_f64.next_down(), 1.0_f64.next_up()),
+            Outside,
+        ),
     ] {
         assert_eq!(classify_all(&cube, p), want, "{p}");
     }
     // A tilted face: the octahedron's x + y + z = 1.
     let octa = Accel::new(&builders::octahedron());
     assert_eq!(
-        classify_all(&octa, DVec3::new(0.5, 0.25, down(0.25))),
+        classify_all(&octa, DVec3::new(0.5, 0.25, 0.25_f64.next_down())),
         Inside
     );
     assert_eq!(
-        classify_all(&octa, DVec3::new(0.5, 0.25, up(0.25))),
+        classify_all(&octa, DVec3::new(0.5, 0.25, 0.25_f64.next_up())),
         Outside
     );
     assert_eq!(
-        classify_all(&octa, DVec3::new(down(0.5), 0.25, 0.25)),
+        classify_all(&octa, DVec3::new(0.5_f64.next_down(), 0.25, 0.25)),
         Inside
     );
 }
@@ -331,11 +339,11 @@ fn huge_and_tiny_coordinates() {
             OnBoundary
         );
         assert_eq!(
-            classify_all(&accel, DVec3::new(up(max.x), mid.y, mid.z)),
+            classify_all(&accel, DVec3::new(max.x.next_up(), mid.y, mid.z)),
             Outside
         );
         assert_eq!(
-            classify_all(&accel, DVec3::new(down(max.x), mid.y, mid.z)),
+            classify_all(&accel, DVec3::new(max.x.next_down(), mid.y, mid.z)),
             Inside
         );
         let (o, t) = crossings(&accel, mid, DVec3::new(1.0, 0.0, 0.0));
@@ -372,7 +380,7 @@ fn sliver_and_nearly_coplanar_faces() {
     assert_eq!(classify_all(&flat, DVec3::new(0.0, 0.0, 0.5e-12)), Inside);
     assert_eq!(classify_all(&flat, DVec3::new(0.0, 0.0, 1e-12)), OnBoundary);
     assert_eq!(
-        classify_all(&flat, DVec3::new(0.0, 0.0, up(1e-12))),
+        classify_all(&flat, DVec3::new(0.0, 0.0, 1e-12_f64.next_up())),
         Outside
     );
     assert_eq!(classify_all(&flat, DVec3::new(0.5, 0.0, 0.4e-12)), Inside);
@@ -512,13 +520,7 @@ fn far_from_the_origin_answers_are_identical_and_culling_still_works() {
     let (fa, fb) = (face_index(&near), face_index(&far));
     // Seeded rays from a shell around the sphere towards points inside its
     // box, origins on the same grid.
-    let mut state = 0x2545_F491_4F6C_DD1Du64;
-    let mut uniform = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = test_rng::uniform(0x2545_F491_4F6C_DD1D);
     let (mut nodes_near, mut nodes_far, mut hits) = (0, 0, 0);
     for _ in 0..2000 {
         let mut unit = || DVec3::new(uniform(), uniform(), uniform()) * 2.0 - DVec3::ONE;

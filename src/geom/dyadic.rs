@@ -42,6 +42,25 @@ pub(crate) fn in_safe_range(values: &[f64]) -> bool {
         .all(|&x| x == 0.0 || (SAFE_MIN..=SAFE_MAX).contains(&x.abs()))
 }
 
+/// `2⁻¹⁹⁰` and `2¹⁹⁰`: the magnitudes within which (with 0) the expansion
+/// arithmetic is exact for polynomials of degree 4 (the in-circle test): a
+/// multiple of `2⁻²⁴²` raised to the fourth power is a multiple of `2⁻⁹⁶⁸`,
+/// above the smallest normal `f64`, and magnitudes stay below `2⁷⁷⁰`.
+const DEGREE4_MIN: f64 = 1.0 / (1u128 << 95) as f64 / (1u128 << 95) as f64;
+/// `2¹⁹⁰`.
+const DEGREE4_MAX: f64 = (1u128 << 95) as f64 * (1u128 << 95) as f64;
+
+/// Whether every value is 0 or of magnitude within [`DEGREE4_MIN`] ..=
+/// [`DEGREE4_MAX`]: then the expansion fallback of a degree-4 predicate
+/// (`incircle`) is exact; otherwise the dyadic one is needed.
+#[must_use]
+#[inline]
+pub(crate) fn in_incircle_range(values: &[f64]) -> bool {
+    values
+        .iter()
+        .all(|&x| x == 0.0 || (DEGREE4_MIN..=DEGREE4_MAX).contains(&x.abs()))
+}
+
 /// The exact value `mantissa · 2^exponent`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(crate) struct Dyadic {

@@ -466,17 +466,14 @@ mod tests {
         assert_eq!(det3_sign(rows), Sign::Zero);
     }
 
-    /// A small deterministic generator (xorshift64*), uniform in `[-1, 1)`.
-    fn point(state: &mut u64) -> DVec3 {
-        DVec3::new(uniform(state), uniform(state), uniform(state))
+    /// A point uniform in `[-1, 1)³` from the seeded test generator.
+    fn point(next: &mut impl FnMut() -> f64) -> DVec3 {
+        DVec3::new(uniform(next), uniform(next), uniform(next))
     }
 
-    fn uniform(state: &mut u64) -> f64 {
-        *state ^= *state >> 12;
-        *state ^= *state << 25;
-        *state ^= *state >> 27;
-        let bits = state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
-        bits as f64 / (1u64 << 52) as f64 - 1.0
+    /// Uniform in `[-1, 1)` from the seeded test generator.
+    fn uniform(next: &mut impl FnMut() -> f64) -> f64 {
+        2.0 * next() - 1.0
     }
 
     /// Checks [`triangle_edge_sides`] against the exact [`line_side`] of each
@@ -511,7 +508,7 @@ mod tests {
 
     #[test]
     fn shared_edge_filter_certifies_only_exact_signs() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut state = crate::test_rng::uniform(0x9e37_79b9_7f4a_7c15);
         let mut decided = 0;
         let mut total = 0;
         for scale in [1e-60, 1e-9, 1.0, 1e9, 1e60] {

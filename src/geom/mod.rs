@@ -14,17 +14,21 @@ pub mod polygon;
 mod predicates;
 mod ray;
 mod tolerance;
+pub mod tri_tri;
+pub mod triangulate;
 
 pub use aabb::Aabb;
 pub use dot::{dot_sign, side_of_plane};
 pub use exact::{line_side, line_side_sos};
 pub use plane::{Plane, PlaneError, PlaneFit, newell_vector_area};
 pub use predicates::{
-    Sign, exact_fallbacks, orient2d, orient3d, reset_exact_fallbacks, tie_breaks,
+    Sign, exact_fallbacks, incircle, orient2d, orient3d, reset_exact_fallbacks, tie_breaks,
 };
 pub(crate) use predicates::{UNDERFLOW, count_tie_break};
 pub use ray::{Ray, Segment};
 pub use tolerance::Tolerance;
+pub use tri_tri::{TriTriContact, triangle_contact, triangles_intersect};
+pub use triangulate::{Ring, TriangulateError, triangulate, triangulate_3d};
 
 use glam::{DVec2, DVec3};
 

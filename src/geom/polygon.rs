@@ -54,6 +54,29 @@ impl Projection {
         }
     }
 
+    /// An axis projection under which the triangle `t` keeps a non-zero
+    /// area, or `None` when `t` is degenerate (its corners collinear).
+    /// Decided exactly; the rounded normal only proposes the axis to try
+    /// first. Under it, the plane of `t` maps one to one onto the axis
+    /// plane, so 2-D predicates on projected points of that plane are exact
+    /// statements about the 3-D points.
+    #[must_use]
+    pub fn of_triangle(t: [DVec3; 3]) -> Option<Projection> {
+        let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+        let first = Projection::along(normal);
+        let keeps_area = |p: Projection| {
+            let t2 = t.map(|x| p.apply(x));
+            orient2d(t2[0], t2[1], t2[2]) != Sign::Zero
+        };
+        if keeps_area(first) {
+            return Some(first);
+        }
+        [DVec3::Z, DVec3::Y, DVec3::X]
+            .into_iter()
+            .map(Projection::along)
+            .find(|&p| keeps_area(p))
+    }
+
     /// `p` with the dropped coordinate removed; `(y, z)`, `(z, x)` or `(x, y)`,
     /// which keeps right-handedness.
     #[must_use]
@@ -106,14 +129,21 @@ pub fn segments_touch(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
     if abc != Sign::Zero && abc == abd || cda != Sign::Zero && cda == cdb {
         return false;
     }
+    if a == b {
+        // A point: on the closed segment cd (itself perhaps a point).
+        return cda == Sign::Zero && on_box(c, d, a);
+    }
     if abc == Sign::Zero && abd == Sign::Zero {
-        // Collinear: overlap of the projections on the longer axis.
-        let on = |p: DVec2, q: DVec2, r: DVec2| {
-            r.x >= p.x.min(q.x) && r.x <= p.x.max(q.x) && r.y >= p.y.min(q.y) && r.y <= p.y.max(q.y)
-        };
-        return on(a, b, c) || on(a, b, d) || on(c, d, a) || on(c, d, b);
+        // Collinear: one end of a segment within the other's box.
+        return on_box(a, b, c) || on_box(a, b, d) || on_box(c, d, a) || on_box(c, d, b);
     }
     true
+}
+
+/// Whether `r` lies in the closed axis-aligned box of `p` and `q`: for `r`
+/// collinear with them, whether it lies on the closed segment `pq`.
+fn on_box(p: DVec2, q: DVec2, r: DVec2) -> bool {
+    r.x >= p.x.min(q.x) && r.x <= p.x.max(q.x) && r.y >= p.y.min(q.y) && r.y <= p.y.max(q.y)
 }
 
 /// Where a point lies relative to a polygon.
@@ -289,6 +319,26 @@ mod tests {
         assert!(find_self_intersection(&folded).is_some());
         let touching = [v(0., 0.), v(2., 0.), v(2., 2.), v(1., 0.), v(0., 2.)];
         assert!(find_self_intersection(&touching).is_some());
+    }
+
+    #[test]
+    fn a_point_touches_a_segment_only_on_it() {
+        let (c, d) = (v(0., 0.), v(2., 1.));
+        assert!(segments_touch(v(1., 0.5), v(1., 0.5), c, d));
+        // In the segment's box but off its line.
+        assert!(!segments_touch(v(1., 0.2), v(1., 0.2), c, d));
+        assert!(!segments_touch(c, d, v(1., 0.2), v(1., 0.2)));
+        assert!(segments_touch(c, c, c, c));
+        assert!(!segments_touch(c, c, d, d));
+    }
+
+    #[test]
+    fn a_projection_that_keeps_a_triangle_s_area() {
+        let t = [DVec3::ZERO, DVec3::X, DVec3::Z];
+        let p = Projection::of_triangle(t).map(|p| p.axis);
+        assert_eq!(p, Some(Axis::Y));
+        let flat = [DVec3::ZERO, DVec3::ONE, DVec3::splat(2.0)];
+        assert_eq!(Projection::of_triangle(flat), None);
     }
 
     #[test]

@@ -23,7 +23,7 @@ use std::cell::Cell;
 
 use glam::{DVec2, DVec3};
 
-use super::dyadic::{Dyadic, det2_sign, det3_sign, in_safe_range};
+use super::dyadic::{Dyadic, det2_sign, det3_sign, in_incircle_range, in_safe_range};
 
 /// The sign of an exactly evaluated quantity.
 ///
@@ -148,12 +148,11 @@ const HALF_EPSILON: f64 = f64::EPSILON / 2.0;
 /// first row `r` the two of each minor times `|rᵢ|` plus one per outer
 /// product — at most `(1 + ε)³ · 2η · Σ|rᵢ| + 3η(1 + ε)²`. Each filter adds
 /// `UNDERFLOW` (2×2, dot products) or `UNDERFLOW · (Σ|rᵢ| + 1)` (3×3), far
-/// more than that. The allowance is a normal number on purpose: with
-/// `2⁻¹⁰⁷⁰` (subnormal) every filter evaluation multiplied or added a
-/// subnormal, which x86 processors do slowly — point classification was
-/// 15% slower for it (2026-11-22) — while the only cost of the larger
-/// allowance is that determinants below about `1e-301` go to the exact
-/// path. Overflow needs no allowance: it makes the determinant or the bound
+/// more than that. The allowance is a normal number on purpose: a
+/// subnormal one would make every filter evaluation multiply or add a
+/// subnormal, which x86 processors do slowly, while the only cost of the
+/// larger allowance is that determinants below about `1e-301` go to the
+/// exact path. Overflow needs no allowance: it makes the determinant or the bound
 /// infinite or NaN, which certifies nothing, and the exact path decides.
 pub(crate) const UNDERFLOW: f64 = 1.0
     / (1u128 << 125) as f64
@@ -265,6 +264,70 @@ fn exact_orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     Sign::of(-robust::orient3d(p(a), p(b), p(c), p(d)))
 }
 
+/// Relative error bound of the rounded in-circle determinant (Shewchuk's
+/// `iccerrboundA`): `(10 + 96 ε) ε` with `ε = 2^-53`.
+const INCIRCLE_BOUND: f64 = (10.0 + 96.0 * HALF_EPSILON) * HALF_EPSILON;
+
+/// Whether `d` lies inside the circle through `a`, `b`, `c`.
+///
+/// For `a`, `b`, `c` counter-clockwise ([`orient2d`] positive) returns
+/// [`Sign::Positive`] when `d` lies strictly inside their circumcircle,
+/// [`Sign::Negative`] when strictly outside and [`Sign::Zero`] when the four
+/// points are exactly cocircular; a clockwise `a`, `b`, `c` reverses the sign.
+/// This is Shewchuk's `incircle` convention (1997). The sign is that of the
+/// exact determinant
+///
+/// ```text
+/// | ax - dx   ay - dy   (ax - dx)² + (ay - dy)² |
+/// | bx - dx   by - dy   (bx - dx)² + (by - dy)² |
+/// | cx - dx   cy - dy   (cx - dx)² + (cy - dy)² |
+/// ```
+///
+/// evaluated with a semi-static filter, then the adaptive expansions of the
+/// `robust` crate, then (for coordinates far from 1, where a degree-4
+/// expansion could lose bits) exact big-integer arithmetic.
+///
+/// Non-finite input gives an unspecified sign (never a panic).
+#[must_use]
+pub fn incircle(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> Sign {
+    let (ad, bd, cd) = (a - d, b - d, c - d);
+    let bdxcdy = bd.x * cd.y;
+    let cdxbdy = cd.x * bd.y;
+    let alift = ad.x * ad.x + ad.y * ad.y;
+    let cdxady = cd.x * ad.y;
+    let adxcdy = ad.x * cd.y;
+    let blift = bd.x * bd.x + bd.y * bd.y;
+    let adxbdy = ad.x * bd.y;
+    let bdxady = bd.x * ad.y;
+    let clift = cd.x * cd.x + cd.y * cd.y;
+    let det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * alift
+        + (cdxady.abs() + adxcdy.abs()) * blift
+        + (adxbdy.abs() + bdxady.abs()) * clift;
+    let bound = INCIRCLE_BOUND * permanent + UNDERFLOW * (alift + blift + clift + 1.0);
+    if det > bound || -det > bound {
+        return Sign::of(det);
+    }
+    exact_incircle(a, b, c, d)
+}
+
+#[cold]
+#[inline(never)]
+fn exact_incircle(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> Sign {
+    count_fallback();
+    if !in_incircle_range(&[a.x, a.y, b.x, b.y, c.x, c.y, d.x, d.y]) {
+        let row = |p: DVec2| {
+            let x = Dyadic::difference(p.x, d.x);
+            let y = Dyadic::difference(p.y, d.y);
+            let lift = &(&x * &x) + &(&y * &y);
+            [x, y, lift]
+        };
+        return det3_sign(&[row(a), row(b), row(c)]);
+    }
+    let p = |v: DVec2| robust::Coord { x: v.x, y: v.y };
+    Sign::of(robust::incircle(p(a), p(b), p(c), p(d)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -329,15 +392,9 @@ mod tests {
 
     #[test]
     fn orient3d_agrees_with_robust_on_random_input() {
-        // Cheap deterministic generator; compares the filter with the exact
-        // predicate on well-separated and on nearly coplanar configurations.
-        let mut s = 0x9E37_79B9_7F4A_7C15_u64;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        // Compares the filter with the exact predicate on well-separated and
+        // on nearly coplanar configurations.
+        let mut next = crate::test_rng::uniform(0x9E37_79B9_7F4A_7C15);
         for i in 0..20_000 {
             let a = DVec3::new(next(), next(), next());
             let b = DVec3::new(next(), next(), next());
@@ -371,6 +428,41 @@ mod tests {
                 },
             ));
             assert_eq!(orient3d(a, b, c, d), exact);
+        }
+    }
+
+    #[test]
+    fn incircle_inside_outside_and_cocircular() {
+        let (a, b, c) = (v2(0., 0.), v2(2., 0.), v2(0., 2.));
+        assert_eq!(incircle(a, b, c, v2(1., 1.)), Sign::Positive);
+        assert_eq!(incircle(a, b, c, v2(3., 3.)), Sign::Negative);
+        assert_eq!(incircle(a, b, c, v2(2., 2.)), Sign::Zero);
+        // Clockwise reverses the sign.
+        assert_eq!(incircle(a, c, b, v2(1., 1.)), Sign::Negative);
+        // One ulp off the circle through the corners of the unit square.
+        let (p, q, r) = (v2(0., 0.), v2(1., 0.), v2(1., 1.));
+        assert_eq!(incircle(p, q, r, v2(0., 1.)), Sign::Zero);
+        assert_eq!(incircle(p, q, r, v2(0., 1f64.next_down())), Sign::Positive);
+        assert_eq!(incircle(p, q, r, v2(0., 1f64.next_up())), Sign::Negative);
+    }
+
+    #[test]
+    fn incircle_is_exact_far_from_one() {
+        // The unit-square case scaled by powers of two is still cocircular
+        // and one ulp off still decides, at both ends of the range.
+        for scale in [
+            2f64.powi(-1000),
+            2f64.powi(-200),
+            2f64.powi(200),
+            2f64.powi(250),
+        ] {
+            let s = |x: f64, y: f64| v2(x * scale, y * scale);
+            let (p, q, r) = (s(0., 0.), s(1., 0.), s(1., 1.));
+            assert_eq!(incircle(p, q, r, s(0., 1.)), Sign::Zero, "{scale:e}");
+            let inside = v2(0., scale.next_down());
+            let outside = v2(0., scale.next_up());
+            assert_eq!(incircle(p, q, r, inside), Sign::Positive, "{scale:e}");
+            assert_eq!(incircle(p, q, r, outside), Sign::Negative, "{scale:e}");
         }
     }
 }

@@ -1,8 +1,10 @@
 //! A face crossing or touching another face anywhere but at the vertices
 //! and edges they share.
 //!
-//! Faces are cut into triangles (ear clipping in the face's axis projection,
-//! decided with exact `orient2d`), the triangles are binned in a uniform grid
+//! Faces are cut into triangles (the exact constrained Delaunay
+//! triangulation of `geom::triangulate` in the face's axis projection; a
+//! fan for a face whose projection is not simple), the triangles are binned
+//! in a uniform grid
 //! sized from their average extent (the broad phase, written here; the query
 //! layer's BVH is not used by design), and every pair of triangles of
 //! different faces whose boxes overlap is tested exactly: only `orient3d` and
@@ -33,8 +35,8 @@ use rayon::prelude::*;
 
 use super::super::context::{Context, Shape};
 use super::super::report::{Rule, Violation};
-use crate::geom::polygon::{Projection, segments_touch};
-use crate::geom::{Sign, orient2d, orient3d};
+use crate::geom::polygon::Projection;
+use crate::geom::{Sign, orient2d, orient3d, triangles_intersect};
 
 /// A triangle of a face: three soup vertices and the face.
 #[derive(Clone, Copy, Debug)]
@@ -97,49 +99,25 @@ fn triangulate(ctx: &Context) -> Vec<Triangle> {
         .collect()
 }
 
-/// Triangles covering a polygon: ear clipping in its axis projection with
-/// exact orientation tests; a fan for whatever part is not simple.
+/// Triangles covering a polygon: its exact constrained Delaunay
+/// triangulation in its axis projection; a fan when the projection is not a
+/// simple polygon (other rules report such faces).
 fn ear_clip(ctx: &Context, face: usize) -> Vec<[usize; 3]> {
     let corners = ctx.corners(face);
-    let points: Vec<DVec3> = corners.iter().map(|&v| ctx.position(v)).collect();
     let projection = ctx.projection(face);
-    let convex = if projection.flipped {
-        Sign::Negative
-    } else {
-        Sign::Positive
-    };
-    let p2: Vec<DVec2> = points.iter().map(|&p| projection.apply(p)).collect();
-    let mut ring: Vec<usize> = (0..corners.len()).collect();
-    let mut out = Vec::with_capacity(corners.len() - 2);
-    'clip: while ring.len() > 3 {
-        let k = ring.len();
-        for i in 0..k {
-            let (a, b, c) = (ring[(i + k - 1) % k], ring[i], ring[(i + 1) % k]);
-            if orient2d(p2[a], p2[b], p2[c]) != convex {
-                continue;
-            }
-            let blocked = ring.iter().any(|&o| {
-                o != a
-                    && o != b
-                    && o != c
-                    && orient2d(p2[a], p2[b], p2[o]) != -convex
-                    && orient2d(p2[b], p2[c], p2[o]) != -convex
-                    && orient2d(p2[c], p2[a], p2[o]) != -convex
-            });
-            if !blocked {
-                out.push([corners[a], corners[b], corners[c]]);
-                ring.remove(i);
-                continue 'clip;
-            }
-        }
-        // No ear: the polygon is not simple in projection. Fan the rest.
-        for i in 1..ring.len() - 1 {
-            out.push([corners[ring[0]], corners[ring[i]], corners[ring[i + 1]]]);
-        }
-        return out;
+    let p2: Vec<DVec2> = corners
+        .iter()
+        .map(|&v| projection.apply(ctx.position(v)))
+        .collect();
+    match crate::geom::triangulate(&p2, &[]) {
+        Ok(triangles) => triangles
+            .into_iter()
+            .map(|t| t.map(|k| corners[k]))
+            .collect(),
+        Err(_) => (1..corners.len() - 1)
+            .map(|i| [corners[0], corners[i], corners[i + 1]])
+            .collect(),
     }
-    out.push([corners[ring[0]], corners[ring[1]], corners[ring[2]]]);
-    out
 }
 
 /// The uniform grid: cells of one size over the triangles' bounding box.
@@ -344,54 +322,6 @@ fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Triangle) -> bo
     }
 }
 
-/// Whether two closed, non-degenerate triangles share a point, decided
-/// exactly.
-pub(crate) fn triangles_intersect(p: [DVec3; 3], q: [DVec3; 3]) -> bool {
-    let sq = q.map(|x| orient3d(p[0], p[1], p[2], x));
-    if same_strict_side(sq) {
-        return false;
-    }
-    let sp = p.map(|x| orient3d(q[0], q[1], q[2], x));
-    if same_strict_side(sp) {
-        return false;
-    }
-    if sq.iter().all(|&s| s == Sign::Zero) {
-        return coplanar_triangles_intersect(p, q);
-    }
-    // Not coplanar: the intersection, if any, is a segment whose ends lie on
-    // edges of the triangles, so some edge of one meets the other.
-    (0..3).any(|i| segment_meets_triangle(p[i], p[(i + 1) % 3], sp[i], sp[(i + 1) % 3], q))
-        || (0..3).any(|i| segment_meets_triangle(q[i], q[(i + 1) % 3], sq[i], sq[(i + 1) % 3], p))
-}
-
-fn same_strict_side(s: [Sign; 3]) -> bool {
-    s[0] != Sign::Zero && s[0] == s[1] && s[1] == s[2]
-}
-
-/// Whether segment `ab` meets closed triangle `t`, given the exact sides
-/// `sa`, `sb` of `a` and `b` against `t`'s plane.
-fn segment_meets_triangle(a: DVec3, b: DVec3, sa: Sign, sb: Sign, t: [DVec3; 3]) -> bool {
-    if sa == sb && sa != Sign::Zero {
-        return false;
-    }
-    if sa == Sign::Zero && sb == Sign::Zero {
-        let projection = projection_of(t);
-        let t2 = t.map(|x| projection.apply(x));
-        let (a2, b2) = (projection.apply(a), projection.apply(b));
-        return point_in_triangle_2d(a2, t2)
-            || (0..3).any(|i| segments_touch(a2, b2, t2[i], t2[(i + 1) % 3]));
-    }
-    // The line through a and b pierces the plane at one point of the
-    // segment; it lies in the closed triangle iff the line passes no edge on
-    // the outside, i.e. the three signs are not mixed.
-    let s = [
-        orient3d(a, b, t[0], t[1]),
-        orient3d(a, b, t[1], t[2]),
-        orient3d(a, b, t[2], t[0]),
-    ];
-    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
-}
-
 /// Whether the corners at `v` of two coplanar triangles `(v, a…)` and
 /// `(v, b…)` (each less than a half-turn) share an open set of directions:
 /// a side ray of one strictly inside the other, or the same two side rays.
@@ -429,55 +359,15 @@ fn crosses_inside(a: DVec3, b: DVec3, t: [DVec3; 3]) -> bool {
 }
 
 /// An axis projection under which `t` keeps a non-zero area (checked
-/// exactly; the rounded normal only proposes the axis).
+/// exactly), or the one along its rounded normal for a degenerate `t`.
 fn projection_of(t: [DVec3; 3]) -> Projection {
-    let normal = (t[1] - t[0]).cross(t[2] - t[0]);
-    let first = Projection::along(normal);
-    let nondegenerate = |p: Projection| {
-        let t2 = t.map(|x| p.apply(x));
-        orient2d(t2[0], t2[1], t2[2]) != Sign::Zero
-    };
-    if nondegenerate(first) {
-        return first;
-    }
-    [DVec3::X, DVec3::Y, DVec3::Z]
-        .into_iter()
-        .map(Projection::along)
-        .find(|&p| nondegenerate(p))
-        .unwrap_or(first)
-}
-
-fn point_in_triangle_2d(p: DVec2, t: [DVec2; 3]) -> bool {
-    let s = [
-        orient2d(t[0], t[1], p),
-        orient2d(t[1], t[2], p),
-        orient2d(t[2], t[0], p),
-    ];
-    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
-}
-
-fn coplanar_triangles_intersect(p: [DVec3; 3], q: [DVec3; 3]) -> bool {
-    let projection = projection_of(p);
-    let p2 = p.map(|x| projection.apply(x));
-    let q2 = q.map(|x| projection.apply(x));
-    (0..3).any(|i| (0..3).any(|j| segments_touch(p2[i], p2[(i + 1) % 3], q2[j], q2[(j + 1) % 3])))
-        || point_in_triangle_2d(q2[0], p2)
-        || point_in_triangle_2d(p2[0], q2)
+    Projection::of_triangle(t)
+        .unwrap_or_else(|| Projection::along((t[1] - t[0]).cross(t[2] - t[0])))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use proptest::prelude::*;
-
-    fn small_triangle() -> impl Strategy<Value = [DVec3; 3]> {
-        prop::array::uniform3((0i32..4, 0i32..4, 0i32..3))
-            .prop_map(|t| t.map(|(x, y, z)| DVec3::new(f64::from(x), f64::from(y), f64::from(z))))
-    }
-
-    fn non_degenerate(t: &[DVec3; 3]) -> bool {
-        !crate::geom::collinear3d(t[0], t[1], t[2])
-    }
 
     fn report_for(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> Vec<Vec<usize>> {
         let soup = crate::mesh::PolygonSoup::new(positions, polygons);
@@ -601,69 +491,7 @@ mod tests {
         );
     }
 
-    proptest! {
-        /// On a small integer grid (full of coplanar, collinear and touching
-        /// cases) the answer does not depend on argument order, on which
-        /// vertex comes first, or on orientation.
-        #[test]
-        fn the_test_is_symmetric(p in small_triangle(), q in small_triangle()) {
-            prop_assume!(non_degenerate(&p) && non_degenerate(&q));
-            let base = triangles_intersect(p, q);
-            prop_assert_eq!(triangles_intersect(q, p), base);
-            prop_assert_eq!(triangles_intersect([p[1], p[2], p[0]], q), base);
-            prop_assert_eq!(triangles_intersect([p[0], p[2], p[1]], [q[2], q[1], q[0]]), base);
-            // Sharing a vertex position means touching.
-            if p.iter().any(|v| q.contains(v)) {
-                prop_assert!(base);
-            }
-        }
-    }
-
     fn v(x: f64, y: f64, z: f64) -> DVec3 {
         DVec3::new(x, y, z)
-    }
-
-    #[test]
-    fn crossing_touching_and_apart() {
-        let t = [v(0., 0., 0.), v(2., 0., 0.), v(0., 2., 0.)];
-        // Pierces the interior.
-        assert!(triangles_intersect(
-            t,
-            [v(0.5, 0.5, -1.), v(0.5, 0.5, 1.), v(3., 3., 0.5)]
-        ));
-        // Touches with a vertex on t's edge.
-        assert!(triangles_intersect(
-            t,
-            [v(1., 0., 0.), v(1., -1., 1.), v(1., -1., -1.)]
-        ));
-        // Above, apart.
-        assert!(!triangles_intersect(
-            t,
-            [v(0., 0., 1.), v(1., 0., 1.), v(0., 1., 2.)]
-        ));
-        // Line of planes crosses both, but the triangles miss each other.
-        assert!(!triangles_intersect(
-            t,
-            [v(3., 3., -1.), v(3., 3., 1.), v(4., 2., 0.)]
-        ));
-        // Coplanar overlap and coplanar apart.
-        assert!(triangles_intersect(
-            t,
-            [v(1., 1., 0.), v(3., 1., 0.), v(1., 3., 0.)]
-        ));
-        assert!(!triangles_intersect(
-            t,
-            [v(2., 2., 0.), v(3., 2., 0.), v(2., 3., 0.)]
-        ));
-        // One ulp above the plane: apart, decided exactly.
-        let up = f64::EPSILON;
-        assert!(!triangles_intersect(
-            t,
-            [v(0.5, 0.5, up), v(1.5, 0.1, up), v(0.1, 1.5, 2.)]
-        ));
-        assert!(triangles_intersect(
-            t,
-            [v(0.5, 0.5, 0.), v(1.5, 0.1, up), v(0.1, 1.5, 2.)]
-        ));
     }
 }
