@@ -433,3 +433,40 @@ fn bad_loft_input_is_named() {
         })
     ));
 }
+
+#[test]
+fn a_path_that_crosses_itself_is_refused_with_both_places() {
+    // A symmetric cubic whose ends swap sides: x(t) = −x(1 − t) and
+    // y(t) = y(1 − t), so it crosses itself at x = 0 for some t < ½ and
+    // 1 − t; the square profile (side 1) is small beside its curvature.
+    let path = BSpline::try_open_uniform(
+        [(-10., 0.), (20., 20.), (-20., 20.), (10., 0.)]
+            .map(|(x, y)| DVec3::new(x, y, 0.0))
+            .to_vec(),
+        3,
+    )
+    .unwrap();
+    let err = try_sweep(&rectangle(-0.5, 0.5, -0.5, 0.5), &path, 1e-4).unwrap_err();
+    match err {
+        SweepError::Collides {
+            sections: [a, b],
+            parameters: Some([ta, tb]),
+        } => {
+            assert!(b > a + 2, "{a} {b}");
+            // Around the crossing, t ≈ 0.2 and 0.8.
+            assert!(ta < 0.5 && tb > 0.5, "{ta} {tb}");
+        }
+        other => panic!("expected a collision, got {other}"),
+    }
+    // With the inner control points in order, x(t) is monotonic: an arch
+    // that does not cross itself sweeps fine.
+    let arch = BSpline::try_open_uniform(
+        [(-10., 0.), (-5., 10.), (5., 10.), (10., 0.)]
+            .map(|(x, y)| DVec3::new(x, y, 0.0))
+            .to_vec(),
+        3,
+    )
+    .unwrap();
+    let solid = try_sweep(&rectangle(-0.5, 0.5, -0.5, 0.5), &arch, 1e-4).unwrap();
+    assert_eq!(valid_genus(&solid), 0);
+}

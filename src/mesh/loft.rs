@@ -7,16 +7,18 @@
 //! strictly beyond the plane of the one before it and the one before
 //! strictly behind its plane (decided exactly, as for a sweep), and all
 //! sections must be wound the same way around the direction of travel.
-//! Like a sweep, a loft whose far sections come back to cross near ones is
-//! not detected yet.
+//! As for a sweep, faces that meet without being neighbours (far sections
+//! coming back to cross near ones) are found exactly and refused.
 
 use glam::DVec3;
 
 use crate::geom::polygon::Projection;
-use crate::geom::{Aabb, Plane, Sign, Tolerance, orient3d};
+use crate::geom::{Aabb, Plane, Sign, Tolerance, orient3d, triangulate_3d};
 
 use super::Solid;
-use super::sweep::{Argument, SweepError, check_profile, check_stacking, stacked_soup};
+use super::sweep::{
+    Argument, SweepError, check_collisions, check_profile, check_stacking, stacked_soup,
+};
 
 /// Lofts a solid through `sections`: at least two planar, simple polygons
 /// with the same vertex count, each strictly beyond the previous one,
@@ -29,8 +31,9 @@ use super::sweep::{Argument, SweepError, check_profile, check_stacking, stacked_
 /// [`SweepError::TooFewSections`], [`SweepError::SectionSize`], per-section
 /// polygon problems (as for [`try_sweep`](super::try_sweep), plus
 /// [`SweepError::NonPlanar`]), [`SweepError::SectionWinding`] when a section
-/// is wound against the one before it, and [`SweepError::Folds`] when
-/// sections do not follow one another.
+/// is wound against the one before it, [`SweepError::Folds`] when
+/// sections do not follow one another, [`SweepError::Collides`] when
+/// faces that are not neighbours meet.
 pub fn try_loft(sections: &[Vec<DVec3>]) -> Result<Solid, SweepError> {
     if sections.len() < 2 {
         return Err(SweepError::TooFewSections {
@@ -83,7 +86,11 @@ pub fn try_loft(sections: &[Vec<DVec3>]) -> Result<Solid, SweepError> {
         }
     }
     check_stacking(&ordered, &pivots, None)?;
-    Ok(Solid::try_from_soup(&stacked_soup(ordered))?)
+    let first = triangulate_3d(&ordered[0], &[])?;
+    let last = triangulate_3d(&ordered[ordered.len() - 1], &[])?;
+    let soup = stacked_soup(ordered);
+    check_collisions(&soup, expected, [&first, &last], None)?;
+    Ok(Solid::try_from_soup(&soup)?)
 }
 
 /// Each section's pivot (see [`section_pivot`]).

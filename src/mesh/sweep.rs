@@ -1,8 +1,9 @@
 //! Sweeping a planar polygon along a curve, with rotation-minimizing frames
 //! by double reflection (Wang, Jüttler, Zheng & Liu 2008), and what the
-//! sweep, revolve and loft builders share: their error type, the profile
-//! checks, the stacking test between consecutive sections and the side
-//! faces between them.
+//! sweep, revolve and loft builders share: their error type (in
+//! `error.rs`), the profile
+//! checks, the stacking and collision tests and the side faces between
+//! consecutive sections.
 //!
 //! A sweep places the profile, given in 2-D, in the plane normal to the
 //! path at each sample of the path flattened to the chord tolerance: the
@@ -17,212 +18,24 @@
 //! `i + 1` ([`orient3d`] on three vertices of each section). A path that
 //! turns tighter than the profile's reach fails this test and is refused
 //! with the section and path parameter where it happens. A path that comes
-//! back near itself further along is not detected yet (that needs an exact
-//! triangle–triangle test over all side faces); profiles with holes are not
-//! supported yet.
+//! back to meet itself further along is found by an exact test of every
+//! two side or cap triangles that share no vertex
+//! ([`check_collisions`]) and refused with the two sections. Profiles with
+//! holes are not supported yet.
+
+mod collision;
+mod error;
 
 use glam::{DVec2, DVec3};
-use thiserror::Error;
 
 use crate::curve::{Curve, CurveError};
 use crate::geom::polygon::find_self_intersection;
-use crate::geom::{Sign, orient2d, orient3d};
+use crate::geom::{Sign, orient2d, orient3d, triangulate};
 
-use super::{BuildError, PolygonSoup, Solid};
+use super::{PolygonSoup, Solid};
 
-/// Which argument of a sweep, revolve or loft an error is about.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Argument {
-    /// The profile polygon (or curve) of a sweep or revolve.
-    Profile,
-    /// The path of a sweep.
-    Path,
-    /// One section of a loft, by index.
-    Section(usize),
-}
-
-impl std::fmt::Display for Argument {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Argument::Profile => write!(f, "the profile"),
-            Argument::Path => write!(f, "the path"),
-            Argument::Section(i) => write!(f, "section {i}"),
-        }
-    }
-}
-
-/// Why a sweep, revolve or loft cannot be built.
-#[derive(Clone, Debug, Error, PartialEq)]
-pub enum SweepError {
-    /// A curve argument is bad or cannot be flattened.
-    #[error("{argument}: {source}")]
-    Curve {
-        /// The argument.
-        argument: Argument,
-        /// What is wrong with it.
-        #[source]
-        source: CurveError,
-    },
-    /// A polygon with fewer than three vertices.
-    #[error("{argument} has {count} vertices; at least 3 are needed")]
-    TooFewVertices {
-        /// The polygon.
-        argument: Argument,
-        /// How many vertices it has.
-        count: usize,
-    },
-    /// A polygon vertex with a NaN or infinite coordinate.
-    #[error("{argument}: vertex {vertex} is not finite")]
-    NonFiniteVertex {
-        /// The polygon.
-        argument: Argument,
-        /// The vertex.
-        vertex: usize,
-    },
-    /// Two vertices of a polygon at the same position.
-    #[error("{argument}: vertices {first} and {second} are at the same position")]
-    RepeatedVertex {
-        /// The polygon.
-        argument: Argument,
-        /// The first of the two.
-        first: usize,
-        /// The second.
-        second: usize,
-    },
-    /// A polygon with zero area (all its vertices collinear).
-    #[error("{argument} has zero area")]
-    ZeroArea {
-        /// The polygon.
-        argument: Argument,
-    },
-    /// A polygon whose edges cross or touch (edge `i` runs from vertex `i`
-    /// to vertex `i + 1`).
-    #[error("{argument} is not simple: its edges {} and {} meet", .edges[0], .edges[1])]
-    SelfIntersecting {
-        /// The polygon.
-        argument: Argument,
-        /// The two edges that meet.
-        edges: [usize; 2],
-    },
-    /// A polygon vertex farther from the polygon's plane than the planarity
-    /// tolerance, or off the plane a profile curve must lie in.
-    #[error(
-        "{argument} is not planar: vertex {vertex} is {deviation:e} from its plane (limit {limit:e})"
-    )]
-    NonPlanar {
-        /// The polygon.
-        argument: Argument,
-        /// The vertex.
-        vertex: usize,
-        /// Its distance from the plane.
-        deviation: f64,
-        /// The largest distance allowed.
-        limit: f64,
-    },
-    /// A sweep path of zero length (every point of it the same).
-    #[error("the path has zero length: it stays at {point}")]
-    ZeroLengthPath {
-        /// Where it stays.
-        point: DVec3,
-    },
-    /// A sweep path that ends where it starts: the end caps would meet.
-    #[error("the path is closed (it ends at its start {point}); closed sweeps are not supported")]
-    ClosedPath {
-        /// The start and end.
-        point: DVec3,
-    },
-    /// A sweep path whose tangent vanishes at a sample, so no frame is
-    /// defined there.
-    #[error("the path's tangent is zero at parameter {parameter}")]
-    ZeroTangent {
-        /// The path parameter.
-        parameter: f64,
-    },
-    /// Consecutive sections fold over each other: the solid would intersect
-    /// itself there.
-    #[error("the solid folds onto itself at section {section}{}: vertex {vertex} of one section is not strictly beyond the plane of its neighbour", at_parameter(*.parameter))]
-    Folds {
-        /// The later of the two sections.
-        section: usize,
-        /// The path parameter of that section (sweeps only).
-        parameter: Option<f64>,
-        /// The offending vertex (a profile index).
-        vertex: usize,
-    },
-    /// Loft sections wound in opposite directions.
-    #[error("section {section} is wound against section {previous}")]
-    SectionWinding {
-        /// The section.
-        section: usize,
-        /// The section before it.
-        previous: usize,
-    },
-    /// Fewer than two loft sections.
-    #[error("{count} sections: a loft needs at least 2")]
-    TooFewSections {
-        /// How many were given.
-        count: usize,
-    },
-    /// A loft section with another vertex count than the first.
-    #[error("section {section} has {count} vertices, section 0 has {expected}")]
-    SectionSize {
-        /// The section.
-        section: usize,
-        /// Its vertex count.
-        count: usize,
-        /// Section 0's vertex count.
-        expected: usize,
-    },
-    /// A revolve axis whose direction is zero or not finite, or whose
-    /// radial direction is parallel to it.
-    #[error("the axis is degenerate: direction {direction}, radial {radial}")]
-    BadAxis {
-        /// The axis direction.
-        direction: DVec3,
-        /// The radial direction (angle 0).
-        radial: DVec3,
-    },
-    /// A revolve profile vertex on the wrong side of the axis.
-    #[error("profile vertex {vertex} has radius {radius} < 0: the profile crosses the axis")]
-    CrossesAxis {
-        /// The vertex.
-        vertex: usize,
-        /// Its distance coordinate.
-        radius: f64,
-    },
-    /// A revolve profile touching the axis at a single vertex in a full
-    /// turn: the solid would pinch to a point there.
-    #[error("profile vertex {vertex} touches the axis alone: a full turn pinches there")]
-    PinchOnAxis {
-        /// The vertex.
-        vertex: usize,
-    },
-    /// A revolve angle outside `(0, 2π]`.
-    #[error("the angle {angle} is not in (0, 2π]")]
-    BadAngle {
-        /// The angle in radians.
-        angle: f64,
-    },
-    /// A revolve segment count out of range.
-    #[error("{segments} segments: between {minimum} and {limit} are allowed")]
-    BadSegments {
-        /// The count given.
-        segments: usize,
-        /// The least count (3 for a full turn, else 1).
-        minimum: usize,
-        /// The largest ([`MAX_SEGMENTS`](crate::curve::MAX_SEGMENTS)).
-        limit: usize,
-    },
-    /// The faces could not be built into a winged-edge solid.
-    #[error("the faces do not form a solid: {0}")]
-    Build(#[from] BuildError),
-}
-
-fn at_parameter(parameter: Option<f64>) -> String {
-    parameter
-        .map(|t| format!(" (path parameter {t})"))
-        .unwrap_or_default()
-}
+pub(crate) use collision::check_collisions;
+pub use error::{Argument, SweepError};
 
 /// A checked 2-D profile: its vertices counter-clockwise and three of them
 /// spanning a triangle of the same winding.
@@ -361,7 +174,7 @@ pub(crate) fn push_quad(polygons: &mut Vec<Vec<usize>>, positions: &[DVec3], qua
 /// tolerance ([`SweepError::Curve`]), [`SweepError::ZeroLengthPath`],
 /// [`SweepError::ClosedPath`], [`SweepError::ZeroTangent`], and
 /// [`SweepError::Folds`] where the path turns tighter than the profile
-/// reaches.
+/// reaches, [`SweepError::Collides`] where it comes back to meet itself.
 pub fn try_sweep(
     profile: &[DVec2],
     path: &impl Curve,
@@ -409,7 +222,10 @@ pub fn try_sweep(
     let parameters: Vec<f64> = samples.iter().map(|s| s.parameter).collect();
     let pivots = vec![profile.pivot; sections.len()];
     check_stacking(&sections, &pivots, Some(&parameters))?;
-    Ok(Solid::try_from_soup(&stacked_soup(sections))?)
+    let cap = triangulate(&profile.points, &[])?;
+    let soup = stacked_soup(sections);
+    check_collisions(&soup, profile.points.len(), [&cap, &cap], Some(&parameters))?;
+    Ok(Solid::try_from_soup(&soup)?)
 }
 
 /// The frames `(r, s)` (with `s = t × r`) at each point, by the double
