@@ -298,6 +298,15 @@ fn bad_sweep_input_is_named() {
             count: 2
         }
     );
+    // A clamped path whose first two control points coincide starts with
+    // a zero tangent: no frame there.
+    let stalled =
+        BSpline::try_open_uniform(vec![DVec3::ZERO, DVec3::ZERO, DVec3::Z, DVec3::Z * 2.0], 2)
+            .unwrap();
+    assert_eq!(
+        try_sweep(&square, &stalled, 1e-3).unwrap_err(),
+        SweepError::ZeroTangent { parameter: 0.0 }
+    );
     let closed = BSpline::try_open_uniform(
         vec![
             DVec3::ZERO,
