@@ -10,8 +10,8 @@ use std::f64::consts::{FRAC_1_SQRT_2, PI, TAU};
 use glam::{DVec2, DVec3};
 use wingedge::curve::{BSpline, CurveError, KnotVector, MAX_SEGMENTS, Nurbs};
 use wingedge::mesh::{
-    Argument, RevolveAxis, Segments, Solid, SweepError, try_loft, try_revolve, try_revolve_curve,
-    try_sweep,
+    Argument, MAX_VERTICES, RevolveAxis, Segments, Solid, SweepError, try_loft, try_revolve,
+    try_revolve_curve, try_sweep,
 };
 use wingedge::validate::{Options, Validity, validate_soup};
 
@@ -364,6 +364,19 @@ fn bad_revolve_input_is_named() {
             ..
         })
     ));
+    let round: Vec<DVec2> = (0..200)
+        .map(|i| {
+            let a = TAU * f64::from(i) / 200.0;
+            DVec2::new(2.0 + a.cos(), a.sin())
+        })
+        .collect();
+    assert_eq!(
+        try_revolve(&round, &z, TAU, Segments::Count(MAX_SEGMENTS)).unwrap_err(),
+        SweepError::TooLarge {
+            vertices: 200 * MAX_SEGMENTS,
+            limit: MAX_VERTICES
+        }
+    );
     let parallel = RevolveAxis {
         radial: DVec3::Z * 3.0,
         ..z

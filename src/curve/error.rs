@@ -104,6 +104,14 @@ pub enum CurveError {
         /// End of the domain.
         end: f64,
     },
+    /// A derivative order beyond what rational evaluation supports.
+    #[error("derivative order {order} is above the supported {limit}")]
+    DerivativeOrder {
+        /// The order asked for.
+        order: usize,
+        /// The largest supported ([`MAX_RATIONAL_DERIVATIVE`](super::MAX_RATIONAL_DERIVATIVE)).
+        limit: usize,
+    },
     /// A basis function index beyond the knot vector.
     #[error("basis function N({index}, {order}) needs knot {} but there are {knots}", .index + .order)]
     BasisIndex {

@@ -94,6 +94,13 @@ impl KnotVector {
     /// [`CurveError::TooFewKnots`] when `n < p + 1`.
     pub fn try_uniform(control_points: usize, degree: usize) -> Result<KnotVector, CurveError> {
         let count = control_points.saturating_add(degree).saturating_add(1);
+        if control_points < degree.saturating_add(1) {
+            return Err(CurveError::TooFewKnots {
+                count,
+                degree,
+                needed: degree.saturating_add(1).saturating_mul(2),
+            });
+        }
         KnotVector::try_new((0..count).map(|i| i as f64).collect(), degree)
     }
 
@@ -113,7 +120,7 @@ impl KnotVector {
             return Err(CurveError::TooFewKnots {
                 count: control_points.saturating_add(degree).saturating_add(1),
                 degree,
-                needed: 2 * (degree + 1),
+                needed: degree.saturating_add(1).saturating_mul(2),
             });
         }
         let last = (control_points - degree) as f64;
@@ -281,6 +288,8 @@ mod tests {
             })
         ));
         assert!(KnotVector::try_new(vec![0.; 4], usize::MAX).is_err());
+        assert!(KnotVector::try_uniform(3, usize::MAX).is_err());
+        assert!(KnotVector::try_open_uniform(3, usize::MAX).is_err());
     }
 
     #[test]

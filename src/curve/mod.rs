@@ -27,3 +27,7 @@ pub use parametric::{Curve, CurveSample};
 /// The most segments a flattening (or a revolve) may produce; a tolerance
 /// that would need more is refused with [`CurveError::TooManySegments`].
 pub const MAX_SEGMENTS: usize = 1 << 17;
+
+/// The highest derivative order of a [`Nurbs`] (the quotient rule needs all
+/// lower ones); plain [`BSpline`] derivatives of any order are fine.
+pub const MAX_RATIONAL_DERIVATIVE: usize = 32;

@@ -7,7 +7,7 @@ use glam::{DVec3, DVec4};
 use super::bspline::{check_insertion, check_points};
 use super::de_boor::{derivative, insert_knot};
 use super::flatten::flatten_homogeneous;
-use super::{Approach, Curve, CurveError, CurveSample, KnotVector};
+use super::{Approach, Curve, CurveError, CurveSample, KnotVector, MAX_RATIONAL_DERIVATIVE};
 
 /// A rational B-spline `C(t) = Σ N_i(t) w_i P_i / Σ N_i(t) w_i` of degree
 /// `p ≥ 1`.
@@ -95,7 +95,9 @@ impl Nurbs {
     ///
     /// # Errors
     ///
-    /// [`CurveError::ParameterOutOfDomain`] for `t` outside the domain.
+    /// [`CurveError::ParameterOutOfDomain`] for `t` outside the domain,
+    /// [`CurveError::DerivativeOrder`] above
+    /// [`MAX_RATIONAL_DERIVATIVE`].
     pub fn try_derivative_limit(
         &self,
         t: f64,
@@ -103,6 +105,12 @@ impl Nurbs {
         approach: Approach,
     ) -> Result<DVec3, CurveError> {
         self.knots.check_parameter(t)?;
+        if order > MAX_RATIONAL_DERIVATIVE {
+            return Err(CurveError::DerivativeOrder {
+                order,
+                limit: MAX_RATIONAL_DERIVATIVE,
+            });
+        }
         let h: Vec<DVec4> = (0..=order)
             .map(|k| derivative(&self.knots, &self.homogeneous, t, k, approach))
             .collect();
@@ -180,6 +188,10 @@ mod tests {
         // A second derivative that points inward (centripetal).
         let dd = q.try_derivative_at(0.5, 2).unwrap();
         assert!(dd.dot(q.try_point_at(0.5).unwrap()) < 0.0);
+        assert!(matches!(
+            q.try_derivative_at(0.5, usize::MAX),
+            Err(CurveError::DerivativeOrder { .. })
+        ));
     }
 
     #[test]

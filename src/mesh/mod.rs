@@ -32,6 +32,6 @@ pub use measure::Shell;
 pub use revolve::{RevolveAxis, Segments, try_revolve, try_revolve_curve};
 pub use solid::Solid;
 pub use soup::{Polygon, PolygonSoup};
-pub use sweep::{Argument, SweepError, try_sweep};
+pub use sweep::{Argument, MAX_VERTICES, SweepError, try_sweep};
 pub use traverse::{LoopWalk, StarWalk};
 pub use vertex::Vertex;

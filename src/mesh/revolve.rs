@@ -15,7 +15,7 @@ use glam::{DVec2, DVec3};
 
 use crate::curve::{Curve, CurveError, MAX_SEGMENTS};
 
-use super::sweep::{Argument, SweepError, check_profile, push_quad};
+use super::sweep::{Argument, SweepError, check_profile, check_size, push_quad};
 use super::{PolygonSoup, Solid};
 
 /// An axis of revolution with the direction of angle 0.
@@ -62,8 +62,9 @@ pub enum Segments {
 /// Profile problems as for [`try_sweep`](super::try_sweep),
 /// [`SweepError::CrossesAxis`], [`SweepError::PinchOnAxis`],
 /// [`SweepError::BadAxis`], [`SweepError::BadAngle`],
-/// [`SweepError::BadSegments`], and [`SweepError::Curve`] for a bad or too
-/// small tolerance.
+/// [`SweepError::BadSegments`], [`SweepError::Curve`] for a bad or too
+/// small tolerance, and [`SweepError::TooLarge`] beyond
+/// [`MAX_VERTICES`](super::MAX_VERTICES).
 pub fn try_revolve(
     profile: &[DVec2],
     axis: &RevolveAxis,
@@ -93,6 +94,7 @@ pub fn try_revolve(
 
     // Ring k of vertex j: angle `angle · k / steps`; a full turn wraps.
     let rings = if full { steps } else { steps + 1 };
+    check_size(n.saturating_mul(rings))?;
     let position = |j: usize, k: usize| {
         let p = points[j];
         let theta = angle * (k as f64) / (steps as f64);

@@ -35,6 +35,22 @@ use crate::geom::{Sign, orient2d, orient3d, triangulate};
 use super::{PolygonSoup, Solid};
 
 pub(crate) use collision::check_collisions;
+
+/// The most vertices a sweep or revolve may produce (profile vertices times
+/// sections); more is refused with [`SweepError::TooLarge`].
+pub const MAX_VERTICES: usize = 1 << 24;
+
+/// `Ok` when `count` vertices are within [`MAX_VERTICES`].
+pub(crate) fn check_size(count: usize) -> Result<(), SweepError> {
+    if count > MAX_VERTICES {
+        Err(SweepError::TooLarge {
+            vertices: count,
+            limit: MAX_VERTICES,
+        })
+    } else {
+        Ok(())
+    }
+}
 pub use error::{Argument, SweepError};
 
 /// A checked 2-D profile: its vertices counter-clockwise and three of them
@@ -174,7 +190,8 @@ pub(crate) fn push_quad(polygons: &mut Vec<Vec<usize>>, positions: &[DVec3], qua
 /// tolerance ([`SweepError::Curve`]), [`SweepError::ZeroLengthPath`],
 /// [`SweepError::ClosedPath`], [`SweepError::ZeroTangent`], and
 /// [`SweepError::Folds`] where the path turns tighter than the profile
-/// reaches, [`SweepError::Collides`] where it comes back to meet itself.
+/// reaches, [`SweepError::Collides`] where it comes back to meet itself,
+/// [`SweepError::TooLarge`] beyond [`MAX_VERTICES`].
 pub fn try_sweep(
     profile: &[DVec2],
     path: &impl Curve,
@@ -206,6 +223,7 @@ pub fn try_sweep(
         })?;
         tangents.push(t);
     }
+    check_size(samples.len().saturating_mul(profile.points.len()))?;
     let points: Vec<DVec3> = samples.iter().map(|s| s.point).collect();
     let frames = rotation_minimizing_frames(&points, &tangents);
     let sections: Vec<Vec<DVec3>> = points

@@ -191,6 +191,14 @@ pub enum SweepError {
         /// The largest ([`MAX_SEGMENTS`](crate::curve::MAX_SEGMENTS)).
         limit: usize,
     },
+    /// The solid would have more vertices than the stated limit.
+    #[error("the solid would have {vertices} vertices, more than {limit}")]
+    TooLarge {
+        /// How many it would have.
+        vertices: usize,
+        /// The limit ([`MAX_VERTICES`](super::MAX_VERTICES)).
+        limit: usize,
+    },
     /// Two parts of a sweep or loft that are not neighbours meet: the
     /// band of side faces after section `sections[0]` (or an end cap, for
     /// the first or last section) touches the one after `sections[1]`.
