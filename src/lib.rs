@@ -23,6 +23,7 @@
 #![warn(missing_docs)]
 
 pub mod csg;
+pub mod curve;
 mod disjoint_sets;
 mod fixed_chunks;
 pub mod geom;
