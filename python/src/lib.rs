@@ -10,6 +10,7 @@
 mod arrays;
 mod errors;
 mod report;
+mod scene;
 mod solid;
 
 use pyo3::prelude::*;
@@ -19,6 +20,7 @@ use pyo3::prelude::*;
 fn _wingedge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     m.add_class::<solid::PySolid>()?;
+    scene::register(m)?;
     m.add_function(wrap_pyfunction!(solid::load_obj, m)?)?;
     m.add_function(wrap_pyfunction!(solid::builtin, m)?)?;
     m.add_function(wrap_pyfunction!(solid::cuboid, m)?)?;

@@ -18,6 +18,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, P
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use slotmap_key::FaceIndex;
+use wingedge::geom::triangulate::triangulate_3d;
 use wingedge::geom::{Ray, Tolerance};
 use wingedge::glam::DVec3;
 use wingedge::io::{ObjOptions, WeldMode, import_obj};
@@ -94,6 +95,31 @@ fn soup_of(solid: &Solid) -> PolygonSoup {
     PolygonSoup::new(positions, polygons)
 }
 
+/// Every polygon of `soup` as triangles (flat soup vertex indices, three
+/// per triangle).
+fn triangulate_soup(soup: &PolygonSoup) -> PyResult<Vec<i64>> {
+    let mut out = Vec::with_capacity(soup.polygons.len() * 3);
+    let mut corners = Vec::new();
+    for (f, polygon) in soup.polygons.iter().enumerate() {
+        let vertices = &polygon.vertices;
+        if vertices.len() == 3 {
+            out.extend(vertices.iter().map(|&v| v as i64));
+            continue;
+        }
+        corners.clear();
+        corners.extend(vertices.iter().map(|&v| soup.positions[v]));
+        let triangles = triangulate_3d(&corners, &[]).map_err(|e| {
+            errors::ValidationError::new_err(format!("face {f} cannot be triangulated: {e}"))
+        })?;
+        out.extend(
+            triangles
+                .iter()
+                .flat_map(|t| t.iter().map(|&k| vertices[k] as i64)),
+        );
+    }
+    Ok(out)
+}
+
 mod slotmap_key {
     //! Face ids to answer indices.
     use std::collections::HashMap;
@@ -140,7 +166,7 @@ fn method_of(name: &str) -> PyResult<Method> {
 
 /// `1` inside, `0` on the boundary, `-1` outside: the sign convention of a
 /// signed distance that is positive inside (as trimesh's).
-fn code(c: Containment) -> i8 {
+pub(crate) fn code(c: Containment) -> i8 {
     match c {
         Containment::Inside => 1,
         Containment::OnBoundary => 0,
@@ -212,6 +238,29 @@ impl PySolid {
             .flat_map(|p| p.vertices.iter().map(|&v| v as i64))
             .collect();
         Ok((vertices, sizes.into_pyarray(py), indices.into_pyarray(py)))
+    }
+
+    /// Vertices `(n, 3)` float64 (the soup's, in its order) and triangles
+    /// `(t, 3)` int64: every face triangulated exactly (a triangle face is
+    /// kept as it is; a larger face by `geom::triangulate_3d`, constrained to
+    /// its edges, so no triangle is flipped or degenerate). Raises
+    /// `ValidationError` naming the face when a face is not a simple planar
+    /// polygon.
+    #[allow(clippy::type_complexity)]
+    fn _triangles<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>)> {
+        let soup = &self.inner.soup;
+        let triangles = py.detach(|| triangulate_soup(soup))?;
+        let flat: Vec<f64> = soup
+            .positions
+            .iter()
+            .flat_map(|p| [p.x, p.y, p.z])
+            .collect();
+        let vertices = flat.into_pyarray(py).reshape([soup.positions.len(), 3])?;
+        let count = triangles.len() / 3;
+        Ok((vertices, triangles.into_pyarray(py).reshape([count, 3])?))
     }
 
     /// Number of vertices.

@@ -64,3 +64,38 @@ def test_contains_agrees_with_trimesh_off_the_surface():
     assert len(pts) > 3000
     assert np.array_equal(ours, theirs), np.flatnonzero(ours != theirs)[:10]
     assert 0 < ours.sum() < len(pts)
+
+
+@pytest.mark.parametrize("name", ["cube", "dodecahedron", "prism"])
+def test_polygon_faces_reach_trimesh_and_manifold3d_as_exact_triangulations(name):
+    solid = wingedge.builtin(name)
+    vertices, triangles = solid.triangles()
+    corners = sum(len(f) for f in solid.to_arrays()[1])
+    # A face of k corners becomes k - 2 triangles, on the solid's own vertices.
+    assert len(triangles) == corners - 2 * solid.face_count
+    np.testing.assert_array_equal(vertices, solid.to_arrays()[0])
+
+    mesh = solid.to_trimesh()
+    assert mesh.is_watertight and mesh.is_winding_consistent
+    assert mesh.volume == pytest.approx(solid.volume, rel=1e-12)
+    assert mesh.area == pytest.approx(solid.area, rel=1e-12)
+
+    manifold = solid.to_manifold()
+    assert manifold.status() == m3d.Error.NoError
+    assert manifold.volume() == pytest.approx(solid.volume, rel=1e-12)
+    assert manifold.genus() == solid.genus
+    back = wingedge.Solid.from_manifold(manifold)
+    assert back.volume == pytest.approx(solid.volume, rel=1e-12)
+
+
+def test_a_non_planar_face_is_refused_by_name():
+    vertices = [[0, 0, 0], [1, 0, 0], [1, 1, 0.5], [0, 1, 0], [0.5, 0.5, 1]]
+    faces = [[3, 2, 1, 0], [0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]
+    solid = wingedge.Solid.from_arrays(vertices, faces)
+    # A bent quadrilateral still has a triangulation in its projection; the
+    # refusal is for faces whose projection is not a simple polygon.
+    assert len(solid.triangles()[1]) == 6
+    bowtie = [[0, 0, 0], [1, 1, 0], [1, 0, 0], [0, 1, 0], [0.5, 0.5, 1]]
+    solid = wingedge.Solid.from_arrays(bowtie, faces)
+    with pytest.raises(wingedge.ValidationError, match="face 0"):
+        solid.triangles()

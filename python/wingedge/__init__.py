@@ -20,12 +20,13 @@ from typing import List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _wingedge
-from ._wingedge import ObjError, QueryError, ValidationError, WingedgeError
+from ._wingedge import ObjError, QueryError, SceneError, ValidationError, WingedgeError
 
 __version__ = _wingedge.__version__
 
 __all__ = [
     "Solid",
+    "Scene",
     "Report",
     "Violation",
     "load_obj",
@@ -43,6 +44,7 @@ __all__ = [
     "ObjError",
     "ValidationError",
     "QueryError",
+    "SceneError",
 ]
 
 
@@ -182,6 +184,14 @@ class Solid:
 
     # -- interop -------------------------------------------------------------
 
+    def triangles(self):
+        """``(vertices, triangles)``: the vertices as :meth:`to_arrays` and
+        an ``(t, 3)`` int64 array with every face triangulated exactly
+        (constrained to the face's edges: no flipped or degenerate triangle).
+        Raises ``ValidationError`` naming a face that is not a simple planar
+        polygon."""
+        return self._native._triangles()
+
     @classmethod
     def from_trimesh(cls, mesh) -> "Solid":
         """A solid from a ``trimesh.Trimesh`` (its vertices and triangles)."""
@@ -194,6 +204,90 @@ class Solid:
         mesh = manifold.to_mesh64()
         vertices = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
         return cls.from_arrays(vertices, np.asarray(mesh.tri_verts, dtype=np.int64))
+
+    def to_trimesh(self):
+        """A ``trimesh.Trimesh`` of :meth:`triangles` (vertices kept as they
+        are: ``process=False``). Needs trimesh installed."""
+        import trimesh
+
+        vertices, triangles = self.triangles()
+        return trimesh.Trimesh(vertices=vertices, faces=triangles, process=False)
+
+    def to_manifold(self):
+        """A ``manifold3d.Manifold`` of :meth:`triangles`, in float64
+        (``Mesh64``). Needs manifold3d installed; manifold3d's own status is
+        raised as ``ValidationError`` when it refuses the mesh."""
+        import manifold3d
+
+        vertices, triangles = self.triangles()
+        mesh = manifold3d.Mesh64(
+            vert_properties=np.ascontiguousarray(vertices),
+            tri_verts=np.ascontiguousarray(triangles, dtype=np.uint64),
+        )
+        manifold = manifold3d.Manifold(mesh)
+        status = manifold.status()
+        if status != manifold3d.Error.NoError:
+            raise ValidationError(f"manifold3d refused the mesh: {status}")
+        return manifold
+
+    def __repr__(self) -> str:
+        return repr(self._native)
+
+
+class Scene:
+    """A CSG tree of meshes, half-spaces, boxes, spheres and cylinders (the
+    JSON scene format of ``docs/csg.md``), answered by ray casting: exact
+    point classes, first hits, spans, volume and images."""
+
+    __slots__ = ("_native",)
+
+    def __init__(self, native: "_wingedge.NativeScene"):
+        self._native = native
+
+    @classmethod
+    def load(cls, path) -> "Scene":
+        """Reads a scene file; mesh paths are relative to its folder. Raises
+        ``SceneError`` naming the file and the JSON path."""
+        return cls(_wingedge.NativeScene.load(str(path)))
+
+    @classmethod
+    def from_dict(cls, scene: dict, base=".") -> "Scene":
+        """A scene from Python objects shaped like a scene file (dicts,
+        lists, numbers, strings); mesh paths are relative to ``base``."""
+        return cls(_wingedge.NativeScene.from_json(json.dumps(scene), str(base)))
+
+    bounds = property(
+        lambda self: np.array(self._native.bounds, dtype=np.float64),
+        doc="Bounds as a (2, 3) array (infinite for an unbounded tree).",
+    )
+    leaf_count = property(lambda self: self._native.leaf_count, doc="Number of leaves.")
+
+    def classify(self, points) -> np.ndarray:
+        """int8 per point: ``1`` inside, ``0`` on the boundary, ``-1`` outside."""
+        return self._native._classify(_coords(points, "points"))
+
+    def contains(self, points) -> np.ndarray:
+        """Boolean per point: inside or on the boundary."""
+        return self.classify(points) >= 0
+
+    def first_hit(self, origins, directions):
+        """``(t, leaf)``: the first boundary crossing of each ray (``inf``
+        and ``-1`` for a miss) and the leaf whose surface it is."""
+        return self._native._first_hit(_coords(origins, "origins"), _coords(directions, "directions"))
+
+    def spans(self, origin, direction) -> np.ndarray:
+        """The intervals of one ray inside the solid, ``(n, 2)``."""
+        return self._native._spans(_point(origin, "origin"), _point(direction, "direction"))
+
+    def volume(self, spacing: float) -> float:
+        """The volume by ray integration on a grid of cells of side at most
+        ``spacing`` (the closed form when the tree is one leaf that has one)."""
+        volume, _, _, exact = self._native.volume(float(spacing))
+        return exact if exact is not None else volume
+
+    def render(self, width: int = 640, height: int = 480) -> np.ndarray:
+        """A shaded, ray-cast image as a ``(height, width, 3)`` uint8 array."""
+        return self._native.render(int(width), int(height))
 
     def __repr__(self) -> str:
         return repr(self._native)

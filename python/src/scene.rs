@@ -1,0 +1,229 @@
+//! `wingedge.Scene`: a CSG tree from the JSON scene format, answered by ray
+//! casting (Roth's method): point classes, first hits, spans, volume and
+//! images.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2};
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use rayon::prelude::*;
+use wingedge::csg::Stats;
+use wingedge::geom::Ray;
+use wingedge::glam::DVec3;
+use wingedge::query::QueryError as CoreQueryError;
+use wingedge::render::{RenderOptions, render};
+use wingedge::scene::Scene;
+
+use crate::arrays;
+use crate::errors::{self, WingedgeError};
+use crate::solid::code;
+
+create_exception!(
+    wingedge,
+    SceneError,
+    WingedgeError,
+    "A scene file or JSON text that cannot be used: the message names the \
+     file, the JSON position or the JSON path."
+);
+
+/// A scene loaded from a file or from JSON text.
+#[pyclass(name = "NativeScene", module = "wingedge._wingedge", frozen)]
+pub struct PyScene {
+    scene: Arc<Scene>,
+}
+
+fn rays_of(origins: &[DVec3], directions: &[DVec3]) -> PyResult<Vec<Ray>> {
+    if origins.len() != directions.len() {
+        return Err(PyValueError::new_err(format!(
+            "{} origins but {} directions",
+            origins.len(),
+            directions.len()
+        )));
+    }
+    let rays: Vec<Ray> = origins
+        .iter()
+        .zip(directions)
+        .map(|(&o, &d)| Ray::new(o, d))
+        .collect();
+    if let Some(index) = rays.iter().position(|r| {
+        !(r.origin.is_finite() && r.direction.is_finite()) || r.direction == DVec3::ZERO
+    }) {
+        return Err(errors::query(CoreQueryError::InvalidRay {
+            index,
+            origin: rays[index].origin,
+            direction: rays[index].direction,
+        }));
+    }
+    Ok(rays)
+}
+
+#[pymethods]
+impl PyScene {
+    /// Reads a scene file (mesh paths relative to its folder).
+    #[staticmethod]
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyScene> {
+        let scene = py
+            .detach(|| Scene::from_file(&path))
+            .map_err(|e| SceneError::new_err(e.to_string()))?;
+        Ok(PyScene {
+            scene: Arc::new(scene),
+        })
+    }
+
+    /// Parses scene text; `base` is the folder mesh paths are relative to.
+    #[staticmethod]
+    fn from_json(py: Python<'_>, text: &str, base: PathBuf) -> PyResult<PyScene> {
+        let scene = py
+            .detach(|| Scene::from_json(text, "<json>", &base))
+            .map_err(|e| SceneError::new_err(e.to_string()))?;
+        Ok(PyScene {
+            scene: Arc::new(scene),
+        })
+    }
+
+    /// `(min, max)` corners of the tree's bounds (may be infinite).
+    #[getter]
+    fn bounds(&self) -> ((f64, f64, f64), (f64, f64, f64)) {
+        let b = self.scene.csg.bounds();
+        (b.min.into(), b.max.into())
+    }
+
+    /// Number of leaves.
+    #[getter]
+    fn leaf_count(&self) -> usize {
+        self.scene.csg.leaves().len()
+    }
+
+    /// Point classes: int8, `1` inside, `0` on the boundary, `-1` outside.
+    fn _classify<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<i8>>> {
+        let points = arrays::points(&points, "points")?;
+        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+            return Err(errors::query(CoreQueryError::NonFinitePoint {
+                index,
+                point: points[index],
+            }));
+        }
+        let csg = &self.scene.csg;
+        let codes: Vec<i8> = py.detach(|| {
+            points
+                .par_iter()
+                .with_min_len(256)
+                .map_init(Stats::default, |stats, &p| {
+                    code(csg.classify_point(p, stats))
+                })
+                .collect()
+        });
+        Ok(codes.into_pyarray(py))
+    }
+
+    /// First hits: `t` (inf for a miss) and the leaf hit (-1 for a miss).
+    #[allow(clippy::type_complexity)]
+    fn _first_hit<'py>(
+        &self,
+        py: Python<'py>,
+        origins: PyReadonlyArray2<'py, f64>,
+        directions: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<i64>>)> {
+        let origins = arrays::points(&origins, "origins")?;
+        let directions = arrays::points(&directions, "directions")?;
+        let rays = rays_of(&origins, &directions)?;
+        let csg = &self.scene.csg;
+        let hits: Vec<(f64, i64)> = py.detach(|| {
+            rays.par_iter()
+                .with_min_len(64)
+                .map_init(Stats::default, |stats, ray| {
+                    csg.first_hit(ray, stats)
+                        .map_or((f64::INFINITY, -1), |h| (h.t, i64::from(h.leaf.0)))
+                })
+                .collect()
+        });
+        let (t, leaf): (Vec<f64>, Vec<i64>) = hits.into_iter().unzip();
+        Ok((t.into_pyarray(py), leaf.into_pyarray(py)))
+    }
+
+    /// The spans of one ray inside the solid, as an `(n, 2)` array of
+    /// `[t_enter, t_leave]` (`t_enter` 0 when the origin is inside).
+    fn _spans<'py>(
+        &self,
+        py: Python<'py>,
+        origin: (f64, f64, f64),
+        direction: (f64, f64, f64),
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rays = rays_of(&[DVec3::from(origin)], &[DVec3::from(direction)])?;
+        let spans = self
+            .scene
+            .csg
+            .try_spans(&rays[0], &mut Stats::default())
+            .map_err(errors::query)?;
+        let intervals = spans.intervals();
+        let flat: Vec<f64> = intervals.iter().flat_map(|&(a, b)| [a, b]).collect();
+        flat.into_pyarray(py).reshape([intervals.len(), 2])
+    }
+
+    /// Volume by ray integration on a grid of spacing `spacing`:
+    /// `(volume, spacing used, rays cast, closed form or None)`.
+    fn volume(&self, py: Python<'_>, spacing: f64) -> PyResult<(f64, f64, u64, Option<f64>)> {
+        let csg = &self.scene.csg;
+        let estimate = py
+            .detach(|| csg.try_volume(spacing))
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok((
+            estimate.volume,
+            estimate.spacing,
+            estimate.rays,
+            estimate.exact,
+        ))
+    }
+
+    /// A ray-cast image, `(height, width, 3)` uint8.
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        width: u32,
+        height: u32,
+    ) -> PyResult<Bound<'py, PyArray3<u8>>> {
+        const MAX_PIXELS: u64 = 1 << 26;
+        if width == 0 || height == 0 || u64::from(width) * u64::from(height) > MAX_PIXELS {
+            return Err(PyValueError::new_err(format!(
+                "image size {width}x{height}: both sides at least 1, at most {MAX_PIXELS} pixels"
+            )));
+        }
+        let options = RenderOptions {
+            width,
+            height,
+            ..RenderOptions::default()
+        };
+        let scene = &self.scene;
+        let image = py.detach(|| render(scene, &options, &|_| {}).0);
+        let mut bytes = Vec::with_capacity(width as usize * height as usize * 3);
+        for y in 0..height {
+            for x in 0..width {
+                bytes.extend(image.pixel(x, y).unwrap_or([0, 0, 0]));
+            }
+        }
+        bytes
+            .into_pyarray(py)
+            .reshape([height as usize, width as usize, 3])
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<wingedge.Scene: {} leaves, {} operators>",
+            self.scene.csg.leaves().len(),
+            self.scene.csg.operator_count()
+        )
+    }
+}
+
+/// Adds the scene's exception class to the module.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("SceneError", m.py().get_type::<SceneError>())?;
+    m.add_class::<PyScene>()
+}

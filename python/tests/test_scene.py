@@ -1,0 +1,56 @@
+"""Scenes from Python: the JSON scene format loaded from files or dicts."""
+
+import math
+
+import numpy as np
+import pytest
+
+import wingedge
+
+
+def test_the_drilled_cube_classifies_exactly_and_integrates_its_volume(fixtures):
+    scene = wingedge.Scene.load(fixtures / "scenes" / "drilled_cube.json")
+    assert scene.leaf_count == 4
+    codes = scene.classify([[0.9, 0.9, 0.9], [0, 0, 0], [1, 0.9, 0.9], [2, 0, 0]])
+    assert codes.tolist() == [1, -1, 0, -1]
+    want = 8 - (3 * math.pi / 2 - 2 + (2 - math.sqrt(2)))
+    assert scene.volume(0.02) == pytest.approx(want, rel=5e-3)
+    t, leaf = scene.first_hit([[-5.0, 0.9, 0.9], [-5.0, 0, 0]], [[1.0, 0, 0], [1.0, 0, 0]])
+    assert t[0] == 4.0 and leaf[0] >= 0
+    assert t[1] == np.inf and leaf[1] == -1
+    spans = scene.spans([-5, 0.9, 0.9], [1, 0, 0])
+    assert spans.tolist() == [[4.0, 6.0]]
+
+
+def test_a_scene_from_a_dict_answers_like_its_closed_form():
+    scene = wingedge.Scene.from_dict(
+        {"root": {"difference": [{"box": {"min": [0, 0, 0], "max": [2, 2, 2]}},
+                                 {"box": {"min": [1, 1, 1], "max": [3, 3, 3]}}]}}
+    )
+    assert scene.classify([[0.5, 0.5, 0.5], [1.5, 1.5, 1.5], [1, 1, 1]]).tolist() == [1, -1, 0]
+    assert scene.volume(0.1) == pytest.approx(7.0, rel=1e-12)
+    np.testing.assert_array_equal(scene.bounds, [[0, 0, 0], [2, 2, 2]])
+
+
+def test_render_returns_an_image_array(fixtures):
+    scene = wingedge.Scene.load(fixtures / "scenes" / "platonic.json")
+    image = scene.render(32, 24)
+    assert image.shape == (24, 32, 3) and image.dtype == np.uint8
+    assert len(np.unique(image.reshape(-1, 3), axis=0)) > 10
+    with pytest.raises(ValueError, match="image size"):
+        scene.render(0, 10)
+
+
+def test_bad_scenes_and_queries_raise_located_errors(tmp_path, fixtures):
+    with pytest.raises(wingedge.SceneError, match="missing.json"):
+        wingedge.Scene.load(tmp_path / "missing.json")
+    with pytest.raises(wingedge.SceneError, match=r"root"):
+        wingedge.Scene.from_dict({"root": {"box": {"min": [0, 0], "max": [1, 1, 1]}}})
+    scene = wingedge.Scene.load(fixtures / "scenes" / "drilled_cube.json")
+    with pytest.raises(wingedge.QueryError, match="point 2"):
+        scene.classify([[0, 0, 0], [1, 1, 1], [np.nan, 0, 0]])
+    with pytest.raises(wingedge.QueryError, match="ray 0"):
+        scene.first_hit([[0, 0, 0]], [[0, 0, 0]])
+    with pytest.raises(ValueError, match="spacing"):
+        scene.volume(-1.0)
+    assert issubclass(wingedge.SceneError, wingedge.WingedgeError)

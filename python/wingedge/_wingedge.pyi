@@ -1,0 +1,113 @@
+"""Type stub of the native module ``wingedge._wingedge`` (built from
+``python/src`` by maturin). The public API is the ``wingedge`` package,
+which wraps these classes and checks array shapes and dtypes first; use it
+rather than this module."""
+
+from os import PathLike
+from typing import Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+_Path = Union[str, PathLike[str]]
+_Vec3 = Tuple[float, float, float]
+_F64 = npt.NDArray[np.float64]
+_I64 = npt.NDArray[np.int64]
+_I8 = npt.NDArray[np.int8]
+
+class WingedgeError(ValueError):
+    """Base class of every wingedge error."""
+
+class ObjError(WingedgeError):
+    """An OBJ file could not be read: the message names the file and line."""
+
+class ValidationError(WingedgeError):
+    """Input that cannot be a winged-edge solid: the message names the elements."""
+
+class QueryError(WingedgeError):
+    """A query that cannot be answered: the message names the query's index."""
+
+class SceneError(WingedgeError):
+    """A scene file or document that cannot be loaded: the message names the
+    file and the JSON path."""
+
+class NativeSolid:
+    """A winged-edge solid with its exact query accel (built on first use)."""
+
+    @staticmethod
+    def _from_flat(vertices: _F64, sizes: _I64, indices: _I64) -> NativeSolid:
+        """A solid from vertices ``(n, 3)``, face sizes ``(m,)`` and the flat
+        face index array; raises ``ValidationError`` naming the polygon."""
+    def _to_flat(self) -> Tuple[_F64, _I64, _I64]:
+        """The soup the solid was built from: vertices, face sizes, indices."""
+    def _triangles(self) -> Tuple[_F64, _I64]:
+        """Vertices ``(n, 3)`` and every face triangulated exactly ``(t, 3)``."""
+    def _classify(self, points: _F64, method: str) -> _I8:
+        """``1`` inside, ``0`` on the boundary, ``-1`` outside, per point."""
+    def _winding_number(self, points: _F64) -> _F64:
+        """Generalized winding number per point."""
+    def _ray_cast(self, origins: _F64, directions: _F64) -> Tuple[_F64, _I64, _I8]:
+        """First hits: ``t`` (inf for a miss), face (-1), transition (0)."""
+    def _ray_crossings(self, origin: _Vec3, direction: _Vec3) -> Tuple[int, _F64, _I64, _I8]:
+        """Every crossing of one ray, ascending in ``t``."""
+    @property
+    def vertex_count(self) -> int: ...
+    @property
+    def edge_count(self) -> int: ...
+    @property
+    def face_count(self) -> int: ...
+    @property
+    def is_closed(self) -> bool: ...
+    @property
+    def volume(self) -> float: ...
+    @property
+    def area(self) -> float: ...
+    @property
+    def genus(self) -> Optional[int]: ...
+    @property
+    def shells(self) -> int: ...
+    @property
+    def bounds(self) -> Tuple[_Vec3, _Vec3]: ...
+    @property
+    def path(self) -> Optional[str]: ...
+
+class NativeScene:
+    """A CSG scene (the JSON scene format) with its leaves' accels."""
+
+    @staticmethod
+    def load(path: _Path) -> NativeScene:
+        """Loads a scene file (a ``.json`` scene or an ``.obj`` mesh)."""
+    @staticmethod
+    def from_json(text: str, base: _Path) -> NativeScene:
+        """A scene from JSON text; relative paths resolve against ``base``."""
+    @property
+    def bounds(self) -> Tuple[_Vec3, _Vec3]: ...
+    @property
+    def leaf_count(self) -> int: ...
+    def _classify(self, points: _F64) -> _I8:
+        """``1`` inside, ``0`` on the boundary, ``-1`` outside, per point."""
+    def _first_hit(self, origins: _F64, directions: _F64) -> Tuple[_F64, _I64]:
+        """First hits: ``t`` (inf for a miss) and the leaf hit (-1)."""
+    def _spans(self, origin: _Vec3, direction: _Vec3) -> _F64:
+        """``(n, 2)`` intervals ``[t_enter, t_leave]`` of one ray inside."""
+    def volume(self, spacing: float) -> Tuple[float, float, int, Optional[float]]:
+        """``(volume, spacing used, rays cast, closed form or None)``."""
+    def render(self, width: int, height: int) -> npt.NDArray[np.uint8]:
+        """A ray-cast image ``(height, width, 3)``."""
+
+def load_obj(path: _Path, weld: Optional[object] = None, max_face_corners: Optional[int] = None) -> NativeSolid:
+    """Reads an OBJ file into a solid; ``ObjError`` names the file and line."""
+def builtin(name: str) -> NativeSolid:
+    """A built-in solid by name."""
+def cuboid(min: _Vec3, max: _Vec3) -> NativeSolid:
+    """The axis-aligned box between two corners."""
+def prism(profile: Sequence[_Vec3], sweep: _Vec3) -> NativeSolid:
+    """A planar polygon swept along a vector."""
+def sphere(rings: int) -> NativeSolid:
+    """A triangulated UV sphere of radius 1."""
+def validate_path(path: _Path, weld: Optional[object] = None, planarity: Optional[float] = None) -> str:
+    """The JSON report ``validate --json`` prints for a file."""
+def validate_solid(solid: NativeSolid, planarity: Optional[float] = None) -> str:
+    """The JSON report for a solid's source soup."""
