@@ -45,15 +45,34 @@ def write_obj(path, manifold):
 
 
 def broken_meshes(manifold):
-    """Meshes manifold3d refuses, made by breaking one of its own: a removed
-    triangle (a hole) and a flipped triangle (inconsistent orientation)."""
+    """Meshes manifold3d refuses, made by breaking one of its own: removed
+    triangles (holes, half a sphere), flipped triangles (inconsistent
+    orientation), a fin and a duplicated face (edges of three faces)."""
     mesh = manifold.to_mesh64()
     verts = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
     tris = np.asarray(mesh.tri_verts, dtype=np.int64)
     holed = tris[1:]
     flipped = tris.copy()
     flipped[0] = flipped[0][::-1]
-    return {"b_hole": (verts, holed), "b_flipped": (verts, flipped)}
+    far = len(tris) // 2
+    two_holes = np.delete(tris, [0, far], axis=0)
+    # An edge of three faces: a fin on the first triangle's first edge.
+    tip = verts[tris[0]].mean(axis=0) * 1.5
+    fin_verts = np.vstack([verts, tip])
+    fin = np.vstack([tris, [[tris[0][1], tris[0][0], len(verts)]]])
+    duplicated = np.vstack([tris, tris[:1]])
+    half = tris[: len(tris) // 2]
+    many_flipped = tris.copy()
+    many_flipped[::7] = many_flipped[::7, ::-1]
+    return {
+        "b_hole": (verts, holed),
+        "b_flipped": (verts, flipped),
+        "b_two_holes": (verts, two_holes),
+        "b_fin": (fin_verts, fin),
+        "b_duplicated_face": (verts, duplicated),
+        "b_half_open": (verts, half),
+        "b_many_flipped": (verts, many_flipped),
+    }
 
 
 def status_of(verts, tris):
@@ -240,10 +259,11 @@ def main():
     parser.add_argument("--csg-cases", type=int, default=4)
     parser.add_argument("--seed", type=int, default=20261121)
     parser.add_argument("--fixtures", help="a folder of closed OBJ fixtures to judge too")
+    parser.add_argument("--nonce", default="", help="written back in oracle.json, so a caller can tell this run's answers")
     args = parser.parse_args()
     os.makedirs(args.out_dir, exist_ok=True)
     rng = np.random.default_rng(args.seed)
-    report = {"manifold3d": m3d_version(), "meshes": {}, "csg": []}
+    report = {"manifold3d": m3d_version(), "nonce": args.nonce, "meshes": {}, "csg": []}
     for name, manifold in named_meshes(rng).items():
         verts = write_obj(os.path.join(args.out_dir, name + ".obj"), manifold)
         entry = {
