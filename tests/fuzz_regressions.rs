@@ -62,6 +62,24 @@ fn queries_findings_stay_fixed() {
 }
 
 #[test]
+fn build_soup_inputs_stay_fixed() {
+    let count = replay("build_soup", fuzz_checks::build_soup::run);
+    assert!(count > 0, "no pinned build_soup inputs");
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
+
+    /// The `build_soup` check on random bytes, on stable Rust: small soups
+    /// with coincident vertices, special values and stray indices either
+    /// build a consistent solid or are refused, never a panic.
+    #[test]
+    fn build_soup_holds_on_random_bytes(bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..160)) {
+        fuzz_checks::build_soup::run(&bytes);
+    }
+}
+
+#[test]
 fn the_seed_corpora_pass_the_fuzz_checks() {
     for folder in ["valid", "broken", "real"] {
         for (path, bytes) in inputs(&fixtures().join(folder)) {

@@ -8,6 +8,7 @@
 
 #![allow(dead_code)]
 
+pub mod build_soup;
 pub mod obj_validate;
 pub mod queries;
 pub mod scene_load;
