@@ -94,12 +94,16 @@ fn every_scene_command_refuses(dir: &TempDir, scene: &str, expect: &[&str]) {
 }
 
 fn assert_memory_bounded() {
-    if let Some(peak) = peak_child_rss_bytes() {
-        assert!(
+    match peak_child_rss_bytes() {
+        Some(peak) => assert!(
             peak < RSS_BOUND,
             "a command peaked at {} MiB",
             peak / (1024 * 1024)
-        );
+        ),
+        // Said, not skipped silently: `cargo test -- --nocapture` shows it.
+        None => println!(
+            "the memory bound is not checked here: this system has no getrusage for child processes"
+        ),
     }
 }
 

@@ -159,19 +159,20 @@ impl Drop for TempDir {
 }
 
 /// The largest peak resident memory of any child process this test
-/// process has waited for so far, in bytes (Linux only; `None` elsewhere).
+/// process has waited for so far, in bytes (`getrusage` on Unix: kilobytes
+/// on Linux and the BSDs, bytes on macOS; `None` on other systems).
 /// Tests run in parallel threads of one process, so this bounds every
 /// command run so far, not only the last.
 pub fn peak_child_rss_bytes() -> Option<u64> {
-    #[cfg(target_os = "linux")]
+    #[cfg(unix)]
     {
         // SAFETY: getrusage only writes the struct it is given.
         let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
         let ok = unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) } == 0;
-        // Linux reports kilobytes.
-        ok.then(|| u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024)
+        let unit = if cfg!(target_os = "macos") { 1 } else { 1024 };
+        ok.then(|| u64::try_from(usage.ru_maxrss).unwrap_or(0) * unit)
     }
-    #[cfg(not(target_os = "linux"))]
+    #[cfg(not(unix))]
     {
         None
     }
