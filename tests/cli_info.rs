@@ -32,3 +32,52 @@ fn info_on_a_missing_file_is_an_error_naming_it() {
     assert_eq!(code, 2);
     assert!(err.contains("fixtures/no-such-file.obj"), "{err}");
 }
+
+/// A valid tetrahedron with coordinates up to 1e308: its topology and
+/// checks are exact, but its volume and area overflow `f64`. Every command
+/// says so, in words and with a non-zero exit, never a bare NaN.
+#[test]
+fn measures_that_overflow_are_reported_not_printed_as_nan() {
+    let dir = common::cli::TempDir::new("overflow");
+    let tet = dir.write(
+        "tet.obj",
+        "v 0 0 0\nv 1e308 0 0\nv 0 1e308 0\nv 0 0 1e308\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    );
+    let tet = tet.to_str().expect("a UTF-8 temp path");
+
+    let (code, out, _) = wingedge(&["validate", tet]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("valid closed solid"), "{out}");
+    assert!(out.contains("volume overflow  area overflow"), "{out}");
+    assert!(
+        out.contains("warning: volume, area, shell volume overflow f64"),
+        "{out}"
+    );
+    assert!(!out.contains("NaN") && !out.contains("inf"), "{out}");
+
+    let (code, out, _) = wingedge(&["validate", "--json", tet]);
+    assert_eq!(code, 1);
+    let report: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    assert_eq!(
+        report[0]["overflow"],
+        serde_json::json!(["volume", "area", "shell volume"])
+    );
+    assert!(report[0]["volume"].is_null());
+
+    let (code, out, err) = wingedge(&["info", tet]);
+    assert_eq!(code, 1);
+    assert!(
+        out.contains("volume overflow  surface area overflow"),
+        "{out}"
+    );
+    assert!(
+        out.contains("bounding box (0, 0, 0) .. (1e308, 1e308, 1e308)"),
+        "{out}"
+    );
+    assert!(err.contains("overflows f64"), "{err}");
+
+    let (code, out, err) = wingedge(&["volume", tet]);
+    assert_eq!(code, 2);
+    assert!(out.is_empty(), "{out}");
+    assert!(err.contains("overflows f64"), "{err}");
+}

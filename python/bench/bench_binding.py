@@ -23,6 +23,7 @@ import sys
 import tempfile
 
 THREADS = 2
+ROUNDS = 3
 for _var in ("RAYON_NUM_THREADS", "OMP_NUM_THREADS"):
     os.environ[_var] = str(THREADS)
 
@@ -78,20 +79,32 @@ def main():
     points, rays = queries(solid, n)
     origins, directions = rays[:, :3].copy(), rays[:, 3:].copy()
 
-    results = []
-    seconds, inside = python_peers.best_of_3(lambda: solid.contains(points))
-    results.append(("wingedge (Python)", "points", seconds, inside))
-    seconds, hits = python_peers.best_of_3(lambda: solid.ray_cast(origins, directions)[0])
-    results.append(("wingedge (Python)", "rays", seconds, hits))
+    # The binding and the Rust API alone, alternated in rounds so that both
+    # see the same machine load; the best of each is kept.
+    best = {"points": None, "rays": None, "points_s": np.inf, "rays_s": np.inf}
+    rust = {"points_s": np.inf, "rays_s": np.inf}
+    with tempfile.TemporaryDirectory() as tmp:
+        for _ in range(ROUNDS):
+            for task, call in (
+                ("points", lambda: solid.contains(points)),
+                ("rays", lambda: solid.ray_cast(origins, directions)[0]),
+            ):
+                seconds, answers = python_peers.best_of_3(call)
+                if seconds < best[f"{task}_s"]:
+                    best[f"{task}_s"], best[task] = seconds, answers
+            line = rust_only(args.model, points, rays, pathlib.Path(tmp))
+            for key in rust:
+                rust[key] = min(rust[key], line[key])
+    results = [
+        ("wingedge (Python)", "points", best["points_s"], best["points"]),
+        ("wingedge (Python)", "rays", best["rays_s"], best["rays"]),
+    ]
     for peer in (
         python_peers.trimesh_embree(vertices, faces, points, rays)
         + python_peers.open3d_scene(vertices, faces, points, rays)
         + python_peers.libigl_fwn(vertices, faces, points)
     ):
         results.append((peer["library"], peer["task"], peer["seconds"], peer["answers"]))
-
-    with tempfile.TemporaryDirectory() as tmp:
-        rust = rust_only(args.model, points, rays, pathlib.Path(tmp))
 
     print(f"model {args.model}: {solid.face_count} triangles, {n:,} points and rays, {THREADS} threads\n")
     print("| library | task | million queries/s | wingedge (Python) is × faster | agrees with wingedge |")

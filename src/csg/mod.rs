@@ -40,7 +40,7 @@ pub use polyhedron::{Polyhedron, PolyhedronError};
 pub use primitive::{Crossing, Primitive, SurfaceId, normal_alignment, perturbed_side};
 pub use sphere::{Sphere, SphereError};
 pub use stats::Stats;
-pub use trace::{FirstHit, Spans};
+pub use trace::{FirstHit, MAX_ORIGIN_DISTANCE, Spans};
 pub use transform::{TransformError, Transformed};
 pub use tree::{Csg, CsgError, CsgExpr, Leaf, LeafId};
 pub use volume::{MAX_VOLUME_RAYS, VolumeError, VolumeEstimate};

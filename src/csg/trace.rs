@@ -108,17 +108,94 @@ pub(crate) fn ray_meets_bounds(bounds: &Aabb, ray: &Ray) -> bool {
     near <= far + SLAB_ROUNDING * near.abs().max(far.abs())
 }
 
-/// The error for a ray no query accepts ([`Ray::is_valid`]).
-fn check_ray(ray: &Ray) -> Result<(), QueryError> {
-    if ray.is_valid() {
-        Ok(())
-    } else {
-        Err(QueryError::InvalidRay {
-            index: 0,
-            origin: ray.origin,
-            direction: ray.direction,
-        })
+/// How far (in multiples of a finite scene's size) a user's ray may start
+/// from the scene's bounds. Beyond it, `t` at the scene is so large that its
+/// rounding (`2^-52` of `t`) exceeds `2^-22` of the scene's size, and spans
+/// thinner than that would merge; such rays are refused, not answered wrong.
+pub const MAX_ORIGIN_DISTANCE: f64 = (1u64 << 30) as f64;
+
+/// `x · 2^k`, exactly whenever the result is a normal number or zero.
+fn times_power_of_two(mut x: f64, mut k: i32) -> f64 {
+    while k != 0 {
+        let step = k.clamp(-1000, 1000);
+        x *= f64::powi(2.0, step);
+        k -= step;
     }
+    x
+}
+
+/// A user's ray made ready for a trace: the direction `d` scaled to
+/// `d' = d · 2^-k`, `k` the exponent of its largest component, so that
+/// component lies in `[1, 2)` (exact: the line and the order of crossings
+/// do not change). The scaled ray's `t'` is the caller's `t · 2^k`, so
+/// `t = t' · 2^-k`.
+///
+/// # Errors
+///
+/// [`QueryError::InvalidRay`] for a non-finite origin or direction or a
+/// zero direction; [`QueryError::RayOutOfRange`] when the origin lies more
+/// than [`MAX_ORIGIN_DISTANCE`] scene sizes from finite scene bounds that
+/// the ray meets.
+fn conditioned(bounds: &Aabb, index: usize, ray: &Ray) -> Result<(Ray, i32), QueryError> {
+    let Ray { origin, direction } = *ray;
+    if !ray.is_valid() {
+        return Err(QueryError::InvalidRay {
+            index,
+            origin,
+            direction,
+        });
+    }
+    let largest = direction.abs().max_element();
+    // The exponent of the largest component (subnormals included).
+    let k = largest.log2().floor() as i32;
+    let scaled = Ray::new(
+        origin,
+        DVec3::new(
+            times_power_of_two(direction.x, -k),
+            times_power_of_two(direction.y, -k),
+            times_power_of_two(direction.z, -k),
+        ),
+    );
+    if !bounds.is_empty() && bounds.min.is_finite() && bounds.max.is_finite() {
+        let size = bounds.size().max_element();
+        let gap = (bounds.min - origin)
+            .max(origin - bounds.max)
+            .max(DVec3::ZERO);
+        let distance = gap.max_element();
+        if distance > MAX_ORIGIN_DISTANCE * size && ray_meets_bounds(bounds, &scaled) {
+            return Err(QueryError::RayOutOfRange {
+                index,
+                origin,
+                direction,
+                reason: "the origin is more than 2^30 scene sizes from the scene, so t could not \
+                         tell its features apart; start the ray nearer",
+            });
+        }
+    }
+    Ok((scaled, k))
+}
+
+/// Turns the scaled ray's crossings back into the caller's `t = t' · 2^-k`,
+/// checking that they stay finite, positive and strictly ascending.
+fn unscaled(hits: &mut [Hit], k: i32, index: usize, ray: &Ray) -> Result<(), QueryError> {
+    let mut previous = 0.0;
+    for hit in hits.iter_mut() {
+        hit.t = times_power_of_two(hit.t, -k);
+        if !hit.t.is_finite() || hit.t <= previous {
+            return Err(QueryError::RayOutOfRange {
+                index,
+                origin: ray.origin,
+                direction: ray.direction,
+                reason: if hit.t.is_finite() {
+                    "the direction is so long that crossings' t underflow together"
+                } else {
+                    "the direction is so short that a crossing's t overflows"
+                },
+            });
+        }
+        previous = hit.t;
+    }
+    Ok(())
 }
 
 impl Csg {
@@ -136,15 +213,41 @@ impl Csg {
     }
 
     /// [`Csg::spans`] for rays from users: an invalid ray is an error, not
-    /// an empty answer.
+    /// an empty answer, and so is one whose answer `f64` cannot hold.
+    ///
+    /// The direction is first scaled exactly by a power of two (its largest
+    /// component into `[1, 2)`) and the crossings' `t` scaled back, so a
+    /// direction of any finite non-zero length gives the same crossings,
+    /// in units of the caller's direction, as long as those `t` are normal
+    /// `f64` numbers. An origin may lie up to [`MAX_ORIGIN_DISTANCE`] scene
+    /// sizes from the scene's (finite) bounds.
     ///
     /// # Errors
     ///
     /// [`QueryError::InvalidRay`] (index 0) for a non-finite origin or
-    /// direction or a zero direction.
+    /// direction or a zero direction; [`QueryError::RayOutOfRange`] for an
+    /// origin farther than that from a scene the ray meets, or a crossing's
+    /// `t` that overflows (or underflows into its neighbour).
     pub fn try_spans(&self, ray: &Ray, stats: &mut Stats) -> Result<Spans, QueryError> {
-        check_ray(ray)?;
-        Ok(self.spans(ray, stats))
+        self.try_spans_at(0, ray, stats)
+    }
+
+    /// [`Csg::try_spans`] for the ray at `index` of a batch (the index the
+    /// error names).
+    ///
+    /// # Errors
+    ///
+    /// As [`Csg::try_spans`].
+    pub fn try_spans_at(
+        &self,
+        index: usize,
+        ray: &Ray,
+        stats: &mut Stats,
+    ) -> Result<Spans, QueryError> {
+        let (scaled, k) = conditioned(&self.bounds(), index, ray)?;
+        let mut spans = self.spans(&scaled, stats);
+        unscaled(&mut spans.hits, k, index, ray)?;
+        Ok(spans)
     }
 
     /// The first boundary crossing along the ray, or `None` when the ray
@@ -174,8 +277,20 @@ impl Csg {
         ray: &Ray,
         stats: &mut Stats,
     ) -> Result<Option<FirstHit>, QueryError> {
-        check_ray(ray)?;
-        Ok(self.first_hit(ray, stats))
+        let (scaled, k) = conditioned(&self.bounds(), 0, ray)?;
+        let Some(hit) = self.first_hit(&scaled, stats) else {
+            return Ok(None);
+        };
+        let mut hits = [Hit {
+            t: hit.t,
+            leaf: hit.leaf,
+            surface: hit.surface,
+        }];
+        unscaled(&mut hits, k, 0, ray)?;
+        Ok(Some(FirstHit {
+            t: hits[0].t,
+            ..hit
+        }))
     }
 
     /// The unit outward normal of the combined solid at a first hit: the

@@ -5,7 +5,7 @@ use rayon::prelude::*;
 use thiserror::Error;
 
 use super::{Csg, Stats};
-use crate::geom::{Aabb, Ray};
+use crate::geom::{Aabb, Ray, Readable};
 
 /// Why a volume cannot be estimated.
 #[derive(Clone, Debug, Error, PartialEq)]
@@ -17,14 +17,27 @@ pub enum VolumeError {
         bounds: Aabb,
     },
     /// The spacing must be positive and finite.
-    #[error("ray spacing {spacing} must be positive and finite")]
+    #[error("ray spacing {} must be positive and finite", Readable(*spacing))]
     BadSpacing {
         /// The spacing given.
         spacing: f64,
     },
+    /// A spacing larger than the solid: one ray would stand for all of it.
+    #[error(
+        "ray spacing {} is larger than the solid (its longest side is {}); use a spacing below that",
+        Readable(*spacing),
+        Readable(*size)
+    )]
+    SpacingTooLarge {
+        /// The spacing given.
+        spacing: f64,
+        /// The longest side of the solid's bounds.
+        size: f64,
+    },
     /// The grid would need more rays than the limit.
     #[error(
-        "spacing {spacing} needs {rays} rays, more than the limit {limit}; use a larger spacing"
+        "spacing {} needs {rays} rays, more than the limit {limit}; use a larger spacing",
+        Readable(*spacing)
     )]
     TooManyRays {
         /// The spacing given.
@@ -107,6 +120,12 @@ impl Csg {
             return Err(VolumeError::Unbounded { bounds });
         }
         let size = bounds.size();
+        if spacing > size.max_element() {
+            return Err(VolumeError::SpacingTooLarge {
+                spacing,
+                size: size.max_element(),
+            });
+        }
         let nx = ((size.x / spacing).ceil() as u64).max(1);
         let ny = ((size.y / spacing).ceil() as u64).max(1);
         let rays = nx.saturating_mul(ny);

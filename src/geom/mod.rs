@@ -13,6 +13,7 @@ mod plane;
 pub mod polygon;
 mod predicates;
 mod ray;
+mod readable;
 mod tolerance;
 pub mod tri_tri;
 pub mod triangulate;
@@ -26,6 +27,7 @@ pub use predicates::{
 };
 pub(crate) use predicates::{UNDERFLOW, count_tie_break};
 pub use ray::{Ray, Segment};
+pub use readable::{Readable, ReadableVec};
 pub use tolerance::Tolerance;
 pub use tri_tri::{TriTriContact, triangle_contact, triangles_intersect};
 pub use triangulate::{Ring, TriangulateError, triangulate, triangulate_3d};

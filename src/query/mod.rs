@@ -77,7 +77,7 @@ impl Containment {
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum QueryError {
     /// A query point has a NaN or infinite coordinate.
-    #[error("point {index} ({point}) has a non-finite coordinate")]
+    #[error("point {index} {} has a non-finite coordinate", crate::geom::ReadableVec(*point))]
     NonFinitePoint {
         /// The point's index in the batch (0 for a single query).
         index: usize,
@@ -86,7 +86,9 @@ pub enum QueryError {
     },
     /// A ray has a non-finite origin or direction, or a zero direction.
     #[error(
-        "ray {index} (origin {origin}, direction {direction}) is not valid: origin and direction must be finite and the direction non-zero"
+        "ray {index} (origin {}, direction {}) is not valid: origin and direction must be finite and the direction non-zero",
+        crate::geom::ReadableVec(*origin),
+        crate::geom::ReadableVec(*direction)
     )]
     InvalidRay {
         /// The ray's index in the batch (0 for a single query).
@@ -95,6 +97,25 @@ pub enum QueryError {
         origin: glam::DVec3,
         /// Its direction.
         direction: glam::DVec3,
+    },
+    /// A valid ray whose answer `f64` cannot hold: its origin lies so far
+    /// from a scene that `t` could not tell the scene's features apart, or
+    /// a crossing's `t` overflows (a direction too short) or underflows (too
+    /// long).
+    #[error(
+        "ray {index} (origin {}, direction {}) cannot be answered in f64: {reason}",
+        crate::geom::ReadableVec(*origin),
+        crate::geom::ReadableVec(*direction)
+    )]
+    RayOutOfRange {
+        /// The ray's index in the batch (0 for a single query).
+        index: usize,
+        /// Its origin.
+        origin: glam::DVec3,
+        /// Its direction.
+        direction: glam::DVec3,
+        /// What does not fit.
+        reason: &'static str,
     },
     /// Parity and ray crossings need a closed surface (every edge with two
     /// faces); use the winding number for open input.

@@ -10,7 +10,7 @@ use thiserror::Error;
 use super::mesh_leaf::is_scene_path;
 use super::{Scene, SceneError};
 use crate::csg::{Containment, Spans, Stats};
-use crate::geom::Ray;
+use crate::geom::{Ray, Readable};
 use crate::io::{ObjError, read_obj};
 use crate::mesh::{BuildError, Solid};
 use crate::query::{Accel, Method, QueryError, RayCrossings};
@@ -93,7 +93,7 @@ impl fmt::Display for RayAnswer {
             RayAnswer::Spans(s) => {
                 f.write_str(if s.origin_inside { "inside" } else { "outside" })?;
                 for (a, b) in s.intervals() {
-                    write!(f, " [{a}, {b}]")?;
+                    write!(f, " [{}, {}]", Readable(a), Readable(b))?;
                 }
             }
         }
@@ -184,27 +184,25 @@ impl Target {
     /// # Errors
     ///
     /// [`TargetError::Query`] for an invalid ray (its index: a non-finite
-    /// origin or direction, or a zero direction) or an open mesh.
+    /// origin or direction, or a zero direction), a scene's ray whose answer
+    /// `f64` cannot hold ([`crate::csg::Csg::try_spans`]) or an open mesh.
     pub fn rays(&self, rays: &[Ray], stats: &mut Stats) -> Result<Vec<RayAnswer>, TargetError> {
         match &self.kind {
             Kind::Mesh(accel) => accel
                 .ray_crossings_batch(rays)
                 .map(|answers| answers.into_iter().map(RayAnswer::Crossings).collect())
                 .map_err(|e| self.query_error(e)),
-            Kind::Scene(scene) => {
-                if let Some(index) = rays.iter().position(|r| !r.is_valid()) {
-                    let Ray { origin, direction } = rays[index];
-                    return Err(self.query_error(QueryError::InvalidRay {
-                        index,
-                        origin,
-                        direction,
-                    }));
-                }
-                Ok(rays
-                    .iter()
-                    .map(|r| RayAnswer::Spans(scene.csg.spans(r, stats)))
-                    .collect())
-            }
+            Kind::Scene(scene) => rays
+                .iter()
+                .enumerate()
+                .map(|(index, r)| {
+                    scene
+                        .csg
+                        .try_spans_at(index, r, stats)
+                        .map(RayAnswer::Spans)
+                        .map_err(|e| self.query_error(e))
+                })
+                .collect(),
         }
     }
 }

@@ -10,7 +10,9 @@ use crate::io::{WeldMode, WeldReport};
 use super::{Report, Rule};
 
 /// The report's fields (as serialised) plus `file`, `valid`, `verdict`,
-/// `counts` (violations per rule, every rule named) and, when the input was
+/// `counts` (violations per rule, every rule named), `overflow` (the
+/// measures too large for `f64`, see [`Report::overflowing_measures`]; their
+/// values are `null`) and, when the input was
 /// welded, `weld` (mode, vertices merged, merges refused).
 #[must_use]
 pub fn report_json(report: &Report, file: Option<&Path>, weld: Option<&WeldReport>) -> Value {
@@ -28,6 +30,8 @@ pub fn report_json(report: &Report, file: Option<&Path>, weld: Option<&WeldRepor
     map.insert("valid".into(), json!(report.is_valid()));
     map.insert("verdict".into(), json!(report.validity.describe()));
     map.insert("counts".into(), Value::Object(counts));
+    // Non-finite measures serialise as null; say which, and why.
+    map.insert("overflow".into(), json!(report.overflowing_measures()));
     if let Some(weld) = weld {
         map.insert(
             "weld".into(),

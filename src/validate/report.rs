@@ -272,4 +272,24 @@ impl Report {
     pub fn of(&self, rule: Rule) -> impl Iterator<Item = &Violation> + '_ {
         self.violations.iter().filter(move |v| v.rule == rule)
     }
+
+    /// The measures that do not fit in `f64` (`"volume"`, `"area"`,
+    /// `"shell volume"`): coordinates so large that their products overflow.
+    /// The topology and every check are still exact; only these rounded
+    /// constructions are lost, and a reader must be told rather than shown
+    /// `NaN` or `inf`.
+    #[must_use]
+    pub fn overflowing_measures(&self) -> Vec<&'static str> {
+        let mut out = Vec::new();
+        if self.volume.is_some_and(|v| !v.is_finite()) {
+            out.push("volume");
+        }
+        if !self.area.is_finite() {
+            out.push("area");
+        }
+        if self.shell_details.iter().any(|s| !s.volume.is_finite()) {
+            out.push("shell volume");
+        }
+        out
+    }
 }

@@ -6,7 +6,9 @@ use std::process::ExitCode;
 use wingedge::io::{read_obj, write_obj};
 use wingedge::mesh::{Solid, builders};
 
-use crate::output::{Out, Outcome};
+use wingedge::geom::ReadableVec;
+
+use crate::output::{Out, Outcome, measure};
 
 pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf>) -> Outcome {
     let (name, solid) = match (file, builtin) {
@@ -33,6 +35,12 @@ pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf
     if let Some(path) = write {
         write_obj(&solid, &path).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
     }
+    if !(solid.volume().is_finite() && solid.surface_area().is_finite()) {
+        eprintln!(
+            "warning: {name}: the volume or area overflows f64 (the coordinates are too large to multiply)"
+        );
+        return Ok(ExitCode::from(1));
+    }
     Ok(ExitCode::SUCCESS)
 }
 
@@ -53,29 +61,32 @@ fn describe(name: &str, solid: &Solid) -> String {
             .genus()
             .map_or_else(|| "-".to_string(), |g| g.to_string());
         out += &format!(
-            "    shell {i}: faces {}  edges {}  vertices {}  boundary edges {}  χ {}  genus {genus}  volume {:.10}\n",
+            "    shell {i}: faces {}  edges {}  vertices {}  boundary edges {}  χ {}  genus {genus}  volume {}\n",
             shell.faces.len(),
             shell.edge_count,
             shell.vertex_count,
             shell.boundary_edge_count,
             shell.euler_characteristic,
-            shell.signed_volume,
+            measure(shell.signed_volume, 10),
         );
     }
     let centroid = solid.centroid().map_or_else(
         || "-".to_string(),
-        |c| format!("({:.10}, {:.10}, {:.10})", c.x, c.y, c.z),
+        |c| {
+            format!(
+                "({}, {}, {})",
+                measure(c.x, 10),
+                measure(c.y, 10),
+                measure(c.z, 10)
+            )
+        },
     );
     out += &format!(
-        "  volume {:.10}  surface area {:.10}\n  centroid {centroid}\n  bounding box ({}, {}, {}) .. ({}, {}, {})\n",
-        solid.volume(),
-        solid.surface_area(),
-        bounds.min.x,
-        bounds.min.y,
-        bounds.min.z,
-        bounds.max.x,
-        bounds.max.y,
-        bounds.max.z,
+        "  volume {}  surface area {}\n  centroid {centroid}\n  bounding box {} .. {}\n",
+        measure(solid.volume(), 10),
+        measure(solid.surface_area(), 10),
+        ReadableVec(bounds.min),
+        ReadableVec(bounds.max),
     );
     out
 }

@@ -24,7 +24,8 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Print counts and measures of a solid read from an OBJ file or built in.
+    /// Print counts and measures of a solid read from an OBJ file or built in
+    /// (exit code 1, with a warning, when a measure overflows f64).
     Info {
         /// The OBJ file to read.
         #[arg(required_unless_present = "builtin", conflicts_with = "builtin")]
@@ -88,7 +89,8 @@ enum Command {
     },
     /// Validate OBJ files: a graded verdict per file and every defect with
     /// its OBJ line. Exit code 0 when every file is a valid closed solid, 1
-    /// when any has defects, 2 when any cannot be read.
+    /// when any has defects (or a volume or area that overflows f64), 2 when
+    /// any cannot be read.
     Validate {
         /// The OBJ files.
         #[arg(required = true)]

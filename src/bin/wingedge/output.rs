@@ -65,3 +65,17 @@ impl Out {
         }
     }
 }
+
+/// A rounded measure (volume, area, a coordinate) as a report shows it:
+/// `decimals` places for ordinary magnitudes, scientific notation for
+/// extreme ones (never hundreds of digits), and `overflow` when it does not
+/// fit in `f64` (never a bare `NaN`).
+pub fn measure(x: f64, decimals: usize) -> String {
+    if !x.is_finite() {
+        "overflow".to_string()
+    } else if x == 0.0 || (1e-5..1e16).contains(&x.abs()) {
+        format!("{x:.decimals$}")
+    } else {
+        wingedge::geom::Readable(x).to_string()
+    }
+}

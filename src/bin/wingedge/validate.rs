@@ -6,9 +6,9 @@ use std::process::ExitCode;
 use serde_json::{Value, json};
 use wingedge::geom::Tolerance;
 use wingedge::io::{ObjOptions, WeldMode, import_obj};
-use wingedge::validate::{Options, Report, Rule, validate_import};
+use wingedge::validate::{Options, Report, Rule, report_json, validate_import};
 
-use crate::output::{Out, Outcome};
+use crate::output::{Out, Outcome, measure};
 
 /// The `validate` flags, as parsed by clap.
 pub struct Args {
@@ -84,9 +84,10 @@ pub fn run(args: Args) -> Outcome {
                 }
             }
             Ok((import, report)) => {
-                invalid |= !report.is_valid();
+                // A measure lost to overflow is reported and fails the run too.
+                invalid |= !report.is_valid() || !report.overflowing_measures().is_empty();
                 if args.json {
-                    json_out.push(to_json(path, &import.weld, &report));
+                    json_out.push(report_json(&report, Some(path), Some(&import.weld)));
                 } else {
                     out.write(describe(path, &import.weld, &report, args.show))?;
                 }
@@ -108,42 +109,15 @@ pub fn run(args: Args) -> Outcome {
     })
 }
 
-fn to_json(path: &std::path::Path, weld: &wingedge::io::WeldReport, report: &Report) -> Value {
-    let mut value = serde_json::to_value(report).unwrap_or(Value::Null);
-    let counts: serde_json::Map<String, Value> = Rule::ALL
-        .iter()
-        .map(|&r| (r.name().to_string(), json!(report.count(r))))
-        .collect();
-    if let Value::Object(map) = &mut value {
-        map.insert("file".into(), json!(path.display().to_string()));
-        map.insert("valid".into(), json!(report.is_valid()));
-        map.insert("verdict".into(), json!(report.validity.describe()));
-        map.insert("counts".into(), Value::Object(counts));
-        map.insert(
-            "weld".into(),
-            json!({
-                "mode": match weld.mode {
-                    WeldMode::None => "none".to_string(),
-                    WeldMode::Exact => "exact".to_string(),
-                    WeldMode::Within(t) => format!("within {}", t.weld),
-                },
-                "merged": weld.merged,
-                "refused": weld.refused.iter().map(ToString::to_string).collect::<Vec<_>>(),
-            }),
-        );
-    }
-    value
-}
-
 fn describe(
     path: &std::path::Path,
     weld: &wingedge::io::WeldReport,
     report: &Report,
     show: usize,
 ) -> String {
-    let number = |x: Option<f64>| x.map_or_else(|| "-".to_string(), |v| format!("{v:.6}"));
+    let number = |x: Option<f64>| x.map_or_else(|| "-".to_string(), |v| measure(v, 6));
     let mut out = format!(
-        "{}: {}\n  vertices {}  edges {}  faces {}  shells {}  holes {}  genus {}  volume {}  area {:.6}\n",
+        "{}: {}\n  vertices {}  edges {}  faces {}  shells {}  holes {}  genus {}  volume {}  area {}\n",
         path.display(),
         report.validity.describe(),
         report.vertices,
@@ -155,8 +129,15 @@ fn describe(
             .genus
             .map_or_else(|| "-".to_string(), |g| g.to_string()),
         number(report.volume),
-        report.area,
+        measure(report.area, 6),
     );
+    let overflowing = report.overflowing_measures();
+    if !overflowing.is_empty() {
+        out += &format!(
+            "  warning: {} overflow f64 (the coordinates are too large to multiply); the topology and the checks are exact\n",
+            overflowing.join(", ")
+        );
+    }
     if weld.merged > 0 || !weld.refused.is_empty() {
         out += &format!("  weld: merged {} vertices\n", weld.merged);
         for r in &weld.refused {
@@ -166,11 +147,11 @@ fn describe(
     if report.shell_details.len() > 1 {
         for (i, s) in report.shell_details.iter().enumerate().take(show) {
             out += &format!(
-                "  shell {i}: faces {}  χ {}  genus {}  volume {:.6}  {}  depth {}\n",
+                "  shell {i}: faces {}  χ {}  genus {}  volume {}  {}  depth {}\n",
                 s.faces,
                 s.euler_characteristic,
                 s.genus.map_or_else(|| "-".to_string(), |g| g.to_string()),
-                s.volume,
+                measure(s.volume, 6),
                 if s.closed { "closed" } else { "open" },
                 match (s.closed, s.depth) {
                     (false, _) => "-".to_string(),

@@ -23,6 +23,13 @@ pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: boo
     let exact = single.and_then(|l| l.primitive.exact_volume());
     let mut out = Out::new();
     if let (Some(leaf), Some(v), false) = (single, exact, integrate) {
+        if !v.is_finite() {
+            return Err(format!(
+                "{}: the volume of {} overflows f64 (the coordinates are too large to multiply)",
+                target.display(),
+                leaf.label
+            ));
+        }
         out.write(format_args!("{v}\n"))?;
         out.finish()?;
         eprintln!(
@@ -38,7 +45,14 @@ pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: boo
     progress.finish();
     match estimate {
         Ok(v) => {
-            out.write(format_args!("{}\n", exact.unwrap_or(v.volume)))?;
+            let volume = exact.unwrap_or(v.volume);
+            if !volume.is_finite() {
+                return Err(format!(
+                    "{}: the volume overflows f64 (the coordinates are too large to multiply)",
+                    target.display()
+                ));
+            }
+            out.write(format_args!("{volume}\n"))?;
             out.finish()?;
             eprintln!(
                 "ray integration: {} with spacing {} ({} rays){}",
