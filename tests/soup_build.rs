@@ -291,3 +291,29 @@ fn degenerate_faces_are_stored_without_a_plane() {
     let planes: Vec<bool> = sliver.faces().map(|(_, f)| f.plane.is_some()).collect();
     assert_eq!(planes, [false, true]);
 }
+
+/// An edge shared by 1,000 triangles: the error keeps every polygon and
+/// line, its message shows ten and says how many more.
+#[test]
+fn a_fan_on_one_edge_gives_a_short_message_and_the_full_lists() {
+    let mut positions = vec![DVec3::ZERO, DVec3::Z];
+    let mut polygons = Vec::new();
+    for k in 0..1000 {
+        let angle = f64::from(k) * std::f64::consts::TAU / 1000.0;
+        positions.push(DVec3::new(angle.cos(), angle.sin(), 0.5));
+        polygons.push(vec![0, 1, k as usize + 2]);
+    }
+    let err = Solid::try_from_soup(&PolygonSoup::new(positions, polygons)).unwrap_err();
+    let BuildError::NonManifoldEdge { polygons, .. } = &err else {
+        panic!("{err}");
+    };
+    assert_eq!(polygons.len(), 1000);
+    let message = err.to_string();
+    assert!(message.len() < 200, "{} bytes: {message}", message.len());
+    assert!(
+        message.starts_with(
+            "edge 0–1 is used by 1000 polygons [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, … and 990 more]"
+        ),
+        "{message}"
+    );
+}

@@ -65,7 +65,7 @@ pub enum BuildError {
         position: DVec3,
     },
     /// An edge shared by three or more polygons.
-    #[error("edge {}–{} is used by {} polygons {polygons:?}{}; a manifold edge has at most 2", .vertices[0], .vertices[1], .polygons.len(), at_lines(.lines))]
+    #[error("edge {}–{} is used by {} polygons {}{}; a manifold edge has at most 2", .vertices[0], .vertices[1], .polygons.len(), capped(.polygons), at_lines(.lines))]
     NonManifoldEdge {
         /// The edge's end vertices.
         vertices: [usize; 2],
@@ -88,7 +88,8 @@ pub enum BuildError {
     /// The polygons around a vertex form more than one fan (a pinch point,
     /// such as the shared tip of two cones).
     #[error(
-        "vertex {vertex} is a pinch point: the polygons around it {polygons:?} form {fans} separate fans"
+        "vertex {vertex} is a pinch point: the polygons around it {} form {fans} separate fans",
+        capped(.polygons)
     )]
     NonManifoldVertex {
         /// The vertex.
@@ -113,13 +114,30 @@ fn at_line(line: Option<usize>) -> String {
     line.map(|l| format!(" (line {l})")).unwrap_or_default()
 }
 
-/// " (lines 4, 9)" for the known lines of several polygons, or nothing.
+/// How many items of a list a message shows; the error's fields keep all.
+const SHOWN: usize = 10;
+
+/// `[3, 8, 12]`, or the first [`SHOWN`] items and `… and N more`: a fan of
+/// 100,000 polygons on one edge makes a one-line message, not megabytes.
+fn capped(items: &[usize]) -> String {
+    let shown: Vec<String> = items.iter().take(SHOWN).map(ToString::to_string).collect();
+    let more = items.len().saturating_sub(SHOWN);
+    if more == 0 {
+        format!("[{}]", shown.join(", "))
+    } else {
+        format!("[{}, … and {more} more]", shown.join(", "))
+    }
+}
+
+/// " (lines 4, 9)" for the known lines of several polygons (the first
+/// [`SHOWN`], then how many more), or nothing.
 fn at_lines(lines: &[Option<usize>]) -> String {
-    let known: Vec<String> = lines.iter().flatten().map(ToString::to_string).collect();
+    let known: Vec<usize> = lines.iter().flatten().copied().collect();
     if known.is_empty() {
         String::new()
     } else {
-        format!(" (lines {})", known.join(", "))
+        let listed = capped(&known);
+        format!(" (lines {})", &listed[1..listed.len() - 1])
     }
 }
 
