@@ -263,7 +263,7 @@ fn answers(solid: &Solid, points: &[DVec3]) -> Vec<Containment> {
 #[test]
 fn invariant_under_exact_transformations_and_reorderings() {
     for (name, solid) in closed_fixtures() {
-        let soup = soup_of(&solid);
+        let soup = solid.to_soup();
         let points = probe_points(solid.bounding_box());
         let base = answers(&solid, &points);
         // Translation by 2^k: exact for these coordinates (k = 4 keeps the
@@ -351,7 +351,7 @@ fn huge_and_tiny_coordinates() {
         assert_eq!(t.len(), 1);
     }
     // A non-box at 1e12: the L prism moved far away (exact: integers).
-    let soup = mapped(&soup_of(&builders::l_prism()), |p| p + DVec3::splat(1e12));
+    let soup = mapped(&builders::l_prism().to_soup(), |p| p + DVec3::splat(1e12));
     let accel = Accel::new(&build(&soup));
     let at = |x: f64, y: f64, z: f64| DVec3::new(1e12 + x, 1e12 + y, 1e12 + z);
     assert_eq!(classify_all(&accel, at(0.5, 0.5, 0.5)), Inside);

@@ -21,7 +21,7 @@ fn valid_genus(solid: &Solid) -> i64 {
     solid
         .check_consistency()
         .expect("consistent winged-edge solid");
-    let report = validate_soup(&common::soup_of(solid), None, &Options::default()).unwrap();
+    let report = validate_soup(&solid.to_soup(), None, &Options::default()).unwrap();
     assert_eq!(
         report.validity,
         Validity::ValidSolid,

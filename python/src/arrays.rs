@@ -23,6 +23,13 @@ pub(crate) fn points(array: &PyReadonlyArray2<'_, f64>, what: &str) -> PyResult<
             shape[0], shape[1]
         )));
     }
+    // The common case, a C-contiguous array, is read as one flat slice.
+    if let Ok(flat) = array.as_slice() {
+        return Ok(flat
+            .chunks_exact(3)
+            .map(|r| DVec3::new(r[0], r[1], r[2]))
+            .collect());
+    }
     let view = array.as_array();
     Ok(view
         .rows()

@@ -64,7 +64,7 @@ impl Inner {
     }
 
     fn from_builder(solid: Solid) -> Inner {
-        let soup = soup_of(&solid);
+        let soup = solid.to_soup();
         // Rebuild from the soup so that the face order is the soup's.
         match Solid::try_from_soup(&soup) {
             Ok(rebuilt) => Inner::new(rebuilt, soup, None, None),
@@ -75,24 +75,6 @@ impl Inner {
     fn accel(&self) -> &Accel {
         self.accel.get_or_init(|| Accel::new(&self.solid))
     }
-}
-
-/// The soup of a solid: its vertices in table order, its faces' outer loops.
-fn soup_of(solid: &Solid) -> PolygonSoup {
-    let mut index = std::collections::HashMap::with_capacity(solid.vertex_count());
-    let positions = solid
-        .vertices()
-        .enumerate()
-        .map(|(i, (id, v))| {
-            index.insert(id, i);
-            v.position
-        })
-        .collect();
-    let polygons: Vec<Vec<usize>> = solid
-        .faces()
-        .map(|(f, _)| solid.face_vertices(f).map(|v| index[&v]).collect())
-        .collect();
-    PolygonSoup::new(positions, polygons)
 }
 
 /// Every polygon of `soup` as triangles (flat soup vertex indices, three
@@ -122,12 +104,12 @@ fn triangulate_soup(soup: &PolygonSoup) -> PyResult<Vec<i64>> {
 
 mod slotmap_key {
     //! Face ids to answer indices.
-    use std::collections::HashMap;
-
+    use slotmap::SecondaryMap;
     use wingedge::mesh::{FaceId, Solid};
 
-    /// The position of every face in the solid's face order.
-    pub(crate) struct FaceIndex(HashMap<FaceId, i64>);
+    /// The position of every face in the solid's face order: an array
+    /// indexed by the key's slot, so a million lookups cost a million loads.
+    pub(crate) struct FaceIndex(SecondaryMap<FaceId, i64>);
 
     impl FaceIndex {
         pub(crate) fn new(solid: &Solid) -> FaceIndex {
@@ -141,7 +123,7 @@ mod slotmap_key {
         }
 
         pub(crate) fn of(&self, face: FaceId) -> i64 {
-            self.0.get(&face).copied().unwrap_or(-1)
+            self.0.get(face).copied().unwrap_or(-1)
         }
     }
 }

@@ -69,3 +69,35 @@ impl PolygonSoup {
             .collect()
     }
 }
+
+impl super::Solid {
+    /// The solid as a soup: its vertices in table order, one polygon per
+    /// face (the face's loop, counter-clockwise seen from outside), each
+    /// polygon carrying its face's attributes.
+    /// [`Solid::try_from_soup`](super::Solid::try_from_soup) of the result
+    /// builds the same solid (same counts, faces in the same order). Linear
+    /// in the size of the solid.
+    #[must_use]
+    pub fn to_soup(&self) -> PolygonSoup {
+        let mut index = slotmap::SecondaryMap::with_capacity(self.vertex_count());
+        let positions = self
+            .vertices()
+            .enumerate()
+            .map(|(i, (id, v))| {
+                index.insert(id, i);
+                v.position
+            })
+            .collect();
+        let polygons = self
+            .faces()
+            .map(|(f, face)| Polygon {
+                vertices: self.face_vertices(f).map(|v| index[v]).collect(),
+                attributes: face.attributes.clone(),
+            })
+            .collect();
+        PolygonSoup {
+            positions,
+            polygons,
+        }
+    }
+}

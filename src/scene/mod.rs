@@ -9,6 +9,7 @@
 //!       | {"box": {"min": [x,y,z], "max": [x,y,z]}}
 //!       | {"sphere": {"center": [x,y,z], "radius": r}}
 //!       | {"cylinder": {"base": [x,y,z], "axis": [x,y,z], "radius": r}}   (axis: base to top)
+//!       | {"sweep": {...}} | {"revolve": {...}} | {"loft": {...}}     (solids from profiles and curves: solid_leaf.rs)
 //!       | {"union": [NODE, ...]} | {"intersection": [NODE, ...]} | {"difference": [NODE, NODE, ...]}
 //!       | {"transform": {"translate": [..], "rotate_deg": [rx,ry,rz], "scale": [..]}, "child": NODE}
 //!       | {"scene": "relative/path.json"}       (the root of another scene file)
@@ -37,7 +38,8 @@
 //!
 //! `json.rs` reads values with their JSON paths, `node.rs` the tree's
 //! nodes, `reader.rs` files and inclusions, `limits.rs` counts against the
-//! limits, `mesh_leaf.rs` loads and validates OBJ leaves, `view.rs` the
+//! limits, `mesh_leaf.rs` loads and validates OBJ leaves, `solid_leaf.rs` builds
+//! and validates sweep, revolve and loft leaves, `view.rs` the
 //! camera and light, `load.rs` assembles a [`Scene`], `target.rs` is the
 //! mesh-or-scene [`Target`].
 
@@ -48,6 +50,7 @@ mod load;
 mod mesh_leaf;
 mod node;
 mod reader;
+mod solid_leaf;
 mod target;
 mod view;
 
@@ -55,5 +58,6 @@ pub use error::SceneError;
 pub use limits::{MAX_INCLUDE_DEPTH, MAX_JSON_DEPTH, MAX_NODE_DEPTH, MAX_NODES};
 pub use load::Scene;
 pub use mesh_leaf::is_scene_path;
+pub use solid_leaf::DEFAULT_TOLERANCE;
 pub use target::{RayAnswer, Target, TargetError};
 pub use view::{CameraSpec, DEFAULT_AMBIENT, LightSpec};

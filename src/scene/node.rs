@@ -9,9 +9,10 @@ use serde_json::{Map, Value};
 use super::SceneError;
 use super::json::{bad, check_keys, fields, object, positive, req, vec3, vec3_or};
 use super::reader::Reader;
+use super::solid_leaf;
 use crate::csg::{AxisBox, CsgExpr, Cylinder, HalfSpace, Primitive, Sphere};
 
-const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, union, intersection, difference, scene, or transform with child";
+const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, sweep, revolve, loft, union, intersection, difference, scene, or transform with child";
 
 impl Reader<'_> {
     /// Reads a node `depth` nodes below the outermost root.
@@ -61,6 +62,9 @@ impl Reader<'_> {
             "box" => axis_box(body, &here).map(leaf),
             "sphere" => sphere(body, &here).map(leaf),
             "cylinder" => cylinder(body, &here).map(leaf),
+            "sweep" => solid_leaf::sweep(body, &here).map(leaf),
+            "revolve" => solid_leaf::revolve(body, &here).map(leaf),
+            "loft" => solid_leaf::loft(body, &here).map(leaf),
             "mesh" => {
                 let Value::String(relative) = body else {
                     return Err(bad(&here, "a file path (string)", body));

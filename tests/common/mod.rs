@@ -9,23 +9,6 @@ pub mod cli;
 use glam::DVec3;
 use wingedge::mesh::{PolygonSoup, Solid, builders};
 
-/// The soup of a solid: its positions and faces (vertex lists in winding
-/// order).
-pub fn soup_of(solid: &Solid) -> PolygonSoup {
-    let ids: Vec<_> = solid.vertices().map(|(id, _)| id).collect();
-    let index = |v| {
-        ids.iter()
-            .position(|&w| w == v)
-            .expect("vertex of the solid")
-    };
-    let positions = solid.vertices().map(|(_, v)| v.position).collect();
-    let polygons: Vec<Vec<usize>> = solid
-        .faces()
-        .map(|(f, _)| solid.face_vertices(f).map(index).collect())
-        .collect();
-    PolygonSoup::new(positions, polygons)
-}
-
 /// A soup with every position mapped by `f`.
 pub fn mapped(soup: &PolygonSoup, f: impl Fn(DVec3) -> DVec3) -> PolygonSoup {
     let mut s = soup.clone();
@@ -43,8 +26,10 @@ pub fn build(soup: &PolygonSoup) -> Solid {
 /// A box `[-2, 2]³` with a box-shaped cavity `[-1, 1]³` (two shells; the
 /// inner one faces inward).
 pub fn hollow_box() -> Solid {
-    let outer = soup_of(&builders::cuboid(DVec3::splat(-2.0), DVec3::splat(2.0)).expect("box"));
-    let inner = soup_of(&builders::cube());
+    let outer = builders::cuboid(DVec3::splat(-2.0), DVec3::splat(2.0))
+        .expect("box")
+        .to_soup();
+    let inner = builders::cube().to_soup();
     let mut positions = outer.positions.clone();
     let base = positions.len();
     positions.extend(&inner.positions);

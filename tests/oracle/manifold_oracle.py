@@ -286,10 +286,38 @@ def main():
         write_raw_obj(os.path.join(args.out_dir, name + ".obj"), verts, tris)
         report["broken"][name] = {"status": status_of(verts, tris)}
     report["csg"] = csg_cases(rng, args.csg_cases, args.out_dir)
+    report["revolve"], report["extrude"] = profile_cases()
     if args.fixtures:
         report["fixtures"] = fixture_answers(args.fixtures)
     with open(os.path.join(args.out_dir, "oracle.json"), "w") as f:
         json.dump(report, f)
+
+
+def profile_cases():
+    """manifold3d's revolve and extrude of a few polygons (counter-clockwise,
+    in the x >= 0 half-plane for revolve): their volumes, for the same
+    tessellation made by wingedge's revolve and sweep."""
+    profiles = [
+        [[1, 0], [2, 0], [2.5, 1], [1, 1.5]],
+        [[0.5, -1], [1.5, -0.5], [1.2, 0.7], [0.4, 1.1], [0.8, 0]],
+        [[0, 0], [1, 0], [1, 1], [0, 1]],
+    ]
+    revolve, extrude = [], []
+    for k, profile in enumerate(profiles):
+        section = m3d.CrossSection([profile])
+        segments = 12 + 20 * k
+        revolve.append({
+            "profile": profile,
+            "segments": segments,
+            "volume": float(M.revolve(section, segments).volume()),
+        })
+        height = 0.5 + k
+        extrude.append({
+            "profile": profile,
+            "height": height,
+            "volume": float(M.extrude(section, height).volume()),
+        })
+    return revolve, extrude
 
 
 def m3d_version():
