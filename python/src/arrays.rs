@@ -8,6 +8,7 @@
 use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use wingedge::geom::Ray;
 use wingedge::glam::DVec3;
 
 /// The rows of an `(n, 3)` array as points, copied (any memory layout).
@@ -35,6 +36,48 @@ pub(crate) fn points(array: &PyReadonlyArray2<'_, f64>, what: &str) -> PyResult<
         .rows()
         .into_iter()
         .map(|r| DVec3::new(r[0], r[1], r[2]))
+        .collect())
+}
+
+/// Rays from an `(n, 3)` array of origins and one of directions, built in
+/// one pass (no intermediate point arrays: at a million rays the copies
+/// and their fresh pages cost as much as the queries' bookkeeping).
+///
+/// # Errors
+///
+/// `ValueError` when either array is not of shape `(n, 3)` or their
+/// lengths differ.
+pub(crate) fn rays(
+    origins: &PyReadonlyArray2<'_, f64>,
+    directions: &PyReadonlyArray2<'_, f64>,
+) -> PyResult<Vec<Ray>> {
+    for (array, what) in [(origins, "origins"), (directions, "directions")] {
+        let shape = array.shape();
+        if shape[1] != 3 {
+            return Err(PyValueError::new_err(format!(
+                "{what} must have shape (n, 3), got ({}, {})",
+                shape[0], shape[1]
+            )));
+        }
+    }
+    let (n, m) = (origins.shape()[0], directions.shape()[0]);
+    if n != m {
+        return Err(PyValueError::new_err(format!(
+            "{n} origins but {m} directions"
+        )));
+    }
+    if let (Ok(o), Ok(d)) = (origins.as_slice(), directions.as_slice()) {
+        return Ok(o
+            .chunks_exact(3)
+            .zip(d.chunks_exact(3))
+            .map(|(o, d)| Ray::new(DVec3::new(o[0], o[1], o[2]), DVec3::new(d[0], d[1], d[2])))
+            .collect());
+    }
+    let (o, d) = (origins.as_array(), directions.as_array());
+    Ok(o.rows()
+        .into_iter()
+        .zip(d.rows())
+        .map(|(o, d)| Ray::new(DVec3::new(o[0], o[1], o[2]), DVec3::new(d[0], d[1], d[2])))
         .collect())
 }
 

@@ -35,31 +35,6 @@ pub struct PyScene {
     scene: Arc<Scene>,
 }
 
-fn rays_of(origins: &[DVec3], directions: &[DVec3]) -> PyResult<Vec<Ray>> {
-    if origins.len() != directions.len() {
-        return Err(PyValueError::new_err(format!(
-            "{} origins but {} directions",
-            origins.len(),
-            directions.len()
-        )));
-    }
-    let rays: Vec<Ray> = origins
-        .iter()
-        .zip(directions)
-        .map(|(&o, &d)| Ray::new(o, d))
-        .collect();
-    if let Some(index) = rays.iter().position(|r| {
-        !(r.origin.is_finite() && r.direction.is_finite()) || r.direction == DVec3::ZERO
-    }) {
-        return Err(errors::query(CoreQueryError::InvalidRay {
-            index,
-            origin: rays[index].origin,
-            direction: rays[index].direction,
-        }));
-    }
-    Ok(rays)
-}
-
 #[pymethods]
 impl PyScene {
     /// Reads a scene file (mesh paths relative to its folder).
@@ -131,20 +106,26 @@ impl PyScene {
         origins: PyReadonlyArray2<'py, f64>,
         directions: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<i64>>)> {
-        let origins = arrays::points(&origins, "origins")?;
-        let directions = arrays::points(&directions, "directions")?;
-        let rays = rays_of(&origins, &directions)?;
+        let rays = arrays::rays(&origins, &directions)?;
         let csg = &self.scene.csg;
-        let hits: Vec<(f64, i64)> = py.detach(|| {
+        // The rays users give: checked and scaled (`Csg::try_first_hit`);
+        // the first refusal, by index, is the error.
+        let hits: Vec<Result<(f64, i64), CoreQueryError>> = py.detach(|| {
             rays.par_iter()
+                .enumerate()
                 .with_min_len(64)
-                .map_init(Stats::default, |stats, ray| {
-                    csg.first_hit(ray, stats)
-                        .map_or((f64::INFINITY, -1), |h| (h.t, i64::from(h.leaf.0)))
+                .map_init(Stats::default, |stats, (index, ray)| {
+                    csg.try_first_hit_at(index, ray, stats)
+                        .map(|hit| hit.map_or((f64::INFINITY, -1), |h| (h.t, i64::from(h.leaf.0))))
                 })
                 .collect()
         });
-        let (t, leaf): (Vec<f64>, Vec<i64>) = hits.into_iter().unzip();
+        let (t, leaf): (Vec<f64>, Vec<i64>) = hits
+            .into_iter()
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(errors::query)?
+            .into_iter()
+            .unzip();
         Ok((t.into_pyarray(py), leaf.into_pyarray(py)))
     }
 
@@ -156,11 +137,11 @@ impl PyScene {
         origin: (f64, f64, f64),
         direction: (f64, f64, f64),
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let rays = rays_of(&[DVec3::from(origin)], &[DVec3::from(direction)])?;
+        let ray = Ray::new(DVec3::from(origin), DVec3::from(direction));
         let spans = self
             .scene
             .csg
-            .try_spans(&rays[0], &mut Stats::default())
+            .try_spans(&ray, &mut Stats::default())
             .map_err(errors::query)?;
         let intervals = spans.intervals();
         let flat: Vec<f64> = intervals.iter().flat_map(|&(a, b)| [a, b]).collect();

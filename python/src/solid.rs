@@ -357,44 +357,35 @@ impl PySolid {
         Bound<'py, PyArray1<i64>>,
         Bound<'py, PyArray1<i8>>,
     )> {
-        let origins = arrays::points(&origins, "origins")?;
-        let directions = arrays::points(&directions, "directions")?;
-        if origins.len() != directions.len() {
-            return Err(PyValueError::new_err(format!(
-                "{} origins but {} directions",
-                origins.len(),
-                directions.len()
-            )));
-        }
-        let rays: Vec<Ray> = origins
-            .iter()
-            .zip(&directions)
-            .map(|(&o, &d)| Ray::new(o, d))
-            .collect();
+        let rays = arrays::rays(&origins, &directions)?;
         let inner = &self.inner;
-        let hits = py
-            .detach(|| inner.accel().first_hit_batch(&rays))
+        let (t, face, transition) = py
+            .detach(|| {
+                let hits = inner.accel().first_hit_batch(&rays)?;
+                drop(rays);
+                let mut t = Vec::with_capacity(hits.len());
+                let mut face = Vec::with_capacity(hits.len());
+                let mut transition = Vec::with_capacity(hits.len());
+                for hit in hits {
+                    match hit {
+                        Some(c) => {
+                            t.push(c.t);
+                            face.push(inner.face_index.of(c.face));
+                            transition.push(match c.transition {
+                                Transition::Enter => 1i8,
+                                Transition::Exit => -1,
+                            });
+                        }
+                        None => {
+                            t.push(f64::INFINITY);
+                            face.push(-1);
+                            transition.push(0);
+                        }
+                    }
+                }
+                Ok::<_, wingedge::query::QueryError>((t, face, transition))
+            })
             .map_err(errors::query)?;
-        let mut t = Vec::with_capacity(hits.len());
-        let mut face = Vec::with_capacity(hits.len());
-        let mut transition = Vec::with_capacity(hits.len());
-        for hit in hits {
-            match hit {
-                Some(c) => {
-                    t.push(c.t);
-                    face.push(inner.face_index.of(c.face));
-                    transition.push(match c.transition {
-                        Transition::Enter => 1,
-                        Transition::Exit => -1,
-                    });
-                }
-                None => {
-                    t.push(f64::INFINITY);
-                    face.push(-1);
-                    transition.push(0);
-                }
-            }
-        }
         Ok((
             t.into_pyarray(py),
             face.into_pyarray(py),

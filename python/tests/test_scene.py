@@ -54,3 +54,15 @@ def test_bad_scenes_and_queries_raise_located_errors(tmp_path, fixtures):
     with pytest.raises(ValueError, match="spacing"):
         scene.volume(-1.0)
     assert issubclass(wingedge.SceneError, wingedge.WingedgeError)
+
+
+def test_scene_rays_are_scaled_and_refused_beyond_f64(fixtures):
+    scene = wingedge.Scene.load(fixtures / "scenes" / "drilled_cube.json")
+    # A direction 2^-1000 long: the same hits, t scaled by 2^1000 exactly.
+    t_unit, _ = scene.first_hit([[-5.0, 0.9, 0.9]], [[1.0, 0, 0]])
+    t_tiny, _ = scene.first_hit([[-5.0, 0.9, 0.9]], [[2.0**-1000, 0, 0]])
+    assert t_tiny[0] == t_unit[0] * 2.0**1000
+    with pytest.raises(wingedge.QueryError, match=r"ray 1 .*cannot be answered in f64"):
+        scene.first_hit([[-5.0, 0.9, 0.9], [-1.7e308, 0.9, 0.9]], [[1.0, 0, 0], [1.0, 0, 0]])
+    with pytest.raises(wingedge.QueryError, match="overflows"):
+        scene.spans([-5, 0.9, 0.9], [5e-324, 0, 0])

@@ -277,7 +277,22 @@ impl Csg {
         ray: &Ray,
         stats: &mut Stats,
     ) -> Result<Option<FirstHit>, QueryError> {
-        let (scaled, k) = conditioned(&self.bounds(), 0, ray)?;
+        self.try_first_hit_at(0, ray, stats)
+    }
+
+    /// [`Csg::try_first_hit`] for the ray at `index` of a batch (the index
+    /// the error names).
+    ///
+    /// # Errors
+    ///
+    /// As for [`Csg::try_spans`].
+    pub fn try_first_hit_at(
+        &self,
+        index: usize,
+        ray: &Ray,
+        stats: &mut Stats,
+    ) -> Result<Option<FirstHit>, QueryError> {
+        let (scaled, k) = conditioned(&self.bounds(), index, ray)?;
         let Some(hit) = self.first_hit(&scaled, stats) else {
             return Ok(None);
         };
