@@ -5,9 +5,12 @@
 //! question by a common power of two they are integers, and every sign below
 //! is the sign of an exact integer polynomial. A ray that meets an edge or a
 //! vertex of a triangle, or lies in a triangle's plane, is a degenerate case;
-//! it is not perturbed but thrown away and another direction (small integer
-//! components from a fixed sequence) is tried. A point on a triangle is on
-//! the boundary.
+//! it is not perturbed but thrown away and another direction (the six axis
+//! directions, then small integer components from a fixed sequence) is
+//! tried. A point on a triangle is on the boundary. Triangles are culled by
+//! a floating-point slab test on boxes widened by a few ulps (it may keep a
+//! triangle the ray misses, never drop one it meets); only the survivors
+//! get the big-integer test.
 
 use num_bigint::BigInt;
 use wingedge::glam::DVec3;
@@ -131,51 +134,123 @@ fn in_closed_triangle(p: &Vec3, [a, b, c]: &[Vec3; 3], n: &Vec3) -> bool {
     !(s.contains(&1) && s.contains(&-1))
 }
 
-/// The class of `point` against a closed, consistently oriented triangle
-/// mesh, exactly.
-pub fn classify(triangles: &[[DVec3; 3]], point: DVec3) -> Class {
-    let base = triangles
+/// Why a ray has no exact crossing count of its own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Degenerate {
+    /// The origin lies on a triangle.
+    OnBoundary,
+    /// The ray meets an edge or a vertex, or runs in a triangle's plane:
+    /// its count depends on a tie rule.
+    Tie,
+}
+
+/// Whether the ray may meet the box `[lo, hi]`: a floating-point slab test
+/// on the box widened by a few ulps of its size, so that it never drops a
+/// box the ray meets (it may keep one it misses; the exact test decides).
+fn may_meet(lo: DVec3, hi: DVec3, origin: DVec3, direction: DVec3) -> bool {
+    let pad = (hi - lo).max(lo.abs()).max(hi.abs()) * (16.0 * f64::EPSILON) + f64::MIN_POSITIVE;
+    let (lo, hi) = (lo - pad, hi + pad);
+    let (mut near, mut far) = (0.0f64, f64::INFINITY);
+    for axis in 0..3 {
+        let (o, d) = (origin[axis], direction[axis]);
+        if d == 0.0 {
+            if o < lo[axis] || o > hi[axis] {
+                return false;
+            }
+            continue;
+        }
+        let (a, b) = ((lo[axis] - o) / d, (hi[axis] - o) / d);
+        near = near.max(a.min(b));
+        far = far.min(a.max(b));
+    }
+    near <= far * (1.0 + 16.0 * f64::EPSILON)
+}
+
+/// The exact number of triangles the open ray `origin + t · direction`,
+/// `t > 0`, crosses through their interiors.
+///
+/// # Errors
+///
+/// [`Degenerate::OnBoundary`] when the origin lies on a triangle,
+/// [`Degenerate::Tie`] when the ray meets an edge or a vertex or runs in a
+/// triangle's plane.
+pub fn crossings(
+    triangles: &[[DVec3; 3]],
+    origin: DVec3,
+    direction: DVec3,
+) -> Result<usize, Degenerate> {
+    let candidates: Vec<&[DVec3; 3]> = triangles
         .iter()
-        .flatten()
-        .chain(std::iter::once(&point))
+        .filter(|t| {
+            let lo = t[0].min(t[1]).min(t[2]);
+            let hi = t[0].max(t[1]).max(t[2]);
+            may_meet(lo, hi, origin, direction)
+        })
+        .collect();
+    let base = candidates
+        .iter()
+        .flat_map(|t| t.iter())
+        .chain(std::iter::once(&origin))
         .flat_map(|v| v.to_array())
         .filter(|&x| x != 0.0)
         .map(|x| split(x).1)
         .min()
         .unwrap_or(0);
-    let big = |v: DVec3| -> Vec3 { [scaled(v.x, base), scaled(v.y, base), scaled(v.z, base)] };
-    let p = big(point);
-    let tris: Vec<[Vec3; 3]> = triangles
-        .iter()
-        .map(|t| [big(t[0]), big(t[1]), big(t[2])])
-        .collect();
-    // Directions with small coprime-ish integer components, in a fixed order.
-    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
-    'direction: for _ in 0..64 {
-        let mut component = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            BigInt::from((state % 2001) as i64 - 1000)
-        };
-        let d = [component(), component(), component()];
-        if d.iter().all(|x| sign(x) == 0) {
-            continue;
+    let big =
+        |v: DVec3, base: i32| -> Vec3 { [scaled(v.x, base), scaled(v.y, base), scaled(v.z, base)] };
+    // The direction's own scale does not matter: it enters every test
+    // linearly.
+    let d_base = direction
+        .to_array()
+        .into_iter()
+        .filter(|&x| x != 0.0)
+        .map(|x| split(x).1)
+        .min()
+        .unwrap_or(0);
+    let p = big(origin, base);
+    let d = big(direction, d_base);
+    let mut count = 0;
+    for t in candidates {
+        match meets(&p, &d, &[big(t[0], base), big(t[1], base), big(t[2], base)]) {
+            Meets::Misses => {}
+            Meets::Crosses => count += 1,
+            Meets::HoldsThePoint => return Err(Degenerate::OnBoundary),
+            Meets::Degenerate => return Err(Degenerate::Tie),
         }
-        let mut crossings = 0usize;
-        for tri in &tris {
-            match meets(&p, &d, tri) {
-                Meets::Misses => {}
-                Meets::Crosses => crossings += 1,
-                Meets::HoldsThePoint => return Class::Boundary,
-                Meets::Degenerate => continue 'direction,
-            }
-        }
-        return if crossings % 2 == 1 {
-            Class::Inside
-        } else {
-            Class::Outside
-        };
     }
-    panic!("64 ray directions from {point} were all degenerate")
+    Ok(count)
+}
+
+/// The class of `point` against a closed, consistently oriented triangle
+/// mesh, exactly: the parity of [`crossings`] along the first of the six
+/// axis directions, then of small integer directions, that meets no edge
+/// or vertex.
+pub fn classify(triangles: &[[DVec3; 3]], point: DVec3) -> Class {
+    let axes = [
+        DVec3::X,
+        DVec3::NEG_X,
+        DVec3::Y,
+        DVec3::NEG_Y,
+        DVec3::Z,
+        DVec3::NEG_Z,
+    ];
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut component = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state % 2001) as f64 - 1000.0
+    };
+    let others = std::iter::repeat_with(|| DVec3::new(component(), component(), component()))
+        .filter(|d| *d != DVec3::ZERO)
+        .take(64);
+    for direction in axes.into_iter().chain(others) {
+        match crossings(triangles, point, direction) {
+            Ok(n) if n % 2 == 1 => return Class::Inside,
+            Ok(_) => return Class::Outside,
+            Err(Degenerate::OnBoundary) => return Class::Boundary,
+            Err(Degenerate::Tie) => {}
+        }
+    }
+    panic!("70 ray directions from {point} all met an edge or a vertex")
 }
