@@ -5,7 +5,10 @@
 //! checks the shape once more, so that no caller of the native module can
 //! make it panic, and copies the rows into `DVec3`s.
 
-use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{
+    IntoPyArray, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
+    PyUntypedArrayMethods,
+};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use wingedge::geom::Ray;
@@ -79,6 +82,19 @@ pub(crate) fn rays(
         .zip(d.rows())
         .map(|(o, d)| Ray::new(DVec3::new(o[0], o[1], o[2]), DVec3::new(d[0], d[1], d[2])))
         .collect())
+}
+
+/// Points as an `(n, 3)` float64 array.
+///
+/// # Errors
+///
+/// Never in practice (the shape always matches the data).
+pub(crate) fn points_out<'py>(
+    py: Python<'py>,
+    points: &[DVec3],
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let flat: Vec<f64> = points.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
+    flat.into_pyarray(py).reshape([points.len(), 3])
 }
 
 /// A flat index array as `usize`s, refusing negative entries.

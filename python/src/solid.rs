@@ -203,12 +203,7 @@ impl PySolid {
         Bound<'py, PyArray1<i64>>,
     )> {
         let soup = &self.inner.soup;
-        let flat: Vec<f64> = soup
-            .positions
-            .iter()
-            .flat_map(|p| [p.x, p.y, p.z])
-            .collect();
-        let vertices = flat.into_pyarray(py).reshape([soup.positions.len(), 3])?;
+        let vertices = arrays::points_out(py, &soup.positions)?;
         let sizes: Vec<i64> = soup
             .polygons
             .iter()
@@ -235,12 +230,7 @@ impl PySolid {
     ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>)> {
         let soup = &self.inner.soup;
         let triangles = py.detach(|| triangulate_soup(soup))?;
-        let flat: Vec<f64> = soup
-            .positions
-            .iter()
-            .flat_map(|p| [p.x, p.y, p.z])
-            .collect();
-        let vertices = flat.into_pyarray(py).reshape([soup.positions.len(), 3])?;
+        let vertices = arrays::points_out(py, &soup.positions)?;
         let count = triangles.len() / 3;
         Ok((vertices, triangles.into_pyarray(py).reshape([count, 3])?))
     }
