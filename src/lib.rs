@@ -32,6 +32,7 @@ pub mod mesh;
 pub mod query;
 pub mod render;
 pub mod scene;
+pub mod spatial;
 #[cfg(test)]
 mod test_rng;
 pub mod validate;
