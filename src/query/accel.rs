@@ -91,9 +91,7 @@ impl Accel {
         let start = Instant::now();
         let boundary_edges = solid.boundary_edges().count();
         let (tris, tri_face) = fan_triangles(solid);
-        let boxes: Vec<Aabb> = tris.par_iter().map(|t| Aabb::from_points(*t)).collect();
-        let (bvh, order) = Bvh::build(&boxes);
-        drop(boxes);
+        let (bvh, order) = Bvh::build_by(tris.len(), |i| Aabb::from_points(tris[i]));
         let bounds = bvh.bounds();
         let tris = HugeVec::from_par_iter(order.par_iter().map(|&i| yz_tri(&tris[i as usize])));
         // The packets are made on all cores: their memory is fresh huge

@@ -222,6 +222,7 @@ fn alternate(hits: &mut [(f64, u32, Sign)], mut inside: bool) {
 pub(super) mod tests {
     use super::*;
     use crate::mesh::builders;
+    use crate::query::Transition;
     use crate::query::ray_scaling::unit_scaled;
     use crate::query::ray_stream::{self, WalkScratch};
     use crate::spatial::bvh::ray_box::{INV_GROW, INV_SHRINK, ORIGIN_WIDEN, Row};

@@ -61,3 +61,56 @@ impl Bvh {
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+    use crate::spatial::bvh::pair_walk::tests::random_boxes;
+
+    /// A box query reports exactly the items whose boxes overlap the closed
+    /// query box (touching included), each once; empty and NaN queries
+    /// report nothing.
+    #[test]
+    fn box_queries_find_exactly_the_overlapping_items() {
+        let items = random_boxes(2_000, 0x3C6E_F372_FE94_F82B, 5.0, 2.0, 0.2);
+        let (bvh, order) = Bvh::build(&items);
+        let mut u = crate::test_rng::uniform(0xA54F_F53A_5F1D_36F1);
+        for case in 0..200 {
+            let lo = DVec3::new(u(), u(), u()) * 2.4 + DVec3::splat(4.8);
+            let query = if case % 10 == 0 {
+                // Exactly touching an item's corner.
+                Aabb::from_points([items[case].max, items[case].max + DVec3::splat(0.1)])
+            } else {
+                Aabb::from_points([lo, lo + DVec3::new(u(), u(), u()) * 0.5])
+            };
+            let mut found = Vec::new();
+            bvh.items_overlapping(
+                &query,
+                |p| items[order[p] as usize],
+                |p| {
+                    found.push(order[p] as usize);
+                },
+            );
+            found.sort_unstable();
+            let before = found.len();
+            found.dedup();
+            assert_eq!(found.len(), before, "case {case}: an item twice");
+            let want: Vec<usize> = (0..items.len())
+                .filter(|&i| !items[i].intersection(query).is_empty())
+                .collect();
+            assert_eq!(found, want, "case {case}");
+            if case % 10 == 0 {
+                assert!(found.contains(&case), "case {case}: the touched item");
+            }
+        }
+        let nan = Aabb {
+            min: DVec3::NAN,
+            max: DVec3::NAN,
+        };
+        for query in [Aabb::EMPTY, nan] {
+            bvh.leaves_overlapping(&query, |leaf| panic!("leaf {leaf} for {query:?}"));
+        }
+    }
+}

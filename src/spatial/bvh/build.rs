@@ -29,19 +29,24 @@ const SORTED_SPLIT: usize = 16;
 /// Subtrees at least this large are built on two threads.
 const PARALLEL_BUILD: usize = 16 * 1024;
 
-/// The binary BVH of items with exact boxes `items` (leaves of at most
-/// [`LEAF_SIZE`] items), the item order of its leaves, the frame its boxes
-/// are in, and the exact bounding box of all items.
-pub(super) fn build_bvh(items: &[Aabb]) -> (Vec<Node>, Vec<u32>, BoxFrame, Aabb) {
-    let bounds = items
-        .par_iter()
-        .copied()
+/// The binary BVH of `count` items with exact boxes `bounds_of(0 ..
+/// count)` (leaves of at most [`LEAF_SIZE`] items), the item order of its
+/// leaves, the frame its boxes are in, and the exact bounding box of all
+/// items. `bounds_of` is called twice per item (a box is cheaper to make
+/// again than to keep).
+pub(super) fn build_bvh(
+    count: usize,
+    bounds_of: impl Fn(usize) -> Aabb + Sync,
+) -> (Vec<Node>, Vec<u32>, BoxFrame, Aabb) {
+    let bounds = (0..count)
+        .into_par_iter()
+        .map(&bounds_of)
         .reduce(|| Aabb::EMPTY, Aabb::union);
     let frame = BoxFrame::of(&bounds);
-    let (mut boxes, mut index): (Vec<PrimBox>, Vec<u32>) = items
-        .par_iter()
-        .enumerate()
-        .map(|(i, &b)| {
+    let (mut boxes, mut index): (Vec<PrimBox>, Vec<u32>) = (0..count)
+        .into_par_iter()
+        .map(|i| {
+            let b = bounds_of(i);
             let lo = [0, 1, 2].map(|a| frame.lower(b.min[a], a));
             let hi = [0, 1, 2].map(|a| frame.upper(b.max[a], a));
             let prim = PrimBox {
@@ -452,6 +457,8 @@ fn build_node_parallel(mut prims: Prims, offset: usize, ext: &Extent) -> Vec<Nod
 
 #[cfg(test)]
 mod tests {
+    use glam::DVec3;
+
     use super::*;
 
     /// Checks every invariant the collapse and the walks rely on: leaves
@@ -459,8 +466,7 @@ mod tests {
     /// order is a permutation, an inner node's box holds its children's,
     /// and each triangle's rounded box lies in its leaf's box.
     fn check_tree(tris: &[[DVec3; 3]]) {
-        let boxes: Vec<Aabb> = tris.iter().map(|t| Aabb::from_points(*t)).collect();
-        let (nodes, order, frame, bounds) = build_bvh(&boxes);
+        let (nodes, order, frame, bounds) = build_bvh(tris.len(), |i| Aabb::from_points(tris[i]));
         let mut seen = vec![false; tris.len()];
         for &i in &order {
             assert!(!std::mem::replace(&mut seen[i as usize], true), "{i} twice");

@@ -90,10 +90,10 @@ mod tests {
     use super::*;
     use crate::geom::Ray;
     use crate::spatial::bvh::Portable;
-    use crate::spatial::bvh::node::{BoxFrame, Node8, WIDTH};
-    use crate::spatial::bvh::ray_box::{Deferred, KEY_SLOT_BITS, limit_key};
+    use crate::spatial::bvh::node::{BoxFrame, LEAF, Node8, WIDTH};
     #[cfg(target_arch = "x86_64")]
-    use crate::spatial::bvh::{Avx2, open_avx2};
+    use crate::spatial::bvh::open_avx2;
+    use crate::spatial::bvh::ray_box::{Deferred, KEY_SLOT_BITS};
     use glam::DVec3;
 
     /// Every opener pushes the children entered, and only those, with
@@ -120,7 +120,7 @@ mod tests {
                 }
                 node.child[k] = match (case + 3 * k) % 7 {
                     0 => u32::MAX,
-                    1 => crate::query::accel::LEAF | k as u32,
+                    1 => LEAF | k as u32,
                     _ => 100 + k as u32,
                 };
             }
@@ -138,7 +138,13 @@ mod tests {
             if direction == DVec3::ZERO {
                 continue;
             }
-            let (ray, _) = unit_scaled(&Ray::new(origin, direction));
+            // Scaled by a power of two to a largest component in `[1, 2)`,
+            // as the walks take rays.
+            let largest = direction.abs().max_element();
+            let ray = Ray::new(
+                origin,
+                direction * 2f64.powi(-(largest.log2().floor() as i32)),
+            );
             let rb = RayBox::new(&ray, &frame);
             let limit = if case % 3 == 0 {
                 rb.limit(uniform() * 2.0)

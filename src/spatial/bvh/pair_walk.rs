@@ -147,3 +147,111 @@ impl Bvh {
 fn overlap(a: &Aabb, b: &Aabb) -> bool {
     !a.intersection(*b).is_empty()
 }
+
+#[cfg(test)]
+pub(super) mod tests {
+    use std::collections::BTreeSet;
+
+    use super::*;
+
+    /// `n` random boxes in a cube of side `spread` (offset by `at`), of
+    /// sizes up to `size`, some flat and some repeated.
+    pub(in crate::spatial) fn random_boxes(
+        n: usize,
+        seed: u64,
+        at: f64,
+        spread: f64,
+        size: f64,
+    ) -> Vec<Aabb> {
+        let mut u = crate::test_rng::uniform(seed);
+        let mut point = || DVec3::new(u(), u(), u());
+        let mut boxes: Vec<Aabb> = (0..n)
+            .map(|k| {
+                let lo = DVec3::splat(at) + point() * spread;
+                let mut extent = point() * size;
+                if k % 7 == 0 {
+                    extent.z = 0.0;
+                }
+                Aabb::from_points([lo, lo + extent])
+            })
+            .collect();
+        if n > 10 {
+            boxes[n - 1] = boxes[3];
+        }
+        boxes
+    }
+
+    fn overlapping_items(a: &[Aabb], b: &[Aabb], same: bool) -> BTreeSet<(usize, usize)> {
+        let mut pairs = BTreeSet::new();
+        for (i, x) in a.iter().enumerate() {
+            for (j, y) in b.iter().enumerate() {
+                if (!same || i < j) && overlap(x, y) {
+                    pairs.insert((i, j));
+                }
+            }
+        }
+        pairs
+    }
+
+    /// The item pairs within the leaf pairs a walk reports, with the leaf
+    /// pairs checked to come once each.
+    fn reported_items(
+        a: (&Bvh, &[u32], &[Aabb]),
+        b: (&Bvh, &[u32], &[Aabb]),
+        leaf_pairs: &[(u32, u32)],
+        same: bool,
+    ) -> BTreeSet<(usize, usize)> {
+        let distinct: BTreeSet<(u32, u32)> = leaf_pairs
+            .iter()
+            .map(|&(x, y)| if same { (x.min(y), x.max(y)) } else { (x, y) })
+            .collect();
+        assert_eq!(distinct.len(), leaf_pairs.len(), "a leaf pair came twice");
+        let mut items = BTreeSet::new();
+        for &(la, lb) in leaf_pairs {
+            for p in a.0.leaf(la).unwrap().range() {
+                for q in b.0.leaf(lb).unwrap().range() {
+                    let (i, j) = (a.1[p] as usize, b.1[q] as usize);
+                    let (i, j) = if same { (i.min(j), i.max(j)) } else { (i, j) };
+                    if (!same || i < j) && overlap(&a.2[i], &b.2[j]) {
+                        items.insert((i, j));
+                    }
+                }
+            }
+        }
+        items
+    }
+
+    /// Both pair walks find every pair of overlapping boxes (touching and
+    /// flat ones included), over trees of many sizes, in frames far apart
+    /// in scale and position.
+    #[test]
+    fn pair_walks_find_every_overlapping_pair() {
+        for (n, m, seed) in [(0, 5, 1), (1, 1, 2), (5, 3, 3), (40, 70, 4), (700, 500, 5)] {
+            let a = random_boxes(n, 0x2545_F491_4F6C_DD1D + seed, 0.0, 1.0, 0.1);
+            let b = random_boxes(m, 0x9E37_79B9_7F4A_7C15 + seed, 0.5, 0.7, 0.05);
+            let (ta, oa) = Bvh::build(&a);
+            let (tb, ob) = Bvh::build(&b);
+            let mut pairs = Vec::new();
+            ta.leaf_pairs(&tb, |x, y| pairs.push((x, y)));
+            let found = reported_items((&ta, &oa, &a), (&tb, &ob, &b), &pairs, false);
+            assert_eq!(found, overlapping_items(&a, &b, false), "{n} × {m}");
+            let mut own = Vec::new();
+            ta.self_leaf_pairs(|x, y| own.push((x, y)));
+            let found = reported_items((&ta, &oa, &a), (&ta, &oa, &a), &own, true);
+            assert_eq!(found, overlapping_items(&a, &a, true), "{n} with itself");
+            let leaves: BTreeSet<u32> = own.iter().filter(|p| p.0 == p.1).map(|p| p.0).collect();
+            assert_eq!(leaves.len(), ta.leaf_count(), "every leaf with itself");
+        }
+        // A tiny tree far from the origin against a huge one around it.
+        let small = random_boxes(300, 11, 1e8, 1e-3, 1e-4);
+        let large = random_boxes(300, 12, -1e9, 3e9, 1.5e9);
+        let (ts, os) = Bvh::build(&small);
+        let (tl, ol) = Bvh::build(&large);
+        let mut pairs = Vec::new();
+        ts.leaf_pairs(&tl, |x, y| pairs.push((x, y)));
+        let found = reported_items((&ts, &os, &small), (&tl, &ol, &large), &pairs, false);
+        let want = overlapping_items(&small, &large, false);
+        assert!(!want.is_empty());
+        assert_eq!(found, want);
+    }
+}

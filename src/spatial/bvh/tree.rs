@@ -45,7 +45,15 @@ impl Bvh {
     /// at position `p`). Never fails: no items give a tree with no leaves.
     #[must_use]
     pub fn build(items: &[Aabb]) -> (Bvh, Vec<u32>) {
-        let (binary, order, frame, bounds) = build_bvh(items);
+        Bvh::build_by(items.len(), |i| items[i])
+    }
+
+    /// [`Bvh::build`] over `count` items whose exact boxes `bounds_of`
+    /// makes (each is asked for twice), for owners who would rather not
+    /// keep an array of boxes.
+    #[must_use]
+    pub fn build_by(count: usize, bounds_of: impl Fn(usize) -> Aabb + Sync) -> (Bvh, Vec<u32>) {
+        let (binary, order, frame, bounds) = build_bvh(count, bounds_of);
         let (nodes, leaves, depth) = collapse(&binary);
         let bvh = Bvh {
             nodes,
@@ -59,24 +67,28 @@ impl Bvh {
 
     /// The number of leaves.
     #[must_use]
+    #[inline]
     pub fn leaf_count(&self) -> usize {
         self.leaves.len()
     }
 
     /// The item positions of leaf `leaf` (`None` past the last leaf).
     #[must_use]
+    #[inline]
     pub fn leaf(&self, leaf: u32) -> Option<LeafItems> {
         self.leaves.get(leaf as usize).copied()
     }
 
     /// The number of eight-wide nodes.
     #[must_use]
+    #[inline]
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
 
     /// The exact bounding box of all items.
     #[must_use]
+    #[inline]
     pub fn bounds(&self) -> Aabb {
         self.bounds
     }
@@ -94,16 +106,19 @@ impl Bvh {
     }
 
     /// The nodes, root first.
+    #[inline]
     pub(crate) fn nodes(&self) -> &[Node8] {
         &self.nodes
     }
 
     /// The frame of the nodes' boxes.
+    #[inline]
     pub(crate) fn frame(&self) -> &BoxFrame {
         &self.frame
     }
 
     /// A stack length no depth-first walk overflows (see the invariants).
+    #[inline]
     pub(crate) fn stack_len(&self) -> usize {
         self.stack_len
     }
