@@ -1,21 +1,193 @@
 //! The pair walk: the leaves of two trees (or of one tree with itself)
 //! whose boxes overlap — the broad phase of every test between two sets of
 //! items (face against face, triangle against triangle).
+//!
+//! Boxes are compared in the first tree's frame, in `f32`: its own boxes
+//! as stored, the second tree's carried over rounded outward (back to input
+//! coordinates, then into the frame). Every comparison can only err towards
+//! "overlap", so no pair of overlapping items is lost.
 
-use glam::DVec3;
+use rayon::prelude::*;
 
-use crate::geom::Aabb;
 use crate::spatial::rounding::{f64_above, f64_below};
 
 use super::node::{LEAF, Node8, WIDTH};
 use super::tree::Bvh;
 
-/// A subtree waiting in a pair walk: a slot entry ([`LEAF`] plus a leaf
-/// number, or a node index) and its box in input coordinates.
+/// Pairs of subtrees a parallel walk has in hand before it hands them out
+/// to the threads (each then walks its pairs to the leaves alone).
+const PARALLEL_TASKS: usize = 256;
+
+/// A subtree in a pair walk: a slot entry ([`LEAF`] plus a leaf number, or
+/// a node index) and its box in the first tree's frame.
 #[derive(Clone, Copy, Debug)]
 struct Side {
     child: u32,
-    bounds: Aabb,
+    lo: [f32; 3],
+    hi: [f32; 3],
+}
+
+impl Side {
+    /// A whole tree: the root, with a box that holds everything (the root's
+    /// slots carry the real boxes).
+    const ROOT: Side = Side {
+        child: 0,
+        lo: [f32::NEG_INFINITY; 3],
+        hi: [f32::INFINITY; 3],
+    };
+
+    fn is_leaf(&self) -> bool {
+        self.child & LEAF != 0
+    }
+
+    fn leaf(&self) -> u32 {
+        self.child & !LEAF
+    }
+
+    /// Whether the two closed boxes share a point.
+    #[inline]
+    fn meets(&self, other: &Side) -> bool {
+        (0..3).all(|a| self.lo[a] <= other.hi[a] && other.lo[a] <= self.hi[a])
+    }
+}
+
+/// One pair walk: tree `a` against tree `b`, or against itself when `same`.
+struct PairWalk<'t> {
+    a: &'t Bvh,
+    b: &'t Bvh,
+    same: bool,
+}
+
+impl PairWalk<'_> {
+    /// The filled slots of inner node `node` of tree `a`, boxes as stored.
+    fn slots_a(&self, node: u32) -> smallvec::SmallVec<[Side; WIDTH]> {
+        let n = &self.a.nodes()[node as usize];
+        (0..WIDTH)
+            .filter(|&k| n.child[k] != u32::MAX)
+            .map(|k| Side {
+                child: n.child[k],
+                lo: [0, 1, 2].map(|a| n.bounds[a][k]),
+                hi: [0, 1, 2].map(|a| n.bounds[3 + a][k]),
+            })
+            .collect()
+    }
+
+    /// The filled slots of inner node `node` of tree `b`, boxes carried
+    /// into `a`'s frame (rounded outward).
+    fn slots_b(&self, node: u32) -> smallvec::SmallVec<[Side; WIDTH]> {
+        if self.same {
+            return self.slots_a(node);
+        }
+        let n = &self.b.nodes()[node as usize];
+        (0..WIDTH)
+            .filter(|&k| n.child[k] != u32::MAX)
+            .map(|k| {
+                let (lo, hi) = carried_over(self.b, self.a, n, k);
+                Side {
+                    child: n.child[k],
+                    lo,
+                    hi,
+                }
+            })
+            .collect()
+    }
+
+    /// One step on the pair `(x, y)` (of `a` and `b`; boxes already known
+    /// to meet, or the roots): both leaves are visited; otherwise the inner
+    /// ones are opened and the pairs of children whose boxes meet pushed.
+    /// In a walk of one tree with itself, `(x, x)` stands for the pairs
+    /// within one subtree, each unordered pair once.
+    fn step(
+        &self,
+        (x, y): (Side, Side),
+        stack: &mut Vec<(Side, Side)>,
+        visit: &mut impl FnMut(u32, u32),
+    ) {
+        if self.same && x.child == y.child {
+            if x.is_leaf() {
+                visit(x.leaf(), x.leaf());
+                return;
+            }
+            let slots = self.slots_a(x.child);
+            for (i, s) in slots.iter().enumerate() {
+                stack.push((*s, *s));
+                for t in &slots[i + 1..] {
+                    if s.meets(t) {
+                        stack.push((*s, *t));
+                    }
+                }
+            }
+            return;
+        }
+        match (x.is_leaf(), y.is_leaf()) {
+            (true, true) => visit(x.leaf(), y.leaf()),
+            (false, true) => {
+                for s in self.slots_a(x.child) {
+                    if s.meets(&y) {
+                        stack.push((s, y));
+                    }
+                }
+            }
+            (true, false) => {
+                for t in self.slots_b(y.child) {
+                    if x.meets(&t) {
+                        stack.push((x, t));
+                    }
+                }
+            }
+            (false, false) => {
+                let ts = self.slots_b(y.child);
+                for s in self.slots_a(x.child) {
+                    if !s.meets(&y) {
+                        continue;
+                    }
+                    for t in &ts {
+                        if s.meets(t) {
+                            stack.push((s, *t));
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The whole walk on one thread.
+    fn run(&self, mut visit: impl FnMut(u32, u32)) {
+        let mut stack = vec![(Side::ROOT, Side::ROOT)];
+        while let Some(pair) = stack.pop() {
+            self.step(pair, &mut stack, &mut visit);
+        }
+    }
+
+    /// The whole walk on all cores: the pairs near the roots are expanded
+    /// level by level until there are enough to share out, then each is
+    /// walked to the leaves on its own. What `visit` pushes is returned in
+    /// an order fixed by the trees (independent of the threads).
+    fn run_parallel<T: Send>(&self, visit: impl Fn(u32, u32, &mut Vec<T>) + Sync) -> Vec<T> {
+        let mut out = Vec::new();
+        let mut frontier = vec![(Side::ROOT, Side::ROOT)];
+        while !frontier.is_empty() && frontier.len() < PARALLEL_TASKS {
+            let mut next = Vec::new();
+            for pair in frontier {
+                self.step(pair, &mut next, &mut |p, q| visit(p, q, &mut out));
+            }
+            frontier = next;
+        }
+        let parts: Vec<Vec<T>> = frontier
+            .par_iter()
+            .with_max_len(1)
+            .map(|&pair| {
+                let mut found = Vec::new();
+                let mut stack = vec![pair];
+                while let Some(pair) = stack.pop() {
+                    self.step(pair, &mut stack, &mut |p, q| visit(p, q, &mut found));
+                }
+                found
+            })
+            .collect();
+        out.extend(parts.into_iter().flatten());
+        out
+    }
 }
 
 impl Bvh {
@@ -25,134 +197,85 @@ impl Bvh {
     /// whose exact boxes overlap lies in a reported pair of leaves (some
     /// reported pairs may hold none). The order of the pairs is fixed by
     /// the two trees.
-    pub fn leaf_pairs(&self, other: &Bvh, mut visit: impl FnMut(u32, u32)) {
-        let mut stack = vec![(self.root(), other.root())];
-        while let Some((a, b)) = stack.pop() {
-            if !overlap(&a.bounds, &b.bounds) {
-                continue;
-            }
-            self.expand_pair(other, a, b, &mut stack, &mut visit);
+    pub fn leaf_pairs(&self, other: &Bvh, visit: impl FnMut(u32, u32)) {
+        PairWalk {
+            a: self,
+            b: other,
+            same: false,
         }
+        .run(visit);
     }
 
     /// Calls `visit(a, b)` for every unordered pair of leaves of the tree
     /// whose boxes overlap, each pair once (in either order), and
     /// `visit(a, a)` for every leaf (a leaf's items may meet each other).
     /// Conservative as [`Bvh::leaf_pairs`].
-    pub fn self_leaf_pairs(&self, mut visit: impl FnMut(u32, u32)) {
-        // `(x, x)` stands for the pairs within one subtree; `(x, y)` with
-        // `x ≠ y` for the pairs across two disjoint subtrees.
-        let root = self.root();
-        let mut stack = vec![(root, root)];
-        while let Some((a, b)) = stack.pop() {
-            if a.child != b.child {
-                if overlap(&a.bounds, &b.bounds) {
-                    self.expand_pair(self, a, b, &mut stack, &mut visit);
-                }
-                continue;
-            }
-            if a.child & LEAF != 0 {
-                visit(a.child & !LEAF, a.child & !LEAF);
-                continue;
-            }
-            let slots = self.slots(a.child);
-            for (i, &x) in slots.iter().enumerate() {
-                stack.push((x, x));
-                for &y in &slots[i + 1..] {
-                    stack.push((x, y));
-                }
-            }
+    pub fn self_leaf_pairs(&self, visit: impl FnMut(u32, u32)) {
+        PairWalk {
+            a: self,
+            b: self,
+            same: true,
         }
+        .run(visit);
     }
 
-    /// One step of a pair walk on the overlapping subtrees `a` (of `self`)
-    /// and `b` (of `other`): both leaves are visited; otherwise the inner
-    /// ones are opened and their children paired.
-    fn expand_pair(
+    /// [`Bvh::leaf_pairs`] on all cores: `visit(a, b, found)` is called
+    /// once for each pair of leaves, from any thread, and pushes what it
+    /// finds onto `found`; everything found is returned, in an order fixed
+    /// by the two trees whatever the number of threads.
+    pub fn par_leaf_pairs<T: Send>(
         &self,
         other: &Bvh,
-        a: Side,
-        b: Side,
-        stack: &mut Vec<(Side, Side)>,
-        visit: &mut impl FnMut(u32, u32),
-    ) {
-        match (a.child & LEAF != 0, b.child & LEAF != 0) {
-            (true, true) => visit(a.child & !LEAF, b.child & !LEAF),
-            (false, true) => {
-                for x in self.slots(a.child) {
-                    stack.push((x, b));
-                }
-            }
-            (true, false) => {
-                for y in other.slots(b.child) {
-                    stack.push((a, y));
-                }
-            }
-            (false, false) => {
-                let ys = other.slots(b.child);
-                for x in self.slots(a.child) {
-                    for &y in &ys {
-                        stack.push((x, y));
-                    }
-                }
-            }
+        visit: impl Fn(u32, u32, &mut Vec<T>) + Sync,
+    ) -> Vec<T> {
+        PairWalk {
+            a: self,
+            b: other,
+            same: false,
         }
+        .run_parallel(visit)
     }
 
-    /// The root as a pair walk's subtree.
-    fn root(&self) -> Side {
-        Side {
-            child: 0,
-            bounds: self.bounds(),
+    /// [`Bvh::self_leaf_pairs`] on all cores, as [`Bvh::par_leaf_pairs`].
+    pub fn par_self_leaf_pairs<T: Send>(
+        &self,
+        visit: impl Fn(u32, u32, &mut Vec<T>) + Sync,
+    ) -> Vec<T> {
+        PairWalk {
+            a: self,
+            b: self,
+            same: true,
         }
-    }
-
-    /// The filled slots of inner node `node`, with their boxes in input
-    /// coordinates.
-    fn slots(&self, node: u32) -> smallvec::SmallVec<[Side; WIDTH]> {
-        let n = &self.nodes()[node as usize];
-        (0..WIDTH)
-            .filter(|&k| n.child[k] != u32::MAX)
-            .map(|k| Side {
-                child: n.child[k],
-                bounds: self.slot_bounds(n, k),
-            })
-            .collect()
-    }
-
-    /// The box of slot `k` of `n` in input coordinates, rounded outward:
-    /// it contains the exact box the slot's `f32` box stands for. (The
-    /// division by the power-of-two scale is exact; adding the centre is
-    /// rounded to nearest, and the next `f64` outward covers that.)
-    pub(super) fn slot_bounds(&self, n: &Node8, k: usize) -> Aabb {
-        let frame = self.frame();
-        let back =
-            |row: usize, a: usize| f64::from(n.bounds[row][k]) / frame.scale + frame.centre[a];
-        Aabb {
-            min: DVec3::new(
-                f64_below(back(0, 0)),
-                f64_below(back(1, 1)),
-                f64_below(back(2, 2)),
-            ),
-            max: DVec3::new(
-                f64_above(back(3, 0)),
-                f64_above(back(4, 1)),
-                f64_above(back(5, 2)),
-            ),
-        }
+        .run_parallel(visit)
     }
 }
 
-/// Whether two closed boxes share a point.
-fn overlap(a: &Aabb, b: &Aabb) -> bool {
-    !a.intersection(*b).is_empty()
+/// The box of slot `k` of node `n` of tree `from`, carried into the frame
+/// of tree `to` and rounded outward: it contains the exact box the slot's
+/// `f32` box stands for. (Back in input coordinates, the division by the
+/// power-of-two scale is exact and adding the centre is rounded to nearest,
+/// which the next `f64` outward covers; the frame's own rounding of
+/// `to` is outward.)
+fn carried_over(from: &Bvh, to: &Bvh, n: &Node8, k: usize) -> ([f32; 3], [f32; 3]) {
+    let (f, t) = (from.frame(), to.frame());
+    let back = |row: usize, a: usize| f64::from(n.bounds[row][k]) / f.scale + f.centre[a];
+    let lo = [0, 1, 2].map(|a| t.lower(f64_below(back(a, a)), a));
+    let hi = [0, 1, 2].map(|a| t.upper(f64_above(back(3 + a, a)), a));
+    (lo, hi)
 }
 
 #[cfg(test)]
 pub(super) mod tests {
     use std::collections::BTreeSet;
 
+    use glam::DVec3;
+
     use super::*;
+    use crate::geom::Aabb;
+
+    fn overlap(a: &Aabb, b: &Aabb) -> bool {
+        !a.intersection(*b).is_empty()
+    }
 
     /// `n` random boxes in a cube of side `spread` (offset by `at`), of
     /// sizes up to `size`, some flat and some repeated.
@@ -221,6 +344,11 @@ pub(super) mod tests {
         items
     }
 
+    fn sorted(mut pairs: Vec<(u32, u32)>) -> Vec<(u32, u32)> {
+        pairs.sort_unstable();
+        pairs
+    }
+
     /// Both pair walks find every pair of overlapping boxes (touching and
     /// flat ones included), over trees of many sizes, in frames far apart
     /// in scale and position.
@@ -241,7 +369,32 @@ pub(super) mod tests {
             assert_eq!(found, overlapping_items(&a, &a, true), "{n} with itself");
             let leaves: BTreeSet<u32> = own.iter().filter(|p| p.0 == p.1).map(|p| p.0).collect();
             assert_eq!(leaves.len(), ta.leaf_count(), "every leaf with itself");
+            // The parallel walks visit the same pairs, in the same order
+            // every time.
+            let push = |x: u32, y: u32, found: &mut Vec<(u32, u32)>| found.push((x, y));
+            let mut serial = Vec::new();
+            ta.leaf_pairs(&tb, |x, y| serial.push((x, y)));
+            let parallel = ta.par_leaf_pairs(&tb, push);
+            assert_eq!(sorted(parallel.clone()), sorted(serial), "{n} × {m}");
+            assert_eq!(parallel, ta.par_leaf_pairs(&tb, push), "{n} × {m}");
+            let parallel = ta.par_self_leaf_pairs(push);
+            assert_eq!(sorted(parallel.clone()), sorted(own), "{n} with itself");
+            assert_eq!(parallel, ta.par_self_leaf_pairs(push), "{n} with itself");
         }
+        // Trees large enough for the parallel walks to share out subtrees:
+        // the same pairs as the one-thread walks.
+        let a = random_boxes(20_000, 0x6A09_E667_F3BC_C909, 0.0, 1.0, 0.02);
+        let b = random_boxes(5_000, 0xBB67_AE85_84CA_A73B, 0.2, 1.0, 0.03);
+        let ((ta, _), (tb, _)) = (Bvh::build(&a), Bvh::build(&b));
+        let push = |x: u32, y: u32, found: &mut Vec<(u32, u32)>| found.push((x, y));
+        let mut serial = Vec::new();
+        ta.self_leaf_pairs(|x, y| serial.push((x, y)));
+        assert!(serial.len() > ta.leaf_count(), "{}", serial.len());
+        assert_eq!(sorted(ta.par_self_leaf_pairs(push)), sorted(serial));
+        let mut serial = Vec::new();
+        ta.leaf_pairs(&tb, |x, y| serial.push((x, y)));
+        assert!(serial.len() > tb.leaf_count(), "{}", serial.len());
+        assert_eq!(sorted(ta.par_leaf_pairs(&tb, push)), sorted(serial));
         // A tiny tree far from the origin against a huge one around it.
         let small = random_boxes(300, 11, 1e8, 1e-3, 1e-4);
         let large = random_boxes(300, 12, -1e9, 3e9, 1.5e9);

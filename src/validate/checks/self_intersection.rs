@@ -4,7 +4,7 @@
 //! Faces are cut into triangles (the exact constrained Delaunay
 //! triangulation of `geom::triangulate` in the face's axis projection; a
 //! fan for a face whose projection is not simple), the broad phase is the
-//! shared BVH's pair walk over the triangles' boxes ([`Bvh::self_leaf_pairs`]),
+//! shared BVH's pair walk over the triangles' boxes ([`Bvh::par_self_leaf_pairs`]),
 //! and every pair of triangles of different faces whose boxes overlap
 //! (closed boxes: touching counts) is tested exactly, once: only `orient3d`
 //! and `orient2d` signs decide, no epsilon. The pairs of leaves are tested
@@ -138,8 +138,6 @@ fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize,
     }
     let boxes: Vec<Aabb> = triangles.par_iter().map(|t| bounds(ctx, t)).collect();
     let (bvh, order) = Bvh::build(&boxes);
-    let mut leaf_pairs: Vec<(u32, u32)> = Vec::new();
-    bvh.self_leaf_pairs(|a, b| leaf_pairs.push((a, b)));
     let test = |a: usize, b: usize| -> Option<(usize, usize)> {
         let (ta, tb) = (&triangles[a], &triangles[b]);
         if ta.face == tb.face || !overlap(&boxes[a], &boxes[b]) {
@@ -148,24 +146,18 @@ fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize,
         triangles_meet_beyond_shared(ctx, ta, tb)
             .then(|| (ta.face.min(tb.face), ta.face.max(tb.face)))
     };
-    let mut pairs: Vec<(usize, usize)> = leaf_pairs
-        .par_iter()
-        .with_min_len(64)
-        .flat_map_iter(|&(la, lb)| {
-            let items = |leaf| bvh.leaf(leaf).unwrap_or_default().range();
-            let mut found = Vec::new();
-            for p in items(la) {
-                // Within one leaf, each pair once.
-                let others = items(lb);
-                let start = if la == lb { p + 1 } else { others.start };
-                for q in start..others.end {
-                    let (a, b) = (order[p] as usize, order[q] as usize);
-                    found.extend(test(a.min(b), a.max(b)));
-                }
+    let items = |leaf| bvh.leaf(leaf).unwrap_or_default().range();
+    let mut pairs = bvh.par_self_leaf_pairs(|la, lb, found| {
+        for p in items(la) {
+            // Within one leaf, each pair once.
+            let others = items(lb);
+            let start = if la == lb { p + 1 } else { others.start };
+            for q in start..others.end {
+                let (a, b) = (order[p] as usize, order[q] as usize);
+                found.extend(test(a.min(b), a.max(b)));
             }
-            found
-        })
-        .collect();
+        }
+    });
     pairs.par_sort_unstable();
     pairs.dedup();
     pairs
