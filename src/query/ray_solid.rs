@@ -18,12 +18,12 @@ impl Accel {
     /// The crossings of `ray` with the solid's boundary, and whether its
     /// origin is inside.
     ///
-    /// Each triangle is tested with three exact [`line_side_sos`] signs on
+    /// Each triangle is tested with three exact [`line_side_sos`](crate::geom::line_side_sos) signs on
     /// the ray's origin and direction (the ray crosses the triangle iff the
     /// three agree; their common sign says `Enter`/`Exit`) and one exact
     /// `orient3d` for "in front of the origin". Ties (the ray through an
     /// edge or vertex, or lying in a face's plane) are broken by the symbolic
-    /// perturbation of [`line_side_sos`]: the ray is rotated by an
+    /// perturbation of [`line_side_sos`](crate::geom::line_side_sos): the ray is rotated by an
     /// infinitesimal angle and moved by an infinitely smaller distance, the
     /// same for every triangle, so each crossing counts exactly once and
     /// grazing gives 0 or 2 crossings. The exactness is with respect to the

@@ -9,7 +9,7 @@ use super::node::{BoxFrame, LeafItems, Node8, WIDTH};
 
 /// A bounding-volume hierarchy over items given by their exact boxes
 /// (triangles, faces, primitives): eight-wide nodes of `f32` boxes in a
-/// [`BoxFrame`], and leaves of at most [`LEAF_SIZE`](super::LEAF_SIZE)
+/// frame (`BoxFrame`), and leaves of at most [`LEAF_SIZE`](super::LEAF_SIZE)
 /// items.
 ///
 /// The tree does not hold the items: [`Bvh::build`] returns the order in
@@ -20,7 +20,7 @@ use super::node::{BoxFrame, LeafItems, Node8, WIDTH};
 ///
 /// # Invariants
 ///
-/// - Node 0 is the root; a node's slots hold [`LEAF`](super::LEAF) plus a
+/// - Node 0 is the root; a node's slots hold `LEAF` plus a
 ///   leaf number, the index of an inner node, or `u32::MAX` (empty).
 /// - Every slot's `f32` box, in `frame`, contains the exact boxes of all the
 ///   items below it (bounds rounded outward), so a walk that culls by
