@@ -90,10 +90,13 @@ impl Accel {
     pub fn new(solid: &Solid) -> Accel {
         let start = Instant::now();
         let boundary_edges = solid.boundary_edges().count();
-        let (tris, tri_face) = fan_triangles(solid);
-        let (bvh, order) = Bvh::build_by(tris.len(), |i| Aabb::from_points(tris[i]));
+        let (fan, fan_face) = fan_triangles(solid);
+        let (bvh, order) = Bvh::build_by(fan.len(), |i| Aabb::from_points(fan[i]));
         let bounds = bvh.bounds();
-        let tris = HugeVec::from_par_iter(order.par_iter().map(|&i| yz_tri(&tris[i as usize])));
+        let tris = HugeVec::from_par_iter(order.par_iter().map(|&i| yz_tri(&fan[i as usize])));
+        // The fan in face order is not needed again: its memory goes back
+        // before the packets take theirs.
+        drop(fan);
         // The packets are made on all cores: their memory is fresh huge
         // pages, whose first touch is at times slow.
         let scale = bvh.frame().scale;
@@ -102,7 +105,8 @@ impl Accel {
                 let leaf = bvh.leaf(k).unwrap_or_default();
                 TriPacket::new(&tris, leaf.first, leaf.count, scale)
             }));
-        let tri_face = HugeVec::from_par_iter(order.par_iter().map(|&i| tri_face[i as usize]));
+        let tri_face = HugeVec::from_par_iter(order.par_iter().map(|&i| fan_face[i as usize]));
+        drop(fan_face);
         // What rays read at random, on huge pages where offered.
         tris.collapse();
         tri_face.collapse();
