@@ -15,11 +15,14 @@
 //!
 //! ## Layers
 //!
-//! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out) →
-//! [`validate`] (named checks and a graded verdict) → [`query`] (line–face,
-//! ray–solid, point-in-polyhedron) → [`csg`] (ray-cast CSG: primitives,
-//! trees, the span merge) → [`scene`] (the JSON scene format; a mesh or a
-//! scene as one query target) → [`render`] (images).
+//! Each layer uses only the layers before it:
+//! [`geom`] (numbers) → [`curve`] (B-spline and NURBS curves) →
+//! [`spatial`] (the shared BVH: ray walk, pair walk, box queries) →
+//! [`mesh`] (topology) → [`io`] (OBJ in and out) → [`validate`] (named
+//! checks and a graded verdict) and [`query`] (line–face, ray–solid,
+//! point-in-polyhedron) → [`csg`] (ray-cast CSG: primitives, trees, the span
+//! merge) → [`scene`] (the JSON scene format; a mesh or a scene as one query
+//! target) → [`render`] (images).
 #![warn(missing_docs)]
 
 pub mod csg;
@@ -32,6 +35,7 @@ pub mod mesh;
 pub mod query;
 pub mod render;
 pub mod scene;
+pub mod spatial;
 #[cfg(test)]
 mod test_rng;
 pub mod validate;

@@ -152,6 +152,19 @@ pub(crate) struct Node {
 /// regrouped tree is the same solid as the left fold; only the order of the
 /// work changes. Equal crossings are merged the same way in any grouping.
 ///
+/// Why these bounds are not the shared BVH (`spatial::Bvh`): the
+/// hierarchy here is the operator tree itself, which the span merge walks
+/// node by node (Roth's state machine combines exactly two children under
+/// one operator). A node's box follows its operator — the intersection of
+/// its children's boxes under ∩, the left child's under − — where a BVH's
+/// node box is always the union of its children's; and a difference fixes
+/// the grouping of its operands, where a BVH groups items freely (up to
+/// eight children a node, four items a leaf). Only the n-ary unions and
+/// intersections may be regrouped at all, and they are regrouped here
+/// (by a median split along the widest axis of the children's centres)
+/// into binary operator nodes, which the merge can walk and a BVH's
+/// eight-wide nodes are not.
+///
 /// # Invariants
 ///
 /// `root` and every child index name nodes of `nodes`; every leaf id names

@@ -30,23 +30,29 @@
 //!   *listed* in order of their rounded `t`.
 
 mod accel;
-mod bvh_build;
-mod huge_pages;
-mod lanes;
+mod convexity;
+mod fan;
+mod first_hit;
 mod line_face;
-mod node_open;
 mod point_batch;
+mod point_grid;
 mod point_in_convex;
 mod point_in_solid;
+mod ray_answers;
+mod ray_leaves;
+mod ray_scaling;
 mod ray_solid;
 mod ray_stream;
+mod ray_triangle;
 mod tri_packet;
+mod triangle_records;
 mod winding;
 
-pub use accel::{Accel, AccelStats, NotConvex};
+pub use accel::{Accel, AccelStats};
+pub use convexity::NotConvex;
 pub use line_face::{LineFaceHit, LineKind, intersect_line_face};
 pub use point_in_solid::Method;
-pub use ray_solid::{Crossing, RayCrossings, Transition, TraversalStats};
+pub use ray_answers::{Crossing, RayCrossings, Transition, TraversalStats};
 
 use thiserror::Error;
 

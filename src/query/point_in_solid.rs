@@ -7,7 +7,9 @@ use rayon::prelude::*;
 use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Sign, UNDERFLOW, orient2d, orient3d};
 
-use super::accel::{YzTri, f32_down, f32_up, f64_below};
+use crate::spatial::rounding::{f32_down, f32_up, f64_below};
+
+use super::triangle_records::YzTri;
 use super::{Accel, Containment, QueryError};
 
 /// Batches at least this large are classified in grid-cell order.

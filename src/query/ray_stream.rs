@@ -15,40 +15,39 @@ use std::mem::MaybeUninit;
 
 use crate::geom::Ray;
 
-use super::Accel;
-use super::accel::{LEAF, Node8, WIDTH, YzTri};
 #[cfg(target_arch = "x86_64")]
-use super::node_open::{Avx2, Avx512};
-use super::node_open::{NodeLanes, Portable};
-use super::ray_solid::{
-    BestHit, Crossing, Deferred, RayBox, limit_key, prefetch_bytes, scales_exactly, unit_scaled,
-    unscaled_t,
+use crate::spatial::bvh::{Avx2, Avx512};
+use crate::spatial::bvh::{
+    BoxFrame, Deferred, LEAF, Node8, NodeLanes, Portable, RayBox, WIDTH, limit_key,
 };
+use crate::spatial::raw::prefetch::prefetch_bytes;
+
+use super::accel::Accel;
+use super::ray_answers::{BestHit, Crossing};
+use super::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
 use super::tri_packet::{PacketRay, TriPacket};
+use super::triangle_records::YzTri;
 
 /// Rays walked in turn on accels that stay in the caches...
 const LANES: usize = 8;
 
 /// ...and on accels of at least `MANY_LANES_BYTES`, whose memory requests
 /// take longer to come back: more walks in turn keep more of them under
-/// way. Measured (1 thread, 1M peer rays, 2026-11-24): 16 walks instead of
-/// 8 took 8% less time on sphere_80k (15 MB), 10% less on torus_knot and
-/// sphere_1m, and 5% more on fandisk (3 MB).
+/// way. On accels that stay in the caches the extra walks only cost their
+/// bookkeeping.
 const MANY_LANES: usize = 16;
 
-/// See [`MANY_LANES`]: between fandisk's 3 MB and sphere_80k's 15 MB.
+/// See [`MANY_LANES`]: well past what a core's caches hold.
 const MANY_LANES_BYTES: usize = 8 << 20;
 
 /// The deepest traversal stack a walk holds (a power of two): enough for
-/// trees of up to 35 levels (see `Accel::stack_len`). Deeper trees are
+/// trees of up to 35 levels (see `Bvh::stack_len`). Deeper trees are
 /// walked one ray at a time.
 pub(super) const STACK: usize = 256;
 
 /// Accels at least this large (about the size of a core's L2 cache) are
 /// walked asking ahead for memory; smaller ones stay in cache, where the
-/// requests only cost instructions (measured: 12% slower on a
-/// 2,000-triangle sphere of 0.44 MB with them, 1.4× faster on sphere_80k,
-/// 15 MB).
+/// requests only cost instructions.
 const ASK_AHEAD_BYTES: usize = 1 << 20;
 
 /// The bytes of a node: four cache lines...
@@ -79,7 +78,7 @@ struct Walk {
     /// of its triangles still to decide (requested from memory).
     pending: (u32, u32),
     /// Children still to visit, nearest on top; `stack[..top]` is live,
-    /// `top ≤ accel.stack_len ≤ STACK`, and a node opening writes at most
+    /// `top ≤ accel.bvh.stack_len() ≤ STACK`, and a node opening writes at most
     /// `WIDTH` entries from `top` on. Indices are taken modulo `STACK`
     /// (which changes none of them) so that no access needs a bounds check.
     stack: [Deferred; STACK + WIDTH],
@@ -109,7 +108,7 @@ impl Walk {
     /// A walk with nothing to do (the next [`Walk::start`] gives it a ray).
     fn idle() -> Walk {
         let ray = Ray::new(glam::DVec3::ZERO, glam::DVec3::X);
-        let frame = super::accel::BoxFrame {
+        let frame = BoxFrame {
             centre: glam::DVec3::ZERO,
             scale: 1.0,
         };
@@ -145,14 +144,16 @@ impl Walk {
         }
         self.scaled = scaled;
         self.t_scale = t_scale;
-        self.rays_box = RayBox::new(&scaled, &accel.frame);
-        self.packet_ray = PacketRay::new(&scaled, accel.frame.scale);
+        self.rays_box = RayBox::new(&scaled, accel.bvh.frame());
+        self.packet_ray = PacketRay::new(&scaled, accel.bvh.frame().scale);
         self.best = None;
         self.t_limit = f64::INFINITY;
         self.limit = self.rays_box.limit(f64::INFINITY);
         self.limit_key = limit_key(self.limit);
         self.pending = (0, 0);
-        self.top = accel.open_node(lanes, &self.rays_box, 0, self.limit, &mut self.stack, 0);
+        self.top = accel
+            .bvh
+            .open_node(lanes, &self.rays_box, 0, self.limit, &mut self.stack, 0);
     }
 
     /// The answer for `r` by [`Accel::first_best`], left as this walk's
@@ -170,8 +171,8 @@ impl Walk {
 impl Accel {
     /// The first hits of `rays` (checked valid by the caller) into `out`,
     /// in order; every slot of `out` is written.
-    /// Nodes are opened with AVX2 where the processor has it (see
-    /// `node_open`).
+    /// Nodes are opened with AVX-512 or AVX2 where the processor has them
+    /// (see `spatial::bvh::open`).
     pub(super) fn first_hits_interleaved(
         &self,
         rays: &[Ray],
@@ -193,9 +194,9 @@ impl Accel {
     }
 
     /// [`Accel::first_hits_interleaved`] compiled for AVX-512, with its
-    /// node opener (see `node_open`); the rest of the walk is the same code
+    /// node opener (see `spatial::bvh::open`); the rest of the walk is the same code
     /// as [`Accel::first_hits_avx2`], encoded with the extra registers and
-    /// folded broadcasts (3–5% faster on AMD Zen 4 by that alone).
+    /// folded broadcasts, which alone make it faster where offered.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,popcnt,fma,bmi1,bmi2,lzcnt,avx512f,avx512vl,avx512bw,avx512dq")]
     fn first_hits_avx512(
@@ -231,7 +232,7 @@ impl Accel {
         out: &mut [MaybeUninit<Option<Crossing>>],
         scratch: &mut WalkScratch,
     ) {
-        if self.stack_len > STACK {
+        if self.bvh.stack_len() > STACK {
             for (o, r) in out.iter_mut().zip(rays) {
                 o.write(self.first_hit_unchecked(r));
             }
@@ -341,7 +342,9 @@ impl Accel {
             w.pending = (packet.first, undecided);
         } else {
             let sp = w.top % STACK;
-            w.top = self.open_node(lanes, &w.rays_box, child, w.limit, &mut w.stack, sp);
+            w.top = self
+                .bvh
+                .open_node(lanes, &w.rays_box, child, w.limit, &mut w.stack, sp);
         }
         if ASK_AHEAD && w.top > 0 {
             let next = w.stack[(w.top - 1) % STACK].child;
@@ -351,7 +354,7 @@ impl Accel {
             // (a line already on its way, not the next packet's).
             let index = (next & !LEAF) as usize;
             let packet = self.packets.as_ptr().wrapping_add(index).cast::<u8>();
-            let node = self.nodes.as_ptr().wrapping_add(index).cast::<u8>();
+            let node = self.bvh.nodes().as_ptr().wrapping_add(index).cast::<u8>();
             let is_packet = next & LEAF != 0;
             let start = std::hint::select_unpredictable(is_packet, packet, node);
             prefetch_bytes(start, PACKET_BYTES - 1);
@@ -366,8 +369,8 @@ impl Accel {
 mod tests {
     use super::*;
     use crate::mesh::builders;
-    use crate::query::node_open::for_each_lanes;
     use crate::query::ray_solid::tests::rays_towards_the_centre;
+    use crate::spatial::bvh::for_each_lanes;
 
     /// Every form of the interleaved walk (asking ahead or not, 8 or 16
     /// walks in turn) answers each ray as the one-ray walk does, whatever

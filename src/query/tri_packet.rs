@@ -3,10 +3,10 @@
 //!
 //! A ray meets a BVH leaf's box far more often than it crosses one of the
 //! leaf's triangles. Each leaf keeps a copy of its triangles' corners
-//! relative to the leaf's own centre, scaled by the accel's
-//! [`BoxFrame`](super::accel::BoxFrame) scale and rounded to `f32`, laid out lane by lane, so that
-//! the three edge signs of all four triangles are computed side by side in
-//! one pass. Coordinates relative to the leaf keep the rounding error in
+//! relative to the leaf's own centre, scaled by the scale of the BVH's
+//! frame (`spatial::bvh::BoxFrame`) and rounded to `f32`, laid out lane by
+//! lane, so that the three edge signs of all four triangles are computed
+//! side by side in one pass. Coordinates relative to the leaf keep the rounding error in
 //! proportion to the triangles' size, wherever they are and however fine
 //! the mesh. A triangle is dropped only when two of its edge signs are
 //! *proven* opposite (see [`TriPacket::undecided`] for the bound): then the
@@ -20,11 +20,13 @@ use glam::DVec3;
 
 use crate::geom::{Ray, larger};
 
-use super::accel::YzTri;
-use super::lanes::F32x4;
+use crate::spatial::LEAF_SIZE;
+use crate::spatial::raw::lanes::F32x4;
+
+use super::triangle_records::YzTri;
 
 /// Triangles per packet: the most a BVH leaf holds.
-pub(super) const LANES: usize = 4;
+pub(super) const LANES: usize = LEAF_SIZE;
 
 /// The triangles of one BVH leaf: their corners `p` as `(p − centre) ·
 /// scale` rounded to the nearest `f32` (through the rounded `f64`
@@ -183,7 +185,7 @@ impl PacketRay {
     /// round, which the proof of [`TriPacket::undecided`] does not cover.
     /// An infinite `S` makes the bound infinite.
     ///
-    /// [`unit_scaled`]: super::ray_solid::unit_scaled
+    /// [`unit_scaled`]: super::ray_scaling::unit_scaled
     #[must_use]
     pub(super) fn blind(self) -> PacketRay {
         PacketRay {
@@ -193,7 +195,7 @@ impl PacketRay {
     }
 
     /// `ray` (with its direction scaled by
-    /// [`unit_scaled`](super::ray_solid::unit_scaled)) against the packets
+    /// [`unit_scaled`](super::ray_scaling::unit_scaled)) against the packets
     /// of an accel with frame scale `scale`.
     #[inline(always)]
     pub(super) fn new(ray: &Ray, scale: f64) -> PacketRay {
@@ -260,7 +262,7 @@ mod tests {
             if direction == DVec3::ZERO {
                 continue;
             }
-            let (ray, _) = super::super::ray_solid::unit_scaled(&Ray::new(origin, direction));
+            let (ray, _) = super::super::ray_scaling::unit_scaled(&Ray::new(origin, direction));
             let r = PacketRay::new(&ray, 1.0 / scale);
             let mask = packet.undecided(&r);
             assert_eq!(mask >> count, 0, "case {case}: lanes beyond the leaf");

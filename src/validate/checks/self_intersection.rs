@@ -3,14 +3,13 @@
 //!
 //! Faces are cut into triangles (the exact constrained Delaunay
 //! triangulation of `geom::triangulate` in the face's axis projection; a
-//! fan for a face whose projection is not simple), the triangles are binned
-//! in a uniform grid
-//! sized from their average extent (the broad phase, written here; the query
-//! layer's BVH is not used by design), and every pair of triangles of
-//! different faces whose boxes overlap is tested exactly: only `orient3d` and
-//! `orient2d` signs decide, no epsilon. Cells are processed in parallel. Each
-//! pair is tested in exactly one cell (the one holding the lowest corner of
-//! the two boxes' overlap).
+//! fan for a face whose projection is not simple), the broad phase is the
+//! shared BVH's pair walk over the triangles' boxes ([`Bvh::par_self_leaf_pairs`]),
+//! and every pair of triangles of different faces whose boxes overlap
+//! (closed boxes: touching counts) is tested exactly, once: only `orient3d`
+//! and `orient2d` signs decide, no epsilon. The pairs of leaves are tested
+//! in parallel; the defects found are sorted, so their order depends on
+//! neither the tree nor the threads.
 //!
 //! How a pair is tested depends on the vertices its triangles share:
 //!
@@ -36,7 +35,8 @@ use rayon::prelude::*;
 use super::super::context::{Context, Shape};
 use super::super::report::{Rule, Violation};
 use crate::geom::polygon::Projection;
-use crate::geom::{Sign, orient2d, orient3d, triangles_intersect};
+use crate::geom::{Aabb, Sign, orient2d, orient3d, triangles_intersect};
+use crate::spatial::Bvh;
 
 /// A triangle of a face: three soup vertices and the face.
 #[derive(Clone, Copy, Debug)]
@@ -120,150 +120,48 @@ fn ear_clip(ctx: &Context, face: usize) -> Vec<[usize; 3]> {
     }
 }
 
-/// The uniform grid: cells of one size over the triangles' bounding box.
-struct Grid {
-    origin: DVec3,
-    inverse_cell: f64,
-    dims: [u64; 3],
+/// The triangle's exact bounding box.
+fn bounds(ctx: &Context, t: &Triangle) -> Aabb {
+    Aabb::from_points(t.vertices.map(|v| ctx.position(v)))
 }
 
-impl Grid {
-    fn cell(&self, p: DVec3) -> [u64; 3] {
-        let q = (p - self.origin) * self.inverse_cell;
-        let clamp = |x: f64, n: u64| (x.max(0.0) as u64).min(n - 1);
-        [
-            clamp(q.x, self.dims[0]),
-            clamp(q.y, self.dims[1]),
-            clamp(q.z, self.dims[2]),
-        ]
-    }
-
-    fn key(&self, c: [u64; 3]) -> u64 {
-        (c[0] * self.dims[1] + c[1]) * self.dims[2] + c[2]
-    }
+/// Whether two closed boxes share a point.
+fn overlap(a: &Aabb, b: &Aabb) -> bool {
+    !a.min.max(b.min).cmpgt(a.max.min(b.max)).any()
 }
 
-fn bounds(ctx: &Context, t: &Triangle) -> (DVec3, DVec3) {
-    let [a, b, c] = t.vertices.map(|v| ctx.position(v));
-    (a.min(b).min(c), a.max(b).max(c))
-}
-
+/// The pairs of faces (smaller index first, sorted, each once) of which
+/// two triangles meet beyond what they share.
 fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize, usize)> {
     if triangles.len() < 2 {
         return Vec::new();
     }
-    let boxes: Vec<(DVec3, DVec3)> = triangles.par_iter().map(|t| bounds(ctx, t)).collect();
-    let (lo, hi) = boxes.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), b| (lo.min(b.0), hi.max(b.1)),
-    );
-    // Divided before summing: a sum of extents near `f64::MAX` overflows.
-    let count = boxes.len() as f64;
-    let mean_extent = boxes
-        .iter()
-        .map(|b| (b.1 - b.0).max_element() / count)
-        .sum::<f64>();
-    // At most ~2^20 cells per axis and about as many cells as triangles.
-    let size = hi - lo;
-    let budget = (triangles.len() as f64).cbrt().max(1.0) * 2.0;
-    let cell = mean_extent
-        .max(size.max_element() / budget)
-        .max(size.max_element() / f64::from(1u32 << 20));
-    let cell = if cell > 0.0 && cell.is_finite() {
-        cell
-    } else {
-        1.0
-    };
-    // The model's size can overflow (corners near ±`f64::MAX`) and the cell
-    // fall back to 1: the count is capped before the cast, never after.
-    let max_dim = 1u64 << 20;
-    let dims_of = |x: f64| ((x / cell).min(max_dim as f64) as u64 + 1).min(max_dim);
-    let grid = Grid {
-        origin: lo,
-        inverse_cell: 1.0 / cell,
-        dims: [dims_of(size.x), dims_of(size.y), dims_of(size.z)],
-    };
-    // Triangles much larger than the cells (a ground plane under a detailed
-    // model) would fill the grid: they are tested against every box instead.
-    let cells_of = |b: &(DVec3, DVec3)| {
-        let (c0, c1) = (grid.cell(b.0), grid.cell(b.1));
-        (0..3).map(|k| c1[k] - c0[k] + 1).product::<u64>()
-    };
-    let large: Vec<usize> = (0..boxes.len())
-        .filter(|&i| cells_of(&boxes[i]) > MAX_CELLS_PER_TRIANGLE)
-        .collect();
-    let mut is_large = vec![false; boxes.len()];
-    for &i in &large {
-        is_large[i] = true;
-    }
+    let boxes: Vec<Aabb> = triangles.par_iter().map(|t| bounds(ctx, t)).collect();
+    let (bvh, order) = Bvh::build(&boxes);
     let test = |a: usize, b: usize| -> Option<(usize, usize)> {
         let (ta, tb) = (&triangles[a], &triangles[b]);
-        if ta.face == tb.face {
+        if ta.face == tb.face || !overlap(&boxes[a], &boxes[b]) {
             return None;
         }
         triangles_meet_beyond_shared(ctx, ta, tb)
             .then(|| (ta.face.min(tb.face), ta.face.max(tb.face)))
     };
-    let overlap = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| !a.0.max(b.0).cmpgt(a.1.min(b.1)).any();
-    let (boxes_ref, is_large_ref, test_ref) = (&boxes, &is_large, &test);
-    let large_pairs: Vec<(usize, usize)> = large
-        .par_iter()
-        .flat_map_iter(|&a| {
-            let (boxes, is_large, test) = (boxes_ref, is_large_ref, test_ref);
-            (0..boxes.len())
-                // Each large pair once (from its lower index).
-                .filter(move |&b| b != a && !(is_large[b] && b < a))
-                .filter(move |&b| overlap(&boxes[a], &boxes[b]))
-                .filter_map(move |b| test(a, b))
-        })
-        .collect();
-    let mut entries: Vec<(u64, u32)> = boxes
-        .par_iter()
-        .enumerate()
-        .filter(|(i, _)| !is_large[*i])
-        .flat_map_iter(|(i, b)| {
-            let (c0, c1) = (grid.cell(b.0), grid.cell(b.1));
-            let grid = &grid;
-            (c0[0]..=c1[0]).flat_map(move |x| {
-                (c0[1]..=c1[1]).flat_map(move |y| {
-                    (c0[2]..=c1[2]).map(move |z| (grid.key([x, y, z]), i as u32))
-                })
-            })
-        })
-        .collect();
-    entries.par_sort_unstable();
-    let runs: Vec<&[(u64, u32)]> = entries.chunk_by(|a, b| a.0 == b.0).collect();
-    let mut pairs: Vec<(usize, usize)> = runs
-        .par_iter()
-        .flat_map_iter(|run| {
-            let mut found = Vec::new();
-            let key = run[0].0;
-            for (i, &(_, a)) in run.iter().enumerate() {
-                let (a, ba) = (a as usize, boxes[a as usize]);
-                for &(_, b) in &run[i + 1..] {
-                    let (b, bb) = (b as usize, boxes[b as usize]);
-                    let low = ba.0.max(bb.0);
-                    if low.cmpgt(ba.1.min(bb.1)).any() {
-                        continue;
-                    }
-                    if grid.key(grid.cell(low)) != key {
-                        continue;
-                    }
-                    found.extend(test(a, b));
-                }
+    let items = |leaf| bvh.leaf(leaf).unwrap_or_default().range();
+    let mut pairs = bvh.par_self_leaf_pairs(|la, lb, found| {
+        for p in items(la) {
+            // Within one leaf, each pair once.
+            let others = items(lb);
+            let start = if la == lb { p + 1 } else { others.start };
+            for q in start..others.end {
+                let (a, b) = (order[p] as usize, order[q] as usize);
+                found.extend(test(a.min(b), a.max(b)));
             }
-            found
-        })
-        .collect();
-    pairs.extend(large_pairs);
+        }
+    });
     pairs.par_sort_unstable();
     pairs.dedup();
     pairs
 }
-
-/// A triangle whose box spans more grid cells than this is tested against
-/// every box rather than binned (a grid cell is about one average triangle).
-const MAX_CELLS_PER_TRIANGLE: u64 = 4096;
 
 fn faces_share_a_vertex(ctx: &Context, a: usize, b: usize) -> bool {
     let (ca, cb) = (ctx.corners(a), ctx.corners(b));

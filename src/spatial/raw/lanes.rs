@@ -1,5 +1,5 @@
 //! Four `f32` lanes side by side: the arithmetic of the leaves' miss filter
-//! and of the portable slab tests (see `node_open`), written once.
+//! and of the portable slab tests (see `spatial::bvh::open_portable`), written once.
 //!
 //! On `x86_64` the operations are SSE and SSE2 instructions, one each for
 //! the arithmetic (both are part of the `x86_64` baseline, so no feature
@@ -12,14 +12,14 @@ use std::arch::x86_64 as arch;
 
 /// Four `f32` values.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct F32x4(
+pub(crate) struct F32x4(
     #[cfg(target_arch = "x86_64")] arch::__m128,
     #[cfg(not(target_arch = "x86_64"))] [f32; 4],
 );
 
 /// Four lane conditions, as a bit mask (bit `k` for lane `k`).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Mask4(
+pub(crate) struct Mask4(
     #[cfg(target_arch = "x86_64")] arch::__m128,
     #[cfg(not(target_arch = "x86_64"))] [bool; 4],
 );
@@ -33,68 +33,68 @@ mod imp {
 
     impl F32x4 {
         #[inline(always)]
-        pub(in super::super) fn splat(x: f32) -> F32x4 {
+        pub(crate) fn splat(x: f32) -> F32x4 {
             F32x4(unsafe { arch::_mm_set1_ps(x) })
         }
         #[inline(always)]
-        pub(in super::super) fn load(x: &[f32; 4]) -> F32x4 {
+        pub(crate) fn load(x: &[f32; 4]) -> F32x4 {
             F32x4(unsafe { arch::_mm_loadu_ps(x.as_ptr()) })
         }
         #[inline(always)]
-        pub(in super::super) fn to_array(self) -> [f32; 4] {
+        pub(crate) fn to_array(self) -> [f32; 4] {
             let mut out = [0.0; 4];
             unsafe { arch::_mm_storeu_ps(out.as_mut_ptr(), self.0) };
             out
         }
         #[inline(always)]
-        pub(in super::super) fn add(self, o: F32x4) -> F32x4 {
+        pub(crate) fn add(self, o: F32x4) -> F32x4 {
             F32x4(unsafe { arch::_mm_add_ps(self.0, o.0) })
         }
         #[inline(always)]
-        pub(in super::super) fn sub(self, o: F32x4) -> F32x4 {
+        pub(crate) fn sub(self, o: F32x4) -> F32x4 {
             F32x4(unsafe { arch::_mm_sub_ps(self.0, o.0) })
         }
         #[inline(always)]
-        pub(in super::super) fn mul(self, o: F32x4) -> F32x4 {
+        pub(crate) fn mul(self, o: F32x4) -> F32x4 {
             F32x4(unsafe { arch::_mm_mul_ps(self.0, o.0) })
         }
         /// Per lane `if self > o { self } else { o }`: `o` when either is
         /// NaN (`maxps` returns its second operand then).
         #[inline(always)]
-        pub(in super::super) fn max_or(self, o: F32x4) -> F32x4 {
+        pub(crate) fn max_or(self, o: F32x4) -> F32x4 {
             F32x4(unsafe { arch::_mm_max_ps(self.0, o.0) })
         }
         /// Per lane `if self < o { self } else { o }`.
         #[inline(always)]
-        pub(in super::super) fn min_or(self, o: F32x4) -> F32x4 {
+        pub(crate) fn min_or(self, o: F32x4) -> F32x4 {
             F32x4(unsafe { arch::_mm_min_ps(self.0, o.0) })
         }
         #[inline(always)]
-        pub(in super::super) fn gt(self, o: F32x4) -> Mask4 {
+        pub(crate) fn gt(self, o: F32x4) -> Mask4 {
             Mask4(unsafe { arch::_mm_cmpgt_ps(self.0, o.0) })
         }
         #[inline(always)]
-        pub(in super::super) fn lt(self, o: F32x4) -> Mask4 {
+        pub(crate) fn lt(self, o: F32x4) -> Mask4 {
             Mask4(unsafe { arch::_mm_cmplt_ps(self.0, o.0) })
         }
         #[inline(always)]
-        pub(in super::super) fn le(self, o: F32x4) -> Mask4 {
+        pub(crate) fn le(self, o: F32x4) -> Mask4 {
             Mask4(unsafe { arch::_mm_cmple_ps(self.0, o.0) })
         }
     }
 
     impl Mask4 {
         #[inline(always)]
-        pub(in super::super) fn or(self, o: Mask4) -> Mask4 {
+        pub(crate) fn or(self, o: Mask4) -> Mask4 {
             Mask4(unsafe { arch::_mm_or_ps(self.0, o.0) })
         }
         #[inline(always)]
-        pub(in super::super) fn and(self, o: Mask4) -> Mask4 {
+        pub(crate) fn and(self, o: Mask4) -> Mask4 {
             Mask4(unsafe { arch::_mm_and_ps(self.0, o.0) })
         }
         /// Bit `k` set when lane `k` holds.
         #[inline(always)]
-        pub(in super::super) fn bits(self) -> u32 {
+        pub(crate) fn bits(self) -> u32 {
             (unsafe { arch::_mm_movemask_ps(self.0) }) as u32
         }
     }
@@ -106,15 +106,15 @@ mod imp {
 
     impl F32x4 {
         #[inline(always)]
-        pub(in super::super) fn splat(x: f32) -> F32x4 {
+        pub(crate) fn splat(x: f32) -> F32x4 {
             F32x4([x; 4])
         }
         #[inline(always)]
-        pub(in super::super) fn load(x: &[f32; 4]) -> F32x4 {
+        pub(crate) fn load(x: &[f32; 4]) -> F32x4 {
             F32x4(*x)
         }
         #[inline(always)]
-        pub(in super::super) fn to_array(self) -> [f32; 4] {
+        pub(crate) fn to_array(self) -> [f32; 4] {
             self.0
         }
         #[inline(always)]
@@ -126,53 +126,53 @@ mod imp {
             Mask4([0, 1, 2, 3].map(|k| f(self.0[k], o.0[k])))
         }
         #[inline(always)]
-        pub(in super::super) fn add(self, o: F32x4) -> F32x4 {
+        pub(crate) fn add(self, o: F32x4) -> F32x4 {
             self.zip(o, |a, b| a + b)
         }
         #[inline(always)]
-        pub(in super::super) fn sub(self, o: F32x4) -> F32x4 {
+        pub(crate) fn sub(self, o: F32x4) -> F32x4 {
             self.zip(o, |a, b| a - b)
         }
         #[inline(always)]
-        pub(in super::super) fn mul(self, o: F32x4) -> F32x4 {
+        pub(crate) fn mul(self, o: F32x4) -> F32x4 {
             self.zip(o, |a, b| a * b)
         }
         /// Per lane `if self > o { self } else { o }`.
         #[inline(always)]
-        pub(in super::super) fn max_or(self, o: F32x4) -> F32x4 {
+        pub(crate) fn max_or(self, o: F32x4) -> F32x4 {
             self.zip(o, |a, b| if a > b { a } else { b })
         }
         /// Per lane `if self < o { self } else { o }`.
         #[inline(always)]
-        pub(in super::super) fn min_or(self, o: F32x4) -> F32x4 {
+        pub(crate) fn min_or(self, o: F32x4) -> F32x4 {
             self.zip(o, |a, b| if a < b { a } else { b })
         }
         #[inline(always)]
-        pub(in super::super) fn gt(self, o: F32x4) -> Mask4 {
+        pub(crate) fn gt(self, o: F32x4) -> Mask4 {
             self.test(o, |a, b| a > b)
         }
         #[inline(always)]
-        pub(in super::super) fn lt(self, o: F32x4) -> Mask4 {
+        pub(crate) fn lt(self, o: F32x4) -> Mask4 {
             self.test(o, |a, b| a < b)
         }
         #[inline(always)]
-        pub(in super::super) fn le(self, o: F32x4) -> Mask4 {
+        pub(crate) fn le(self, o: F32x4) -> Mask4 {
             self.test(o, |a, b| a <= b)
         }
     }
 
     impl Mask4 {
         #[inline(always)]
-        pub(in super::super) fn or(self, o: Mask4) -> Mask4 {
+        pub(crate) fn or(self, o: Mask4) -> Mask4 {
             Mask4([0, 1, 2, 3].map(|k| self.0[k] | o.0[k]))
         }
         #[inline(always)]
-        pub(in super::super) fn and(self, o: Mask4) -> Mask4 {
+        pub(crate) fn and(self, o: Mask4) -> Mask4 {
             Mask4([0, 1, 2, 3].map(|k| self.0[k] & o.0[k]))
         }
         /// Bit `k` set when lane `k` holds.
         #[inline(always)]
-        pub(in super::super) fn bits(self) -> u32 {
+        pub(crate) fn bits(self) -> u32 {
             (0..4).map(|k| u32::from(self.0[k]) << k).sum()
         }
     }

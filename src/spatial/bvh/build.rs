@@ -1,48 +1,52 @@
-//! The binary SAH tree over the fan triangles, which the accel then
-//! collapses into eight-wide nodes.
+//! The binary SAH tree over the items' boxes, which is then collapsed
+//! into eight-wide nodes (`collapse`).
 //!
-//! Boxes are the triangles' boxes in the accel's [`BoxFrame`], rounded
+//! Boxes are the items' boxes in the tree's [`BoxFrame`], rounded
 //! outward to `f32` as node boxes are stored, so every node's box contains
-//! its triangles exactly. Where a split falls is a heuristic (binned SAH
-//! on the longest axis of the triangles' centres); it decides no answer,
+//! its items exactly. Where a split falls is a heuristic (binned SAH
+//! on the longest axis of the items' centres); it decides no answer,
 //! only how fast answers come.
 //!
 //! Box arithmetic is on [`Vec3A`] (one SSE register on `x86_64`): the
-//! build's inner loop grows a bin's box and its centres' box by a triangle,
+//! build's inner loop grows a bin's box and its centres' box by an item,
 //! which is then four `minps`/`maxps`.
 
-use glam::{DVec3, Vec3A};
+use glam::Vec3A;
 use rayon::prelude::*;
 
 use crate::geom::Aabb;
 
-use super::accel::{BoxFrame, Node};
-use super::tri_packet::LANES;
+use super::node::{BoxFrame, Node};
 
-/// Largest number of triangles in a leaf: one [`TriPacket`](super::tri_packet::TriPacket).
-pub(super) const LEAF_SIZE: usize = LANES;
+/// Largest number of items in a leaf: four, so that a leaf's items fit
+/// the four lanes of the rays' leaf filter (`query::tri_packet`).
+pub const LEAF_SIZE: usize = 4;
 /// SAH bins per split.
 const BINS: usize = 16;
-/// Subtrees of at most this many triangles are split by sorting them and
+/// Subtrees of at most this many items are split by sorting them and
 /// trying every split (cheaper than binning at this size, and exact).
 const SORTED_SPLIT: usize = 16;
 /// Subtrees at least this large are built on two threads.
 const PARALLEL_BUILD: usize = 16 * 1024;
 
-/// The binary BVH of `tris` (leaves of at most [`LEAF_SIZE`] triangles),
-/// the triangle order of its leaves, the frame its boxes are in, and the
-/// exact bounding box of all triangles.
-pub(super) fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>, BoxFrame, Aabb) {
-    let bounds = tris
-        .par_iter()
-        .map(|t| Aabb::from_points(*t))
+/// The binary BVH of `count` items with exact boxes `bounds_of(0 ..
+/// count)` (leaves of at most [`LEAF_SIZE`] items), the item order of its
+/// leaves, the frame its boxes are in, and the exact bounding box of all
+/// items. `bounds_of` is called twice per item (a box is cheaper to make
+/// again than to keep).
+pub(super) fn build_bvh(
+    count: usize,
+    bounds_of: impl Fn(usize) -> Aabb + Sync,
+) -> (Vec<Node>, Vec<u32>, BoxFrame, Aabb) {
+    let bounds = (0..count)
+        .into_par_iter()
+        .map(&bounds_of)
         .reduce(|| Aabb::EMPTY, Aabb::union);
     let frame = BoxFrame::of(&bounds);
-    let (mut boxes, mut index): (Vec<PrimBox>, Vec<u32>) = tris
-        .par_iter()
-        .enumerate()
-        .map(|(i, t)| {
-            let b = Aabb::from_points(*t);
+    let (mut boxes, mut index): (Vec<PrimBox>, Vec<u32>) = (0..count)
+        .into_par_iter()
+        .map(|i| {
+            let b = bounds_of(i);
             let lo = [0, 1, 2].map(|a| frame.lower(b.min[a], a));
             let hi = [0, 1, 2].map(|a| frame.upper(b.max[a], a));
             let prim = PrimBox {
@@ -75,7 +79,7 @@ pub(super) fn build_bvh(tris: &[[DVec3; 3]]) -> (Vec<Node>, Vec<u32>, BoxFrame, 
     (nodes, index, frame, bounds)
 }
 
-/// A triangle's box as the build sees it (32 bytes). The build partitions
+/// An item's box as the build sees it (32 bytes). The build partitions
 /// these records in place, so each level streams through memory instead of
 /// gathering boxes through an index array.
 #[derive(Clone, Copy, Debug)]
@@ -85,7 +89,7 @@ struct PrimBox {
 }
 
 impl PrimBox {
-    /// Twice the middle of the box (the SAH's position of the triangle:
+    /// Twice the middle of the box (the SAH's position of the item:
     /// any point of the box would keep the build correct, and doubling
     /// spares a multiplication).
     #[inline(always)]
@@ -94,7 +98,7 @@ impl PrimBox {
     }
 }
 
-/// The triangles of a subtree: their boxes and, in step, their indices,
+/// The items of a subtree: their boxes and, in step, their indices,
 /// with a byte each of scratch (their bins while the subtree is split).
 struct Prims<'a> {
     boxes: &'a mut [PrimBox],
@@ -131,7 +135,7 @@ impl<'a> Prims<'a> {
     }
 }
 
-/// The boxes of a subtree: of its triangles (as stored in nodes) and of
+/// The boxes of a subtree: of its items (as stored in nodes) and of
 /// their doubled centres ([`PrimBox::centre2`]).
 #[derive(Clone, Copy, Debug)]
 struct Extent {
@@ -172,7 +176,7 @@ impl Extent {
         boxes.iter().fold(Extent::EMPTY, Extent::grow)
     }
 
-    /// Half the surface area of the triangles' box (0 when empty).
+    /// Half the surface area of the items' box (0 when empty).
     fn half_area(&self) -> f32 {
         if self.min.x > self.max.x {
             return 0.0;
@@ -191,7 +195,7 @@ impl Extent {
     }
 }
 
-/// One SAH bin: the triangles whose centre falls in it.
+/// One SAH bin: the items whose centre falls in it.
 #[derive(Clone, Copy)]
 struct Bin {
     ext: Extent,
@@ -218,9 +222,9 @@ impl Bin {
     }
 }
 
-/// Where triangles fall among the bins along axis `AXIS`: the bin of a
+/// Where items fall among the bins along axis `AXIS`: the bin of a
 /// doubled centre `c` is `(c − lo) · scale`, rounded down and clamped.
-/// Binning and partitioning place a triangle by the bin recorded for it.
+/// Binning and partitioning place a item by the bin recorded for it.
 #[derive(Clone, Copy)]
 struct Binning<const AXIS: usize> {
     lo: f32,
@@ -234,11 +238,11 @@ impl<const AXIS: usize> Binning<AXIS> {
         (at as i32).clamp(0, BINS as i32 - 1) as u8
     }
 
-    /// The triangles' counts and extents per bin; `bin_of[i]` is set to
+    /// The items' counts and extents per bin; `bin_of[i]` is set to
     /// the bin of `boxes[i]`.
     fn bins(&self, boxes: &[PrimBox], bin_of: &mut [u8]) -> [Bin; BINS] {
-        // Two sets of bins, for even and odd triangles: consecutive
-        // triangles often share a bin, and one set would make each update
+        // Two sets of bins, for even and odd items: consecutive
+        // items often share a bin, and one set would make each update
         // wait for the last.
         let mut bins = [[Bin::EMPTY; BINS]; 2];
         let (pairs, rest) = boxes.as_chunks::<2>();
@@ -257,7 +261,7 @@ impl<const AXIS: usize> Binning<AXIS> {
 }
 
 /// The bin after which the SAH splits `bins`, if any split leaves
-/// triangles on both sides.
+/// items on both sides.
 fn best_split(bins: &[Bin; BINS]) -> Option<usize> {
     // Sweep from the right for suffix areas.
     let mut right_area = [0.0f32; BINS];
@@ -268,8 +272,8 @@ fn best_split(bins: &[Bin; BINS]) -> Option<usize> {
         right_area[k] = acc.ext.half_area();
         right_count[k] = acc.count;
     }
-    // A leaf's triangles are tested a packet of four at a time: count
-    // packets, not triangles, so that splits fill them.
+    // A leaf's items are tested a packet of four at a time (the rays' leaf
+    // filter): count packets, not items, so that splits fill them.
     let packets = |c: u32| c.div_ceil(LEAF_SIZE as u32) as f32;
     let mut best: Option<(f32, usize)> = None;
     let mut acc = Bin::EMPTY;
@@ -289,7 +293,7 @@ fn best_split(bins: &[Bin; BINS]) -> Option<usize> {
 
 /// Splits `prims` (more than [`LEAF_SIZE`], extent `ext`) along the
 /// longest axis of the centres' box, in place: by binned SAH, or for at
-/// most [`SORTED_SPLIT`] triangles by [`split_sorted`]. Returns the size of
+/// most [`SORTED_SPLIT`] items by [`split_sorted`]. Returns the size of
 /// the first part and the extents of both parts.
 fn partition(prims: &mut Prims, ext: &Extent) -> (usize, Extent, Extent) {
     let size = ext.centre2_max - ext.centre2_min;
@@ -323,7 +327,7 @@ fn ordered_bits(x: f32) -> u32 {
     if b >> 31 == 1 { !b } else { b | 1 << 31 }
 }
 
-/// [`partition`] of at most [`SORTED_SPLIT`] triangles: sorted by centre
+/// [`partition`] of at most [`SORTED_SPLIT`] items: sorted by centre
 /// along `axis` (ties by position, so the order is deterministic), then
 /// split where the SAH cost over all `n − 1` places is least.
 fn split_sorted(prims: &mut Prims, axis: usize) -> (usize, Extent, Extent) {
@@ -334,15 +338,15 @@ fn split_sorted(prims: &mut Prims, axis: usize) -> (usize, Extent, Extent) {
     }
     let keys = &mut keys[..n];
     keys.sort_unstable();
-    // The low 16 bits of a key are the triangle's place; slots past `n`
-    // repeat the last triangle and are never used.
+    // The low 16 bits of a key are the item's place; slots past `n`
+    // repeat the last item and are never used.
     let boxes: [PrimBox; SORTED_SPLIT] =
         std::array::from_fn(|k| prims.boxes[(keys[k.min(n - 1)] & 0xffff) as usize]);
     let index: [u32; SORTED_SPLIT] =
         std::array::from_fn(|k| prims.index[(keys[k.min(n - 1)] & 0xffff) as usize]);
     prims.boxes.copy_from_slice(&boxes[..n]);
     prims.index.copy_from_slice(&index[..n]);
-    // right[k]: the extent of triangles k.. .
+    // right[k]: the extent of items k.. .
     let mut right = [Extent::EMPTY; SORTED_SPLIT + 1];
     for k in (1..n).rev() {
         right[k] = right[k + 1].grow(&boxes[k]);
@@ -453,6 +457,8 @@ fn build_node_parallel(mut prims: Prims, offset: usize, ext: &Extent) -> Vec<Nod
 
 #[cfg(test)]
 mod tests {
+    use glam::DVec3;
+
     use super::*;
 
     /// Checks every invariant the collapse and the walks rely on: leaves
@@ -460,7 +466,7 @@ mod tests {
     /// order is a permutation, an inner node's box holds its children's,
     /// and each triangle's rounded box lies in its leaf's box.
     fn check_tree(tris: &[[DVec3; 3]]) {
-        let (nodes, order, frame, bounds) = build_bvh(tris);
+        let (nodes, order, frame, bounds) = build_bvh(tris.len(), |i| Aabb::from_points(tris[i]));
         let mut seen = vec![false; tris.len()];
         for &i in &order {
             assert!(!std::mem::replace(&mut seen[i as usize], true), "{i} twice");

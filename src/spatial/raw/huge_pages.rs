@@ -1,4 +1,5 @@
-//! Large accel arrays on huge pages, where the system offers them.
+//! Large arrays of the spatial structures and their queries on huge pages,
+//! where the system offers them.
 //!
 //! A ray's walk reads a few nodes, packets and triangles scattered over
 //! arrays of many megabytes. With 4 KiB pages nearly every one of those
@@ -14,13 +15,10 @@
 //! Elsewhere, or when the system refuses, nothing changes: the advice is
 //! about how memory is backed, never about what it holds.
 //!
-//! Measured on sphere_80k (13 MB of accel), one thread: first hits of 1M
-//! rays 0.29 s against 0.33 s when the arrays' 2 MiB-aligned parts were
-//! advised. With whole arrays on huge pages instead (2–4 MB of each array
-//! had stayed on small pages), faster again in 9 of 10 alternated pairs on
-//! sphere_80k (by 5–7%) and 5 of 6 on torus_knot (2026-11-21); the share of
-//! the walk's time samples that wait on its memory requests fell from 28%
-//! to 22%.
+//! Whole arrays go on huge pages, not only their 2 MiB-aligned middle
+//! parts: the few megabytes left on small pages at each end of an array are
+//! read as often as the rest, and their misses of the translation cache
+//! are a visible share of a walk's waiting on memory.
 
 use std::alloc::{Layout, alloc, dealloc, handle_alloc_error};
 use std::mem::MaybeUninit;
@@ -48,7 +46,7 @@ const HUGE_ARRAY_BYTES: usize = HUGE / 2;
 /// `ptr` is `layout`'s allocation (dangling when `layout.size()` is 0),
 /// with room for `capacity` items; `ptr[..len]` are initialised and
 /// `len ≤ capacity`.
-pub(super) struct HugeVec<T: Copy> {
+pub(crate) struct HugeVec<T: Copy> {
     ptr: NonNull<T>,
     len: usize,
     capacity: usize,
@@ -67,7 +65,7 @@ impl<T: Copy> HugeVec<T> {
     ///
     /// When `capacity` items do not fit the address space (as
     /// `Vec::with_capacity`); aborts when memory runs out.
-    pub(super) fn with_capacity(capacity: usize) -> HugeVec<T> {
+    pub(crate) fn with_capacity(capacity: usize) -> HugeVec<T> {
         let bytes = size_of::<T>()
             .checked_mul(capacity)
             .expect("capacity overflow");
@@ -102,7 +100,7 @@ impl<T: Copy> HugeVec<T> {
     }
 
     /// The vector of `items`, in order, made on all cores.
-    pub(super) fn from_par_iter<I>(items: I) -> HugeVec<T>
+    pub(crate) fn from_par_iter<I>(items: I) -> HugeVec<T>
     where
         I: IndexedParallelIterator<Item = T>,
         T: Send,
@@ -128,7 +126,7 @@ impl<T: Copy> HugeVec<T> {
     /// # Panics
     ///
     /// When the vector is full (its capacity is a bound the caller proves).
-    pub(super) fn push(&mut self, item: T) {
+    pub(crate) fn push(&mut self, item: T) {
         assert!(self.len < self.capacity, "HugeVec is full");
         // SAFETY: `len < capacity`, so the slot lies in the allocation.
         unsafe { self.ptr.as_ptr().add(self.len).write(item) };
@@ -137,7 +135,7 @@ impl<T: Copy> HugeVec<T> {
 
     /// The bytes the items occupy, in whole huge pages when the vector has
     /// its own: what it adds to the process's resident memory once written.
-    pub(super) fn memory_bytes(&self) -> usize {
+    pub(crate) fn memory_bytes(&self) -> usize {
         let bytes = self.len * size_of::<T>();
         if self.layout.align() == HUGE {
             bytes.next_multiple_of(HUGE)
@@ -150,7 +148,7 @@ impl<T: Copy> HugeVec<T> {
     /// vector has memory of its own (a no-op for pages already there: memory
     /// the allocator mapped afresh faulted in as huge pages; reused memory
     /// may not have). Only the huge pages holding items are asked for.
-    pub(super) fn collapse(&self) {
+    pub(crate) fn collapse(&self) {
         if self.layout.align() == HUGE && self.len > 0 {
             let len = self.memory_bytes();
             advise(self.ptr.as_ptr() as usize, len, Advice::Collapse);
@@ -216,7 +214,7 @@ impl<T: Copy + std::fmt::Debug> std::fmt::Debug for HugeVec<T> {
 /// Asks the system to move the 2 MiB-aligned part of `items` onto huge
 /// pages now (for arrays that are not [`HugeVec`]s; a no-op for parts
 /// already there; ignored where unsupported).
-pub(super) fn collapse_into_huge_pages<T>(items: &[T]) {
+pub(crate) fn collapse_into_huge_pages<T>(items: &[T]) {
     for_aligned_part(
         items.as_ptr() as usize,
         std::mem::size_of_val(items),

@@ -1,0 +1,63 @@
+//! The fan triangulation of a solid's faces, with a canonical apex.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::mesh::{FaceId, Solid};
+
+/// The fan triangles of every face (apex at [`fan_apex`]) and their faces,
+/// in face order.
+pub(super) fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
+    let ids: Vec<FaceId> = solid.faces().map(|(id, _)| id).collect();
+    // Each run of faces makes its triangles into two flat arrays, which are
+    // then appended in order (a copy of a few large blocks, not one small
+    // vector per face).
+    let parts: Vec<(Vec<[DVec3; 3]>, Vec<FaceId>)> = ids
+        .par_chunks(FAN_CHUNK)
+        .map(|run| {
+            let (mut tris, mut faces) =
+                (Vec::with_capacity(run.len()), Vec::with_capacity(run.len()));
+            let mut corners: Vec<DVec3> = Vec::with_capacity(8);
+            for &id in run {
+                corners.clear();
+                for v in solid.face_vertices(id) {
+                    corners.push(solid.position(v));
+                }
+                // Canonical fan apex: the triangulation of a face whose
+                // corners are not exactly coplanar must not depend on where
+                // its vertex list starts.
+                let apex = fan_apex(&corners);
+                corners.rotate_left(apex);
+                for k in 1..corners.len().saturating_sub(1) {
+                    tris.push([corners[0], corners[k], corners[k + 1]]);
+                    faces.push(id);
+                }
+            }
+            (tris, faces)
+        })
+        .collect();
+    let count: usize = parts.iter().map(|(t, _)| t.len()).sum();
+    let (mut tris, mut tri_face) = (Vec::with_capacity(count), Vec::with_capacity(count));
+    for (t, f) in &parts {
+        tris.extend_from_slice(t);
+        tri_face.extend_from_slice(f);
+    }
+    (tris, tri_face)
+}
+
+/// Faces per unit of parallel work in [`fan_triangles`].
+const FAN_CHUNK: usize = 4096;
+
+/// The index of the lexicographically smallest point `(x, y, z)`: the apex
+/// of a face's fan triangulation. Preserved by translations and positive
+/// scalings, independent of where the vertex list starts.
+fn fan_apex(corners: &[DVec3]) -> usize {
+    (0..corners.len())
+        .min_by(|&i, &j| {
+            let (p, q) = (corners[i], corners[j]);
+            p.x.total_cmp(&q.x)
+                .then(p.y.total_cmp(&q.y))
+                .then(p.z.total_cmp(&q.z))
+        })
+        .unwrap_or(0)
+}

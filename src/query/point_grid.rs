@@ -1,0 +1,264 @@
+//! The uniform grid over the `yz` projection that point classification
+//! walks along `±x` (see ARCHITECTURE.md, "The point grid").
+
+use rayon::prelude::*;
+
+use crate::geom::Aabb;
+use crate::spatial::raw::huge_pages::{HugeVec, collapse_into_huge_pages};
+use crate::spatial::rounding::{f32_down, f32_up, f64_above};
+
+use super::triangle_records::YzTri;
+
+/// A uniform grid over the `yz` projection of the solid's bounding box; each
+/// cell lists the triangles whose projected bounding box overlaps it, by
+/// ascending lower bound of `x`, and a bound on their `x` extents: so the
+/// triangles a `−x` ray from a point can meet are a prefix of the cell's list
+/// and those a `+x` ray can meet are within a suffix.
+///
+/// # Invariants
+///
+/// - Cell `c` owns `entries[cell_start[c] .. cell_start[c + 1]]`, sorted by
+///   ascending [`GridEntry::x`], ties by record.
+/// - `extent[c] ≥ max x − entry.x` for every triangle listed in cell `c`
+///   (exactly, not only as rounded), so a triangle whose largest `x` is at
+///   least `x` has `entry.x ≥ x − extent[c]`.
+#[derive(Clone, Debug)]
+pub(super) struct YzGrid {
+    pub y0: f64,
+    pub z0: f64,
+    pub y1: f64,
+    pub z1: f64,
+    pub inv_hy: f64,
+    pub inv_hz: f64,
+    pub ny: usize,
+    pub nz: usize,
+    pub cell_start: Vec<u32>,
+    pub entries: HugeVec<GridEntry>,
+    pub extent: Vec<f32>,
+}
+
+/// One triangle listed in a grid cell: its `yz` record and its smallest `x`
+/// rounded down to `f32` (8 bytes).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct GridEntry {
+    /// A lower bound on the triangle's smallest `x`.
+    pub x: f32,
+    /// Index into the accel's triangles.
+    pub record: u32,
+}
+
+impl YzGrid {
+    /// The cell column of `y` (monotone in `y`, clamped).
+    #[inline]
+    pub fn col(&self, y: f64) -> usize {
+        (((y - self.y0) * self.inv_hy) as usize).min(self.ny - 1)
+    }
+
+    /// The cell row of `z` (monotone in `z`, clamped).
+    #[inline]
+    pub fn row(&self, z: f64) -> usize {
+        (((z - self.z0) * self.inv_hz) as usize).min(self.nz - 1)
+    }
+
+    /// The index of the cell holding `(y, z)`.
+    #[inline]
+    pub fn cell_index(&self, y: f64, z: f64) -> usize {
+        self.row(z) * self.ny + self.col(y)
+    }
+
+    /// The triangles of cell `c` (an index from [`YzGrid::cell_index`]) and
+    /// the bound on their `x` extents (see [`YzGrid`]).
+    #[inline]
+    pub fn cell_at(&self, c: usize) -> (&[GridEntry], f32) {
+        let range = self.cell_start[c] as usize..self.cell_start[c + 1] as usize;
+        (&self.entries[range], self.extent[c])
+    }
+
+    /// The number of cells, `ny · nz`.
+    #[inline]
+    pub fn cell_count(&self) -> usize {
+        self.ny * self.nz
+    }
+
+    /// Triangle references held by the cells.
+    pub fn entries(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Heap bytes.
+    pub fn memory_bytes(&self) -> usize {
+        (self.cell_start.capacity() + self.extent.capacity()) * std::mem::size_of::<u32>()
+            + self.entries.memory_bytes()
+    }
+}
+
+/// Grid cells per triangle.
+const CELLS_PER_TRIANGLE: f64 = 1.0;
+/// The largest ratio of the grid's cell counts along `y` and `z`: a mesh
+/// that is flat in one of them still gets a grid of sensible shape. A layout
+/// choice, not a tolerance: it decides no answer.
+const MAX_GRID_ASPECT: f64 = 1e6;
+
+/// The grid of the triangles `yz` (in accel order) over the box `bounds`.
+pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
+    let (y0, z0, y1, z1) = if bounds.is_empty() {
+        (0.0, 0.0, 1.0, 1.0)
+    } else {
+        (bounds.min.y, bounds.min.z, bounds.max.y, bounds.max.z)
+    };
+    let (wy, wz) = (
+        (y1 - y0).max(f64::MIN_POSITIVE),
+        (z1 - z0).max(f64::MIN_POSITIVE),
+    );
+    let cells = (yz.len() as f64 * CELLS_PER_TRIANGLE).clamp(1.0, 64.0e6);
+    let aspect = (wy / wz).clamp(1.0 / MAX_GRID_ASPECT, MAX_GRID_ASPECT);
+    // At most 2¹⁴ cells either way (so a cell index fits `u16`).
+    let ny = ((cells * aspect).sqrt().round() as usize).clamp(1, 1 << 14);
+    let nz = ((cells / ny as f64).round() as usize).clamp(1, 1 << 14);
+    let mut grid = YzGrid {
+        y0,
+        z0,
+        y1,
+        z1,
+        inv_hy: ny as f64 / wy,
+        inv_hz: nz as f64 / wz,
+        ny,
+        nz,
+        cell_start: vec![0; ny * nz + 1],
+        entries: HugeVec::with_capacity(0),
+        extent: vec![0.0; ny * nz],
+    };
+    // Each triangle's cells: columns `c0..=c1`, rows `r0..=r1` (its
+    // projected box mapped by the monotone `col` and `row`).
+    let spans: Vec<[u16; 4]> = yz
+        .par_iter()
+        .with_min_len(4096)
+        .map(|t| {
+            let ymin = t.y[0].min(t.y[1]).min(t.y[2]);
+            let ymax = t.y[0].max(t.y[1]).max(t.y[2]);
+            let zmin = t.z[0].min(t.z[1]).min(t.z[2]);
+            let zmax = t.z[0].max(t.z[1]).max(t.z[2]);
+            [
+                grid.col(ymin),
+                grid.col(ymax),
+                grid.row(zmin),
+                grid.row(zmax),
+            ]
+            .map(|k| k as u16)
+        })
+        .collect();
+    // Rows are split into bands; a band's cells are a contiguous range (row
+    // major), so each band counts, fills and sorts its own part in parallel.
+    let bands = (4 * rayon::current_num_threads()).clamp(1, nz);
+    let band_rows = |b: usize| (b * nz / bands, (b + 1) * nz / bands);
+    let rows_of = |span: &[u16; 4], (lo, hi): (usize, usize)| {
+        usize::from(span[2]).max(lo)..(usize::from(span[3]) + 1).min(hi)
+    };
+    {
+        let mut counts: Vec<&mut [u32]> = Vec::with_capacity(bands);
+        let mut rest: &mut [u32] = &mut grid.cell_start[1..];
+        for b in 0..bands {
+            let (lo, hi) = band_rows(b);
+            let (head, tail) = std::mem::take(&mut rest).split_at_mut((hi - lo) * ny);
+            counts.push(head);
+            rest = tail;
+        }
+        counts.into_par_iter().enumerate().for_each(|(b, count)| {
+            let (lo, hi) = band_rows(b);
+            for span in &spans {
+                for r in rows_of(span, (lo, hi)) {
+                    for c in usize::from(span[0])..=usize::from(span[1]) {
+                        count[(r - lo) * ny + c] += 1;
+                    }
+                }
+            }
+        });
+    }
+    for i in 0..ny * nz {
+        grid.cell_start[i + 1] += grid.cell_start[i];
+    }
+    let total = grid.cell_start[ny * nz] as usize;
+    // Initialised in parallel: for a large mesh this is mostly page faults
+    // (fewer of them on huge pages, which the point queries' random reads
+    // want too).
+    let mut entries = HugeVec::from_par_iter(
+        (0..total)
+            .into_par_iter()
+            .with_min_len(1 << 16)
+            .map(|_| GridEntry::default()),
+    );
+    let mut parts = Vec::with_capacity(bands);
+    let mut rest: &mut [GridEntry] = &mut entries;
+    let mut extent_rest: &mut [f32] = &mut grid.extent;
+    for b in 0..bands {
+        let (lo, hi) = band_rows(b);
+        let len = (grid.cell_start[hi * ny] - grid.cell_start[lo * ny]) as usize;
+        let (head, tail) = std::mem::take(&mut rest).split_at_mut(len);
+        let (extent_head, extent_tail) =
+            std::mem::take(&mut extent_rest).split_at_mut((hi - lo) * ny);
+        parts.push((head, extent_head));
+        rest = tail;
+        extent_rest = extent_tail;
+    }
+    let cell_start = &grid.cell_start;
+    parts
+        .into_par_iter()
+        .enumerate()
+        .for_each(|(b, (part, extent))| {
+            let (lo, hi) = band_rows(b);
+            let base = cell_start[lo * ny];
+            let mut fill: Vec<u32> = cell_start[lo * ny..hi * ny]
+                .iter()
+                .map(|&s| s - base)
+                .collect();
+            for (i, (t, span)) in yz.iter().zip(&spans).enumerate() {
+                let rows = rows_of(span, (lo, hi));
+                if rows.is_empty() {
+                    continue;
+                }
+                let min_x = f32_down(t.min_x());
+                // At least `max x − min_x` exactly: the rounded difference
+                // is within half an ulp of it, the next `f64` above it is not
+                // below it, and rounding up to `f32` keeps that.
+                let reach = f32_up(f64_above(t.max_x() - f64::from(min_x)));
+                for r in rows {
+                    for c in usize::from(span[0])..=usize::from(span[1]) {
+                        let cell = (r - lo) * ny + c;
+                        part[fill[cell] as usize] = GridEntry {
+                            x: min_x,
+                            record: i as u32,
+                        };
+                        fill[cell] += 1;
+                        extent[cell] = extent[cell].max(reach);
+                    }
+                }
+            }
+            // Each cell's list by ascending `x`: filled in record order, so a
+            // stable sort breaks ties by record.
+            for cell in lo * ny..hi * ny {
+                let s = (cell_start[cell] - base) as usize;
+                let e = (cell_start[cell + 1] - base) as usize;
+                sort_by_x(&mut part[s..e]);
+            }
+        });
+    entries.collapse();
+    collapse_into_huge_pages(&grid.cell_start);
+    collapse_into_huge_pages(&grid.extent);
+    grid.entries = entries;
+    grid
+}
+
+/// Stable insertion sort of a cell's entries by ascending [`GridEntry::x`]:
+/// cells hold a handful of entries, for which this is the fastest sort. The
+/// bounds are never NaN (rounded from finite coordinates).
+fn sort_by_x(entries: &mut [GridEntry]) {
+    for i in 1..entries.len() {
+        let e = entries[i];
+        let mut j = i;
+        while j > 0 && e.x < entries[j - 1].x {
+            entries[j] = entries[j - 1];
+            j -= 1;
+        }
+        entries[j] = e;
+    }
+}

@@ -1,0 +1,179 @@
+//! The exact test of a ray against one fan triangle, and the rounded
+//! parameter of a crossing.
+
+use glam::DVec3;
+
+use crate::geom::exact::{line_side_filter_scalar, triangle_edge_sides};
+use crate::geom::polygon::coplanar_point_in_closed_triangle;
+use crate::geom::{Ray, Sign, line_side_sos, orient3d};
+
+use super::accel::Accel;
+use super::ray_answers::{Crossing, Transition};
+use super::ray_scaling::pow2;
+
+/// `2⁻⁶⁰⁰`: below this denominator [`Accel::plane_t`]'s plain formula may
+/// have lost `n` to underflow.
+const PLANE_T_DENOMINATOR: f64 = pow2(-600);
+
+/// [`Accel::plane_t`] for triangles or distances of extreme size: the
+/// corners and origin are first scaled down by `2⁻⁶⁴` if any coordinate is
+/// beyond `2¹⁰⁰⁰` (so that differences cannot overflow), then the edges and
+/// `a − o` are each scaled by a power of two to a largest component in
+/// `[1, 2)`, so that the cross product neither underflows nor overflows;
+/// the powers of two are divided out of the quotient at the end (exactly,
+/// unless the true `t` itself is beyond the `f64` range).
+#[cold]
+#[inline(never)]
+fn plane_t_rescaled([a, b, c]: [DVec3; 3], ray: &Ray) -> f64 {
+    let far = [a, b, c, ray.origin]
+        .iter()
+        .any(|p| p.abs().max_element() > pow2(1000));
+    let pre = if far { pow2(-64) } else { 1.0 };
+    let (a, b, c, o) = (a * pre, b * pre, c * pre, ray.origin * pre);
+    // `v · 2^k` with its largest component in [1, 2), and `2^k`.
+    let unit = |v: DVec3| {
+        let m = v.abs().max_element();
+        if m == 0.0 || !m.is_finite() {
+            return (v, 1.0);
+        }
+        let k = (-m.log2().floor() as i32).clamp(-1022, 1022);
+        (v * pow2(k), pow2(k))
+    };
+    let ((e1, _), (e2, _)) = (unit(b - a), unit(c - a));
+    let (w, w_scale) = unit(a - o);
+    let n = e1.cross(e2);
+    // t = n·(a − o) / n·d, and (a − o) = w / w_scale / pre.
+    n.dot(w) / n.dot(ray.direction) / w_scale / pre
+}
+
+/// How a ray meets one triangle.
+pub(super) enum TriHit {
+    /// No crossing (or, for tests that skip it, the origin on the
+    /// triangle).
+    Miss,
+    /// The origin lies on the triangle.
+    Origin,
+    /// A crossing in front of the origin; the sign is `+` for an exit.
+    Cross(Sign),
+}
+
+impl Accel {
+    /// The answer for a crossing of triangle `i` at `t` with sign `s`
+    /// (`+` for an exit).
+    #[inline]
+    pub(super) fn crossing(&self, t: f64, i: u32, s: Sign) -> Crossing {
+        Crossing {
+            t,
+            face: self.tri_face[i as usize],
+            transition: if s == Sign::Positive {
+                Transition::Exit
+            } else {
+                Transition::Enter
+            },
+        }
+    }
+
+    /// The rounded parameter of the crossing with triangle `i`'s plane,
+    /// clamped to the smallest positive `f64` (the crossing is known exactly
+    /// to be in front of the origin).
+    pub(super) fn t_of(&self, ray: &Ray, i: u32) -> f64 {
+        let t = self.plane_t(ray, i);
+        if t > 0.0 { t } else { f64::MIN_POSITIVE }
+    }
+
+    /// The rounded parameter of the ray's crossing with triangle `i`'s
+    /// plane, unclamped (any sign, `±∞` or NaN for a parallel ray). `ray`
+    /// is scaled by [`unit_scaled`] (largest direction component in
+    /// `[1, 2)`).
+    ///
+    /// `t = n·(a − o) / n·d` with `n = (b − a) × (c − a)`. When the
+    /// denominator is at least `2⁻⁶⁰⁰` and `t` is finite (nothing
+    /// overflowed), every
+    /// component of `n` that matters is far above the subnormal range and
+    /// the quotient is accurate; otherwise (triangles of size `1e-160` or
+    /// `1e200`, origins near `f64::MAX`) it is recomputed with the edges
+    /// and `a − o` brought to unit size by powers of two
+    /// ([`plane_t_rescaled`]).
+    #[inline(always)]
+    pub(super) fn plane_t(&self, ray: &Ray, i: u32) -> f64 {
+        let [a, b, c] = self.tris[i as usize].corners();
+        let n = (b - a).cross(c - a);
+        let den = n.dot(ray.direction);
+        let t = n.dot(a - ray.origin) / den;
+        // An overflow anywhere leaves `t` infinite or NaN (an infinite `n`
+        // meets a non-zero or a zero coordinate of `a − o`).
+        if den.abs() >= PLANE_T_DENOMINATOR && t.is_finite() {
+            t
+        } else {
+            plane_t_rescaled(self.tris[i as usize].corners(), ray)
+        }
+    }
+
+    /// How `ray` meets triangle `i`; with `ORIGIN = false` the (costlier)
+    /// test of the origin lying on the triangle is skipped and reported as
+    /// a miss — what first-hit queries need, which list no crossing at the
+    /// origin.
+    #[inline(always)]
+    pub(super) fn hit_triangle<const ORIGIN: bool>(&self, ray: &Ray, i: u32) -> TriHit {
+        let [a, b, c] = &self.tris[i as usize].corners();
+        let (o, d) = (&ray.origin, &ray.direction);
+        let dd = [d.x, d.y, d.z];
+        let u = [a.x - o.x, a.y - o.y, a.z - o.z];
+        let v = [b.x - o.x, b.y - o.y, b.z - o.z];
+        let w = [c.x - o.x, c.y - o.y, c.z - o.z];
+        let origin_check = || {
+            if ORIGIN {
+                self.origin_check(*a, *b, *c, *o)
+            } else {
+                TriHit::Miss
+            }
+        };
+        // The three edge signs at once with a shared error bound: it
+        // certifies most misses and most crossings outright. The exact
+        // decision below is the same as the edge-by-edge one it replaces
+        // (a crossing needs three equal non-zero signs; certified signs are
+        // the exact ones).
+        let sides = triangle_edge_sides(dd, u, v, w);
+        if sides.certainly_mixed() {
+            return origin_check();
+        }
+        let s0 = match sides.certainly_uniform() {
+            Some(s) => s,
+            None => {
+                let s0 = line_side_filter_scalar(dd, u, v)
+                    .unwrap_or_else(|| line_side_sos(*o, *d, *a, *b));
+                let s1 = line_side_filter_scalar(dd, v, w)
+                    .unwrap_or_else(|| line_side_sos(*o, *d, *b, *c));
+                if s0 != s1 || s0 == Sign::Zero {
+                    return origin_check();
+                }
+                let s2 = line_side_filter_scalar(dd, w, u)
+                    .unwrap_or_else(|| line_side_sos(*o, *d, *c, *a));
+                if s2 != s0 {
+                    return origin_check();
+                }
+                s0
+            }
+        };
+        match orient3d(*a, *b, *c, *o) {
+            Sign::Zero => origin_check(),
+            side if side == -s0 => TriHit::Cross(s0),
+            _ => TriHit::Miss,
+        }
+    }
+
+    /// Whether the origin lies on the triangle (cheap rejections first).
+    #[inline]
+    fn origin_check(&self, a: DVec3, b: DVec3, c: DVec3, o: DVec3) -> TriHit {
+        let lo = a.min(b).min(c);
+        let hi = a.max(b).max(c);
+        if o.cmplt(lo).any() || o.cmpgt(hi).any() {
+            return TriHit::Miss;
+        }
+        if orient3d(a, b, c, o) == Sign::Zero && coplanar_point_in_closed_triangle(a, b, c, o) {
+            TriHit::Origin
+        } else {
+            TriHit::Miss
+        }
+    }
+}

@@ -1,0 +1,116 @@
+//! Box queries: the leaves and items whose bounds overlap a closed box (an
+//! octree cell, a face's box).
+
+use crate::geom::Aabb;
+
+use super::node::{LEAF, WIDTH};
+use super::tree::Bvh;
+
+impl Bvh {
+    /// Calls `visit(leaf)` for every leaf whose box overlaps the closed box
+    /// `query` (touching counts). Conservative: every leaf holding an item
+    /// whose exact box overlaps `query` is visited (and possibly some that
+    /// hold none). An empty or NaN `query` visits nothing.
+    pub fn leaves_overlapping(&self, query: &Aabb, mut visit: impl FnMut(u32)) {
+        if query.is_empty() || query.intersection(self.bounds()).is_empty() {
+            return;
+        }
+        // The query in the frame, rounded outward: it contains the exact
+        // in-frame query, so comparing it with the (outward-rounded) node
+        // boxes can only err towards visiting.
+        let frame = self.frame();
+        let lo: [f32; 3] = std::array::from_fn(|a| frame.lower(query.min[a], a));
+        let hi: [f32; 3] = std::array::from_fn(|a| frame.upper(query.max[a], a));
+        let mut stack = vec![0u32];
+        while let Some(node) = stack.pop() {
+            let n = &self.nodes()[node as usize];
+            for k in (0..WIDTH).rev() {
+                let child = n.child[k];
+                let meets = child != u32::MAX
+                    && (0..3).all(|a| n.bounds[a][k] <= hi[a] && lo[a] <= n.bounds[3 + a][k]);
+                if !meets {
+                    continue;
+                }
+                if child & LEAF != 0 {
+                    visit(child & !LEAF);
+                } else {
+                    stack.push(child);
+                }
+            }
+        }
+    }
+
+    /// Calls `visit(p)` for every item position `p` whose exact box,
+    /// `item_bounds(p)`, overlaps the closed box `query`: exactly those
+    /// items, each once, leaf by leaf.
+    pub fn items_overlapping(
+        &self,
+        query: &Aabb,
+        item_bounds: impl Fn(usize) -> Aabb,
+        mut visit: impl FnMut(usize),
+    ) {
+        self.leaves_overlapping(query, |leaf| {
+            let Some(items) = self.leaf(leaf) else {
+                return;
+            };
+            for p in items.range() {
+                if !item_bounds(p).intersection(*query).is_empty() {
+                    visit(p);
+                }
+            }
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+    use crate::spatial::bvh::pair_walk::tests::random_boxes;
+
+    /// A box query reports exactly the items whose boxes overlap the closed
+    /// query box (touching included), each once; empty and NaN queries
+    /// report nothing.
+    #[test]
+    fn box_queries_find_exactly_the_overlapping_items() {
+        let items = random_boxes(2_000, 0x3C6E_F372_FE94_F82B, 5.0, 2.0, 0.2);
+        let (bvh, order) = Bvh::build(&items);
+        let mut u = crate::test_rng::uniform(0xA54F_F53A_5F1D_36F1);
+        for case in 0..200 {
+            let lo = DVec3::new(u(), u(), u()) * 2.4 + DVec3::splat(4.8);
+            let query = if case % 10 == 0 {
+                // Exactly touching an item's corner.
+                Aabb::from_points([items[case].max, items[case].max + DVec3::splat(0.1)])
+            } else {
+                Aabb::from_points([lo, lo + DVec3::new(u(), u(), u()) * 0.5])
+            };
+            let mut found = Vec::new();
+            bvh.items_overlapping(
+                &query,
+                |p| items[order[p] as usize],
+                |p| {
+                    found.push(order[p] as usize);
+                },
+            );
+            found.sort_unstable();
+            let before = found.len();
+            found.dedup();
+            assert_eq!(found.len(), before, "case {case}: an item twice");
+            let want: Vec<usize> = (0..items.len())
+                .filter(|&i| !items[i].intersection(query).is_empty())
+                .collect();
+            assert_eq!(found, want, "case {case}");
+            if case % 10 == 0 {
+                assert!(found.contains(&case), "case {case}: the touched item");
+            }
+        }
+        let nan = Aabb {
+            min: DVec3::NAN,
+            max: DVec3::NAN,
+        };
+        for query in [Aabb::EMPTY, nan] {
+            bvh.leaves_overlapping(&query, |leaf| panic!("leaf {leaf} for {query:?}"));
+        }
+    }
+}

@@ -1,0 +1,16 @@
+//! The low-level memory and lane code the spatial structures and their
+//! queries share, and the `unsafe` it needs, each with its safety argument:
+//!
+//! - [`huge_pages`]: vectors whose memory is aligned to and advised onto
+//!   2 MiB pages (raw allocation, `madvise`);
+//! - [`lanes`]: four `f32` lanes as SSE registers (intrinsics);
+//! - [`prefetch`]: requests for memory ahead of its use (a hint that never
+//!   faults).
+//!
+//! The AVX2 and AVX-512 node openers (`spatial::bvh::open_avx2`,
+//! `spatial::bvh::open_avx512`) hold the only other `unsafe` code of the
+//! spatial layer: their intrinsics are the node test itself.
+
+pub(crate) mod huge_pages;
+pub(crate) mod lanes;
+pub(crate) mod prefetch;
