@@ -25,6 +25,7 @@
 //! target) → [`render`] (images).
 #![warn(missing_docs)]
 
+pub mod cells;
 pub mod csg;
 pub mod curve;
 mod disjoint_sets;
