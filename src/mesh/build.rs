@@ -13,7 +13,10 @@ use thiserror::Error;
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::Plane;
 
-use super::{Edge, EdgeId, Face, FaceId, PolygonSoup, Solid, Vertex, VertexId};
+use super::{
+    Edge, EdgeId, EdgeUse, Face, FaceId, Loop, LoopId, LoopStart, PolygonSoup, Side, Solid, Vertex,
+    VertexId,
+};
 
 /// Why a polygon soup cannot be built into a winged-edge solid.
 ///
@@ -414,6 +417,7 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
         vertices: SlotMap::with_capacity_and_key(referenced.iter().filter(|&&r| r).count()),
         edges: SlotMap::with_capacity_and_key(edge_count),
         faces: SlotMap::with_capacity_and_key(soup.polygons.len()),
+        loops: SlotMap::with_capacity_and_key(soup.polygons.len()),
     };
     let vertex_ids: Vec<VertexId> = referenced
         .iter()
@@ -424,12 +428,12 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
             }
             solid.vertices.insert(Vertex {
                 position: soup.positions[v],
-                edge: EdgeId::null(),
+                edge: None,
                 source_index: Some(v),
             })
         })
         .collect();
-    // Faces first with placeholder edges, so that edges can name them.
+    // Faces first with placeholder loops, so that edges can name them.
     let face_ids: Vec<FaceId> = soup
         .polygons
         .iter()
@@ -441,7 +445,8 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
             attributes.source_index = Some(index);
             solid.faces.insert(Face {
                 plane: Plane::try_fit_newell(&points).ok().map(|fit| fit.plane),
-                edge: EdgeId::null(),
+                outer: LoopId::null(),
+                rings: Vec::new(),
                 attributes,
             })
         })
@@ -481,8 +486,18 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
         }
     }
     for e in 0..h.face_count {
-        solid.faces[face_ids[h.polygon[e]]].edge = edge_of[e];
-        solid.vertices[vertex_ids[h.from[e]]].edge = edge_of[e];
+        let face = face_ids[h.polygon[e]];
+        let edge = edge_of[e];
+        if solid.faces[face].outer.is_null() {
+            let side = if solid.edges[edge].origin == vertex_ids[h.from[e]] {
+                Side::Left
+            } else {
+                Side::Right
+            };
+            let start = LoopStart::Edge(EdgeUse { edge, side });
+            solid.faces[face].outer = solid.loops.insert(Loop { face, start });
+        }
+        solid.vertices[vertex_ids[h.from[e]]].edge = Some(edge);
     }
     debug_assert!(
         solid.check_consistency().is_ok(),
