@@ -200,8 +200,10 @@ impl Solid {
     #[must_use]
     pub fn face_pivot(&self, face: FaceId) -> Option<[DVec3; 3]> {
         let outer = self.faces[face].outer;
-        let points: smallvec::SmallVec<[DVec3; 8]> =
-            self.loop_vertices(outer).map(|v| self.position(v)).collect();
+        let points: smallvec::SmallVec<[DVec3; 8]> = self
+            .loop_vertices(outer)
+            .map(|v| self.position(v))
+            .collect();
         let n = points.len();
         if n < 3 {
             return None;

@@ -63,14 +63,23 @@ impl Solid {
             }
         }
         let (edge, new) = self.mef(c1, c2)?;
-        let outline: Vec<DVec2> = self.face_outer_vertices(new).map(|v| flat(self, v)).collect();
+        let outline: Vec<DVec2> = self
+            .face_outer_vertices(new)
+            .map(|v| flat(self, v))
+            .collect();
         let rings: Vec<LoopId> = self.faces[face].rings.clone();
         for ring in rings {
-            let first = self.loop_vertices(ring).next().expect("a loop has a vertex");
+            let first = self
+                .loop_vertices(ring)
+                .next()
+                .expect("a loop has a vertex");
             if locate_point_in_polygon(&outline, flat(self, first)) == PolygonLocation::Inside {
                 self.remove_ring(face, ring);
                 self.loops[ring].face = new;
-                let start = self.loop_uses(ring).next().expect("a simple ring has edges");
+                let start = self
+                    .loop_uses(ring)
+                    .next()
+                    .expect("a simple ring has edges");
                 self.claim_loop(start, new);
                 self.insert_ring(new, ring);
             }
@@ -159,7 +168,10 @@ impl Solid {
 
     /// The projection onto the axis plane closest to `face`'s outer loop.
     fn face_projection(&self, face: FaceId) -> Projection {
-        let points: Vec<DVec3> = self.face_outer_vertices(face).map(|v| self.position(v)).collect();
+        let points: Vec<DVec3> = self
+            .face_outer_vertices(face)
+            .map(|v| self.position(v))
+            .collect();
         Projection::along(crate::geom::newell_vector_area(&points, points[0]))
     }
 }

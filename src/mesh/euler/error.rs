@@ -36,7 +36,9 @@ pub enum EulerError {
         vector: DVec3,
     },
     /// A corner on the hole side of a boundary edge: no face is there.
-    #[error("edge {edge:?} has no face on its {side:?} side (it borders a hole of an open surface)")]
+    #[error(
+        "edge {edge:?} has no face on its {side:?} side (it borders a hole of an open surface)"
+    )]
     NoFaceOnSide {
         /// The edge.
         edge: EdgeId,
@@ -56,7 +58,9 @@ pub enum EulerError {
     },
     /// A vertex that the face's loops visit more than once, so the corner
     /// meant is ambiguous.
-    #[error("vertex {vertex:?} is visited {count} times by face {face:?}: name the corner by an edge use")]
+    #[error(
+        "vertex {vertex:?} is visited {count} times by face {face:?}: name the corner by an edge use"
+    )]
     AmbiguousCorner {
         /// The vertex.
         vertex: VertexId,
@@ -175,7 +179,9 @@ pub enum EulerError {
     /// A loop that is not a simple cycle of at least three edges (a lone
     /// vertex, a strut, a vertex visited twice), where an operation needs
     /// simple loops.
-    #[error("loop {loop_id:?} of face {face:?} is not a simple cycle of three or more edges (at vertex {vertex:?})")]
+    #[error(
+        "loop {loop_id:?} of face {face:?} is not a simple cycle of three or more edges (at vertex {vertex:?})"
+    )]
     LoopNotSimple {
         /// The loop.
         loop_id: LoopId,
