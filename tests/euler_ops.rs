@@ -98,6 +98,9 @@ fn euler_poincare(model: &Model) {
     );
 }
 
+/// The inverse of an applied operator, to run on the solid.
+type Undo = Box<dyn FnOnce(&mut Solid) -> Result<(), EulerError>>;
+
 /// One step of a script: which operator, three choices, a position.
 type Step = (u8, u32, u32, u32, bool, [i8; 3]);
 
@@ -129,7 +132,7 @@ fn second_corner(solid: &Solid, first: Corner, a: u32, b: u32) -> Option<Corner>
         Corner::Lone(l) => solid.loop_record(l).face,
     };
     let loops: Vec<LoopId> = solid.face_loops(face).collect();
-    let l = if a % 2 == 0 {
+    let l = if a.is_multiple_of(2) {
         match first {
             Corner::Lone(l) => l,
             Corner::After(u) => *loops
@@ -158,7 +161,7 @@ fn step(model: &mut Model, (op, a, b, c, invert, p): Step) {
     let vertices: Vec<VertexId> = solid.vertices().map(|(id, _)| id).collect();
     let faces: Vec<FaceId> = solid.faces().map(|(id, _)| id).collect();
     // The inverse to try, when the operator applies.
-    let mut undo: Option<Box<dyn FnOnce(&mut Solid) -> Result<(), EulerError>>> = None;
+    let mut undo: Option<Undo> = None;
     let result: Result<(), EulerError> = match op % 12 {
         0 => solid.mvfs(position(p)).map(|(_, f)| {
             undo = Some(Box::new(move |s: &mut Solid| s.kvfs(f)));

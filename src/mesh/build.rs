@@ -12,7 +12,9 @@ use thiserror::Error;
 
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::Plane;
+use crate::geom::triangulate::TriangulateError;
 
+use super::euler::EulerError;
 use super::{
     Edge, EdgeId, EdgeUse, Face, FaceId, Loop, LoopId, LoopStart, PolygonSoup, Side, Solid, Vertex,
     VertexId,
@@ -110,6 +112,15 @@ pub enum BuildError {
     /// A sweep or apex that would give a flat solid.
     #[error("the sweep vector or apex lies in the polygon's plane")]
     Flat,
+    /// A profile with holes given to a builder that is not a valid face: a
+    /// hole not strictly inside the outer polygon, holes touching, a loop
+    /// not simple.
+    #[error("the profile is not a valid face: {0}")]
+    InvalidProfile(#[from] TriangulateError),
+    /// An Euler operator of a builder refused (the builder's own checks
+    /// should have caught its input first).
+    #[error(transparent)]
+    Euler(#[from] EulerError),
 }
 
 fn at_line(line: Option<usize>) -> String {
@@ -485,19 +496,21 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
             edge.cw_right = prev;
         }
     }
+    // Each face's loop starts at the use of its last corner's edge.
+    let mut starts: Vec<Option<EdgeUse>> = vec![None; soup.polygons.len()];
     for e in 0..h.face_count {
-        let face = face_ids[h.polygon[e]];
         let edge = edge_of[e];
-        if solid.faces[face].outer.is_null() {
-            let side = if solid.edges[edge].origin == vertex_ids[h.from[e]] {
-                Side::Left
-            } else {
-                Side::Right
-            };
-            let start = LoopStart::Edge(EdgeUse { edge, side });
-            solid.faces[face].outer = solid.loops.insert(Loop { face, start });
-        }
+        let side = if solid.edges[edge].origin == vertex_ids[h.from[e]] {
+            Side::Left
+        } else {
+            Side::Right
+        };
+        starts[h.polygon[e]] = Some(EdgeUse { edge, side });
         solid.vertices[vertex_ids[h.from[e]]].edge = Some(edge);
+    }
+    for (&face, start) in face_ids.iter().zip(starts) {
+        let start = LoopStart::Edge(start.expect("a polygon has at least three corners"));
+        solid.faces[face].outer = solid.loops.insert(Loop { face, start });
     }
     debug_assert!(
         solid.check_consistency().is_ok(),

@@ -166,6 +166,51 @@ impl Solid {
         Ok(())
     }
 
+    /// Raises a pyramid over `face`: a new vertex at `apex` joined to every
+    /// corner of the face ([`Solid::mev`] once, then [`Solid::mef`] per
+    /// further corner), so that the face becomes a fan of triangles around
+    /// the apex. The face keeps its id as one of the triangles. Returns the
+    /// apex.
+    ///
+    /// O(length of the face's loop²).
+    ///
+    /// # Errors
+    ///
+    /// [`EulerError::UnknownFace`], [`EulerError::NonFinitePosition`],
+    /// [`EulerError::FaceHasRings`], [`EulerError::LoopNotSimple`], and
+    /// [`EulerError::NotOutward`] unless `apex` is strictly on the outer
+    /// side of the face's plane (decided exactly by [`Solid::face_side`]).
+    pub fn cone_face(&mut self, face: FaceId, apex: DVec3) -> Result<VertexId, EulerError> {
+        let f = self.faces.get(face).ok_or(EulerError::UnknownFace(face))?;
+        if !f.rings.is_empty() {
+            return Err(EulerError::FaceHasRings {
+                face,
+                rings: f.rings.len(),
+            });
+        }
+        super::links::check_position(apex)?;
+        self.check_simple_loops(face)?;
+        let uses: Vec<EdgeUse> = self.face_loop(face).collect();
+        if self.face_side(face, apex) != Sign::Positive {
+            return Err(EulerError::NotOutward {
+                face,
+                vector: apex - self.position(self.use_start(uses[0])),
+                vertex: self.use_start(uses[0]),
+            });
+        }
+        let n = uses.len();
+        let (strut, top) = self.mev(Corner::After(uses[n - 1]), apex)?;
+        let up = EdgeUse {
+            edge: strut,
+            side: Side::Left,
+        };
+        for &before in &uses[..n - 1] {
+            self.mef(Corner::After(before), Corner::After(up))?;
+        }
+        self.refit_plane(face);
+        Ok(top)
+    }
+
     /// The projection onto the axis plane closest to `face`'s outer loop.
     fn face_projection(&self, face: FaceId) -> Projection {
         let points: Vec<DVec3> = self

@@ -61,6 +61,7 @@ mod edge_vertex;
 mod edit;
 mod error;
 mod face_ring;
+mod from_polygons;
 mod lamina;
 mod links;
 mod split_edge;
