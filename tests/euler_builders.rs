@@ -251,3 +251,60 @@ fn split_face_moves_rings_to_the_part_that_holds_them() {
     assert_eq!(solid.shells()[0].genus(), Some(2));
     assert_eq!(solid.volume(), (64.0 - 2.0) + (32.0 - 1.0));
 }
+
+/// Queries see the holes: the accel triangulates faces with rings exactly,
+/// and parity, winding number and ray casting agree on a frame.
+#[test]
+fn queries_on_a_solid_with_faces_with_holes() {
+    use wingedge::geom::Ray;
+    use wingedge::query::{Accel, Containment, Method};
+    let frame = builders::frame();
+    let accel = Accel::new(&frame);
+    let cases = [
+        (DVec3::new(0.0, 0.0, 0.5), Containment::Outside),
+        (DVec3::new(1.5, 0.0, 0.5), Containment::Inside),
+        (DVec3::new(-1.5, 1.7, 0.25), Containment::Inside),
+        (DVec3::new(3.0, 0.0, 0.5), Containment::Outside),
+        (DVec3::new(1.5, 0.0, 1.0), Containment::OnBoundary),
+        (DVec3::new(0.5, 0.5, 1.0), Containment::Outside),
+        (DVec3::new(1.0, 0.0, 0.5), Containment::OnBoundary),
+    ];
+    for (p, want) in cases {
+        assert_eq!(accel.classify_with(p, Method::Parity).unwrap(), want, "{p}");
+        if want != Containment::OnBoundary {
+            let w = accel.winding_number(p).unwrap();
+            assert_eq!(w > 0.5, want == Containment::Inside, "{p}: winding {w}");
+        }
+    }
+    // A ray down through the hole hits nothing; one through the material
+    // enters the top face at z = 1.
+    let down = DVec3::new(0.0, 0.0, -1.0);
+    let hole = Ray::new(DVec3::new(0.25, -0.5, 3.0), down);
+    assert!(accel.first_hit(&hole).unwrap().is_none());
+    let wall = Ray::new(DVec3::new(1.25, -0.5, 3.0), down);
+    let hit = accel.first_hit(&wall).unwrap().unwrap();
+    assert_eq!(hit.t, 2.0);
+    // The line–face test on the top face: through the hole is a miss, on
+    // the ring's edge is on an edge, through the material is inside.
+    use wingedge::query::{LineFaceHit, LineKind, intersect_line_face};
+    let top = frame
+        .faces()
+        .find(|(_, f)| f.plane.unwrap().normal.z > 0.5)
+        .unwrap()
+        .0;
+    let line = |x: f64, y: f64| {
+        intersect_line_face(
+            &frame,
+            top,
+            DVec3::new(x, y, 3.0),
+            DVec3::new(x, y, -3.0),
+            LineKind::Line,
+        )
+        .unwrap()
+    };
+    assert_eq!(line(0.25, -0.5), LineFaceHit::Miss);
+    assert!(matches!(line(1.5, 0.0), LineFaceHit::Inside { .. }));
+    assert!(matches!(line(1.0, 0.5), LineFaceHit::OnEdge { .. }));
+    assert!(matches!(line(1.0, 1.0), LineFaceHit::OnVertex { .. }));
+    assert_eq!(line(2.5, 0.0), LineFaceHit::Miss);
+}

@@ -13,6 +13,14 @@ use crate::mesh::{Solid, VertexId};
 /// vertices counter-clockwise seen from outside (polygons are not
 /// triangulated). Faces carrying a group name are preceded by a `g` line when
 /// the group changes.
+///
+/// OBJ has no faces with holes: a face with rings is written as the
+/// triangles of its exact constrained triangulation
+/// ([`Solid::try_triangulate_face`]: no sliver of zero area, no flipped
+/// triangle), one `f` line each, wound like the face. A face whose loops do
+/// not bound a valid face (a ring outside or crossing, which validation
+/// reports) cannot be triangulated; its loops are then written as polygons
+/// of their own, so that reading the file back shows the defect.
 #[must_use]
 pub fn to_obj_string(solid: &Solid) -> String {
     let mut out = String::with_capacity(solid.vertex_count() * 40 + solid.face_count() * 24);
@@ -31,13 +39,28 @@ pub fn to_obj_string(solid: &Solid) -> String {
             let _ = writeln!(out, "g {}", g.unwrap_or_default());
             group = g;
         }
-        out.push('f');
-        for v in solid.face_vertices(id) {
-            let _ = write!(out, " {}", index[v]);
+        if face.rings.is_empty() {
+            write_polygon(&mut out, solid.face_vertices(id).map(|v| index[v]));
+        } else if let Ok(triangles) = solid.try_triangulate_face(id) {
+            for t in triangles {
+                write_polygon(&mut out, t.iter().map(|&v| index[v]));
+            }
+        } else {
+            for l in solid.face_loops(id) {
+                write_polygon(&mut out, solid.loop_vertices(l).map(|v| index[v]));
+            }
         }
-        out.push('\n');
     }
     out
+}
+
+/// One `f` line with the given 1-based vertex numbers.
+fn write_polygon(out: &mut String, vertices: impl Iterator<Item = usize>) {
+    out.push('f');
+    for v in vertices {
+        let _ = write!(out, " {v}");
+    }
+    out.push('\n');
 }
 
 /// Writes the solid to `path` as OBJ; see [`to_obj_string`].

@@ -18,18 +18,20 @@ use super::{BuildError, PolygonSoup, Solid};
 const PHI: f64 = 1.618_033_988_749_895;
 
 /// The names accepted by [`by_name`], in a stable order.
-pub const NAMES: [&str; 6] = [
+pub const NAMES: [&str; 7] = [
     "tetrahedron",
     "cube",
     "octahedron",
     "dodecahedron",
     "icosahedron",
     "prism",
+    "frame",
 ];
 
 /// A built-in solid by name: the Platonic solids (`tetrahedron`, `cube`,
-/// `octahedron`, `dodecahedron`, `icosahedron`) and `prism`, an L-shaped
-/// (non-convex) prism. `None` for an unknown name.
+/// `octahedron`, `dodecahedron`, `icosahedron`), `prism`, an L-shaped
+/// (non-convex) prism, and `frame`, a square frame with a square hole
+/// through it (genus 1, faces with rings). `None` for an unknown name.
 #[must_use]
 pub fn by_name(name: &str) -> Option<Solid> {
     Some(match name {
@@ -39,6 +41,7 @@ pub fn by_name(name: &str) -> Option<Solid> {
         "dodecahedron" => dodecahedron(),
         "icosahedron" => icosahedron(),
         "prism" => l_prism(),
+        "frame" => frame(),
         _ => return None,
     })
 }
@@ -264,6 +267,16 @@ pub fn l_prism() -> Solid {
     let l = [(0., 0.), (2., 0.), (2., 1.), (1., 1.), (1., 2.), (0., 2.)]
         .map(|(x, y)| DVec3::new(x, y, 0.));
     prism(&l, DVec3::Z).expect("the L profile is simple")
+}
+
+/// A square frame of height 1: the square `[−2, 2]²` with the square hole
+/// `[−1, 1]²` through it, swept along `z` (volume 12, genus 1; its top and
+/// bottom faces each have one ring).
+#[must_use]
+pub fn frame() -> Solid {
+    let square = |r: f64| [(-r, -r), (r, -r), (r, r), (-r, r)].map(|(x, y)| DVec3::new(x, y, 0.));
+    prism_with_holes(&square(2.0), &[&square(1.0)], DVec3::Z)
+        .expect("the inner square is strictly inside the outer one")
 }
 
 struct CheckedProfile {

@@ -14,6 +14,7 @@ mod edge;
 pub mod euler;
 mod face;
 mod face_loop;
+mod face_triangles;
 mod ids;
 mod loft;
 mod measure;
