@@ -1,10 +1,13 @@
 //! Building a winged-edge solid from an indexed polygon soup.
 //!
 //! The build works in index space first (half-edges numbered by polygon
-//! corner, a compressed vertex → outgoing half-edges table to find twins),
-//! checks everything a winged-edge solid cannot represent, and only then
-//! fills the slotmap tables. It runs in time linear in the number of corners
-//! (twin search is proportional to vertex degree).
+//! corner, twins found through a hash map of directed edges, a compressed
+//! vertex → outgoing half-edges table for holes and fans), checks everything
+//! a winged-edge solid cannot represent, and only then fills the slotmap
+//! tables. It runs in time linear in the number of corners, whatever the
+//! valence of the vertices.
+
+use std::collections::HashMap;
 
 use glam::DVec3;
 use slotmap::{Key, SlotMap};
@@ -186,7 +189,7 @@ impl Solid {
         check_polygons(soup)?;
         let mut halves = corner_half_edges(soup);
         let outgoing = Outgoing::new(soup.positions.len(), &halves.from);
-        pair_twins(soup, &mut halves, &outgoing)?;
+        pair_twins(soup, &mut halves)?;
         link_holes(soup, &mut halves, &outgoing)?;
         check_fans(soup, &halves, &outgoing)?;
         // Freed before the solid's tables are allocated (lowers the peak).
@@ -290,40 +293,57 @@ impl Outgoing {
     }
 }
 
-fn pair_twins(soup: &PolygonSoup, h: &mut HalfEdges, out: &Outgoing) -> Result<(), BuildError> {
-    let line = |h: &HalfEdges, e: usize| soup.polygons[h.polygon[e]].attributes.line;
+/// Pairs each face half-edge with the one running its edge the other way,
+/// through a hash map of directed edges: linear in the number of corners,
+/// whatever the valence of the vertices.
+fn pair_twins(soup: &PolygonSoup, h: &mut HalfEdges) -> Result<(), BuildError> {
+    let mut directed: HashMap<(usize, usize), usize> = HashMap::with_capacity(h.face_count);
+    let mut repeated = false;
+    for e in 0..h.face_count {
+        repeated |= directed.insert((h.from[e], h.to[e]), e).is_some();
+    }
+    // Only an edge run twice in one direction can be wrong (three or more
+    // polygons on an edge run it twice one way too).
+    if repeated {
+        check_edge_users(soup, h)?;
+    }
+    for e in 0..h.face_count {
+        if let Some(&t) = directed.get(&(h.to[e], h.from[e])) {
+            h.twin[e] = t;
+        }
+    }
+    Ok(())
+}
+
+/// The first edge, in half-edge order, used by three or more polygons or
+/// run twice in one direction.
+fn check_edge_users(soup: &PolygonSoup, h: &HalfEdges) -> Result<(), BuildError> {
+    let line = |e: usize| soup.polygons[h.polygon[e]].attributes.line;
+    let mut users: HashMap<(usize, usize), smallvec::SmallVec<[usize; 2]>> =
+        HashMap::with_capacity(h.face_count);
+    for e in 0..h.face_count {
+        users.entry((h.from[e], h.to[e])).or_default().push(e);
+    }
+    let none = smallvec::SmallVec::new();
     for e in 0..h.face_count {
         let (a, b) = (h.from[e], h.to[e]);
-        let same: smallvec::SmallVec<[usize; 2]> = out
-            .of(a)
-            .iter()
-            .copied()
-            .filter(|&g| h.to[g] == b)
-            .collect();
-        let opposite: smallvec::SmallVec<[usize; 2]> = out
-            .of(b)
-            .iter()
-            .copied()
-            .filter(|&g| h.to[g] == a)
-            .collect();
+        let same = &users[&(a, b)];
+        let opposite = users.get(&(b, a)).unwrap_or(&none);
         if same.len() + opposite.len() >= 3 {
-            let mut users: Vec<usize> = same.iter().chain(&opposite).copied().collect();
-            users.sort_unstable();
+            let mut all: Vec<usize> = same.iter().chain(opposite).copied().collect();
+            all.sort_unstable();
             return Err(BuildError::NonManifoldEdge {
                 vertices: [a.min(b), a.max(b)],
-                polygons: users.iter().map(|&g| h.polygon[g]).collect(),
-                lines: users.iter().map(|&g| line(h, g)).collect(),
+                polygons: all.iter().map(|&g| h.polygon[g]).collect(),
+                lines: all.iter().map(|&g| line(g)).collect(),
             });
         }
         if same.len() == 2 {
             return Err(BuildError::InconsistentOrientation {
                 vertices: [a, b],
                 polygons: [h.polygon[same[0]], h.polygon[same[1]]],
-                lines: [line(h, same[0]), line(h, same[1])],
+                lines: [line(same[0]), line(same[1])],
             });
-        }
-        if let Some(&t) = opposite.first() {
-            h.twin[e] = t;
         }
     }
     Ok(())
