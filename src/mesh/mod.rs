@@ -1,11 +1,13 @@
 //! Topology: the winged-edge solid, its invariants, traversal, builders and
 //! measures.
 //!
-//! A [`Solid`] holds three slotmap tables — vertices, edges, faces — linked
-//! as in Baumgart's winged-edge structure (see [`Edge`]). Solids are built
-//! from an indexed [`PolygonSoup`] by [`Solid::try_from_soup`] or by the
-//! [`builders`]; the nine adjacency relations are iterators in
-//! [`traverse`](Solid::vertex_edges).
+//! A [`Solid`] holds four slotmap tables — vertices, edges, faces and the
+//! faces' loops — linked as in Baumgart's winged-edge structure (see
+//! [`Edge`]); a face has an outer loop and any number of rings ([`Loop`]).
+//! Solids are built from an indexed [`PolygonSoup`] by
+//! [`Solid::try_from_soup`] or by the [`builders`], and changed by the
+//! Euler operators of [`euler`]; the nine adjacency relations are iterators
+//! in [`traverse`](Solid::vertex_edges).
 
 mod build;
 pub mod builders;

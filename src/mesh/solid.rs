@@ -11,11 +11,13 @@ use super::{Edge, EdgeId, Face, FaceId, Loop, LoopId, Vertex, VertexId};
 ///
 /// # Invariants
 ///
-/// Every invariant of [`Vertex`], [`Edge`], [`Face`] and [`Loop`] holds, and every id
-/// stored in a table names an element of the same solid. Closed solids (no
-/// boundary edges) are oriented outward when built by the builders in this
-/// crate; imported ones are checked by validation. A `Solid` is only created
-/// through checked constructors and offers no mutable access to its tables,
+/// Every invariant of [`Vertex`], [`Edge`], [`Face`] and [`Loop`] holds, and
+/// every id stored in a table names an element of the same solid. Closed
+/// solids (no boundary edges) are oriented outward when built by the
+/// builders in this crate; imported ones are checked by validation. A
+/// `Solid` is only created through checked constructors and changed only by
+/// the Euler operators ([`super::euler`]), which check their pre-conditions
+/// before they change anything; it offers no mutable access to its tables,
 /// so the invariants cannot be broken from outside;
 /// [`Solid::check_consistency`] re-verifies all of them.
 #[derive(Clone, Debug, Default)]

@@ -1,7 +1,7 @@
 //! Euler operators: the topological edits of a solid that keep the
 //! Euler–Poincaré formula `V − E + F − R = 2 (S − H)` (Mäntylä 1988).
 //!
-//! Each operator is a method on [`Solid`] that changes a bounded number of
+//! Each operator is a method on [`Solid`](super::Solid) that changes a bounded number of
 //! records and walks at most the loops and vertex stars it touches (O(1) or
 //! O(degree)). Its pre-condition is checked before anything changes: when it
 //! does not hold, or an id is stale or names no element of this solid, the
