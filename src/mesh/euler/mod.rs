@@ -6,7 +6,10 @@
 //! O(degree)). Its pre-condition is checked before anything changes: when it
 //! does not hold, or an id is stale or names no element of this solid, the
 //! operator returns an [`EulerError`] naming the ids and the solid is left
-//! exactly as it was. After every operator
+//! exactly as it was. (Ids carry no mark of the solid that issued them: an
+//! id of another solid is refused when it names nothing here, as it almost
+//! always does, but one that happens to name an element of this solid is
+//! taken for that element.) After every operator
 //! [`check_consistency`](super::Solid::check_consistency) holds.
 //!
 //! | operator | inverse | V | E | F | R | S | H |
