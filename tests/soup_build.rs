@@ -293,8 +293,9 @@ fn degenerate_faces_are_stored_without_a_plane() {
 }
 
 /// A closed cone whose apex and base centre each have valence 3,000 (a fan
-/// of 6,000 triangles) builds into the right solid: twins are paired through
-/// a hash map, not by scanning each vertex's edges once per edge.
+/// of 6,000 triangles) builds into the right solid (twins are found by
+/// halving the sorted edge lists of such vertices, not by scanning them once
+/// per edge).
 #[test]
 fn a_cone_of_high_valence_builds() {
     let n = 3000;

@@ -1,13 +1,10 @@
 //! Building a winged-edge solid from an indexed polygon soup.
 //!
 //! The build works in index space first (half-edges numbered by polygon
-//! corner, twins found through a hash map of directed edges, a compressed
-//! vertex → outgoing half-edges table for holes and fans), checks everything
-//! a winged-edge solid cannot represent, and only then fills the slotmap
-//! tables. It runs in time linear in the number of corners, whatever the
-//! valence of the vertices.
-
-use std::collections::HashMap;
+//! corner, a compressed vertex → outgoing half-edges table, sorted by end
+//! vertex, to find twins by binary search), checks everything a winged-edge
+//! solid cannot represent, and only then fills the slotmap tables. It runs
+//! in time O(n log d) for n corners and vertex valence d.
 
 use glam::DVec3;
 use slotmap::{Key, SlotMap};
@@ -188,8 +185,8 @@ impl Solid {
         }
         check_polygons(soup)?;
         let mut halves = corner_half_edges(soup);
-        let outgoing = Outgoing::new(soup.positions.len(), &halves.from);
-        pair_twins(soup, &mut halves)?;
+        let mut outgoing = Outgoing::new(soup.positions.len(), &halves.from);
+        pair_twins(soup, &mut halves, &mut outgoing)?;
         link_holes(soup, &mut halves, &outgoing)?;
         check_fans(soup, &halves, &outgoing)?;
         // Freed before the solid's tables are allocated (lowers the peak).
@@ -264,6 +261,10 @@ fn corner_half_edges(soup: &PolygonSoup) -> HalfEdges {
     h
 }
 
+/// Outgoing lists up to this length are scanned; longer ones are sorted and
+/// searched by halving.
+const SCANNED: usize = 32;
+
 /// Compressed table of the face half-edges leaving each soup vertex.
 struct Outgoing {
     offsets: Vec<usize>,
@@ -291,59 +292,61 @@ impl Outgoing {
     fn of(&self, v: usize) -> &[usize] {
         &self.list[self.offsets[v]..self.offsets[v + 1]]
     }
-}
 
-/// Pairs each face half-edge with the one running its edge the other way,
-/// through a hash map of directed edges: linear in the number of corners,
-/// whatever the valence of the vertices.
-fn pair_twins(soup: &PolygonSoup, h: &mut HalfEdges) -> Result<(), BuildError> {
-    let mut directed: HashMap<(usize, usize), usize> = HashMap::with_capacity(h.face_count);
-    let mut repeated = false;
-    for e in 0..h.face_count {
-        repeated |= directed.insert((h.from[e], h.to[e]), e).is_some();
-    }
-    // Only an edge run twice in one direction can be wrong (three or more
-    // polygons on an edge run it twice one way too).
-    if repeated {
-        check_edge_users(soup, h)?;
-    }
-    for e in 0..h.face_count {
-        if let Some(&t) = directed.get(&(h.to[e], h.from[e])) {
-            h.twin[e] = t;
+    /// Sorts the lists longer than [`SCANNED`] by the half-edges' end
+    /// vertices, stably (half-edges with one end stay in index order).
+    fn sort_by_end(&mut self, to: &[usize]) {
+        for v in 0..self.offsets.len() - 1 {
+            let list = &mut self.list[self.offsets[v]..self.offsets[v + 1]];
+            if list.len() > SCANNED {
+                list.sort_by_key(|&g| to[g]);
+            }
         }
     }
-    Ok(())
+
+    /// The half-edges from `a` to `b`, in index order (after
+    /// [`Outgoing::sort_by_end`]).
+    fn towards(&self, a: usize, b: usize, to: &[usize]) -> smallvec::SmallVec<[usize; 2]> {
+        let list = self.of(a);
+        if list.len() <= SCANNED {
+            return list.iter().copied().filter(|&g| to[g] == b).collect();
+        }
+        let start = list.partition_point(|&g| to[g] < b);
+        let end = start + list[start..].partition_point(|&g| to[g] == b);
+        list[start..end].iter().copied().collect()
+    }
 }
 
-/// The first edge, in half-edge order, used by three or more polygons or
-/// run twice in one direction.
-fn check_edge_users(soup: &PolygonSoup, h: &HalfEdges) -> Result<(), BuildError> {
-    let line = |e: usize| soup.polygons[h.polygon[e]].attributes.line;
-    let mut users: HashMap<(usize, usize), smallvec::SmallVec<[usize; 2]>> =
-        HashMap::with_capacity(h.face_count);
-    for e in 0..h.face_count {
-        users.entry((h.from[e], h.to[e])).or_default().push(e);
-    }
-    let none = smallvec::SmallVec::new();
+/// Pairs each face half-edge with the one running its edge the other way.
+/// The outgoing lists of vertices of high valence are sorted by end vertex
+/// once and searched by halving; the short lists of every other vertex are
+/// scanned. O(n log d) for n corners and valence d, where a scan of every
+/// list once per half-edge cost O(n d).
+fn pair_twins(soup: &PolygonSoup, h: &mut HalfEdges, out: &mut Outgoing) -> Result<(), BuildError> {
+    out.sort_by_end(&h.to);
+    let line = |h: &HalfEdges, e: usize| soup.polygons[h.polygon[e]].attributes.line;
     for e in 0..h.face_count {
         let (a, b) = (h.from[e], h.to[e]);
-        let same = &users[&(a, b)];
-        let opposite = users.get(&(b, a)).unwrap_or(&none);
+        let same = out.towards(a, b, &h.to);
+        let opposite = out.towards(b, a, &h.to);
         if same.len() + opposite.len() >= 3 {
-            let mut all: Vec<usize> = same.iter().chain(opposite).copied().collect();
-            all.sort_unstable();
+            let mut users: Vec<usize> = same.iter().chain(&opposite).copied().collect();
+            users.sort_unstable();
             return Err(BuildError::NonManifoldEdge {
                 vertices: [a.min(b), a.max(b)],
-                polygons: all.iter().map(|&g| h.polygon[g]).collect(),
-                lines: all.iter().map(|&g| line(g)).collect(),
+                polygons: users.iter().map(|&g| h.polygon[g]).collect(),
+                lines: users.iter().map(|&g| line(h, g)).collect(),
             });
         }
         if same.len() == 2 {
             return Err(BuildError::InconsistentOrientation {
                 vertices: [a, b],
                 polygons: [h.polygon[same[0]], h.polygon[same[1]]],
-                lines: [line(same[0]), line(same[1])],
+                lines: [line(h, same[0]), line(h, same[1])],
             });
+        }
+        if let Some(&t) = opposite.first() {
+            h.twin[e] = t;
         }
     }
     Ok(())
