@@ -106,7 +106,10 @@ impl Solid {
             });
         }
         let keep = self.use_start(out);
-        let face = self.use_face(out).expect("a strut lies inside a face");
+        let face = self.use_face(out).ok_or(EulerError::NoFaceOnSide {
+            edge,
+            side: out.side,
+        })?;
         let (p, n) = (self.use_prev(out), self.use_next(back));
         let lone = p == back;
         if !lone {
