@@ -71,3 +71,52 @@ fn write_polygon(out: &mut String, vertices: impl Iterator<Item = usize>) {
 pub fn write_obj(solid: &Solid, path: &Path) -> io::Result<()> {
     std::fs::write(path, to_obj_string(solid))
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::to_obj_string;
+    use crate::geom::{Sign, orient3d};
+    use crate::mesh::builders;
+
+    /// The frame's top and bottom (8 vertices, one ring each) are written as
+    /// n + 2h − 2 = 8 triangles each, every one wound like its face (the
+    /// outward normal `±z`, decided exactly); the 8 sides stay quads.
+    #[test]
+    fn faces_with_rings_are_written_as_triangles_wound_like_the_face() {
+        let text = to_obj_string(&builders::frame());
+        let positions: Vec<DVec3> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("v "))
+            .map(|l| {
+                let c: Vec<f64> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+                DVec3::new(c[0], c[1], c[2])
+            })
+            .collect();
+        let faces: Vec<Vec<DVec3>> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("f "))
+            .map(|l| {
+                l.split(' ')
+                    .map(|i| positions[i.parse::<usize>().unwrap() - 1])
+                    .collect()
+            })
+            .collect();
+        let triangles: Vec<&Vec<DVec3>> = faces.iter().filter(|f| f.len() == 3).collect();
+        assert_eq!(triangles.len(), 16);
+        assert_eq!(faces.iter().filter(|f| f.len() == 4).count(), 8);
+        for t in triangles {
+            let z = t[0].z;
+            assert!(
+                t.iter().all(|p| p.z == z),
+                "a triangle of the top or bottom"
+            );
+            // Seen from outside (above the top, below the bottom) the
+            // triangle runs counter-clockwise: a point outside is on its
+            // positive side.
+            let outside = DVec3::new(0.0, 0.0, if z > 0.5 { 2.0 } else { -1.0 });
+            assert_eq!(orient3d(t[0], t[1], t[2], outside), Sign::Positive);
+        }
+    }
+}
