@@ -286,7 +286,8 @@ impl Solid {
     }
 }
 
-/// An iterator over the edge uses of one loop; see [`Solid::face_loop`].
+/// An iterator over the edge uses of one loop; see [`Solid::loop_uses`] and
+/// [`Solid::loop_from`].
 ///
 /// It stops after one turn. A `budget` of twice the edge count guards the
 /// walk: on a consistent solid it is never reached.
