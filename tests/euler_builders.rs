@@ -308,3 +308,38 @@ fn queries_on_a_solid_with_faces_with_holes() {
     assert!(matches!(line(1.0, 1.0), LineFaceHit::OnVertex { .. }));
     assert_eq!(line(2.5, 0.0), LineFaceHit::Miss);
 }
+
+/// Measures count rings: the frame's top and bottom have a hole each.
+#[test]
+fn measures_of_a_solid_with_faces_with_holes() {
+    let frame = builders::frame();
+    // Top and bottom 16 − 4 each, outer sides 4 × 4, inner sides 4 × 2.
+    assert_eq!(frame.surface_area(), 12.0 + 12.0 + 16.0 + 8.0);
+    assert_eq!(frame.volume(), 12.0);
+    assert_eq!(frame.centroid(), Some(DVec3::new(0.0, 0.0, 0.5)));
+    assert_eq!(
+        (
+            frame.vertex_count(),
+            frame.edge_count(),
+            frame.face_count(),
+            frame.ring_count()
+        ),
+        (16, 24, 10, 2)
+    );
+    assert_eq!(frame.euler_characteristic(), 0);
+    let shell = &frame.shells()[0];
+    assert_eq!(
+        (shell.ring_count, shell.euler_characteristic, shell.genus()),
+        (2, 0, Some(1))
+    );
+    let top = frame
+        .faces()
+        .find(|(_, f)| f.plane.unwrap().normal.z > 0.5)
+        .unwrap()
+        .0;
+    assert_eq!(frame.face_area(top), 12.0);
+    assert_eq!(frame.face_ring_count(top), 1);
+    assert_eq!(frame.face_loops(top).count(), 2);
+    assert_eq!(frame.face_vertices(top).count(), 8);
+    assert_eq!(frame.face_outer_vertices(top).count(), 4);
+}
