@@ -81,3 +81,34 @@ fn measures_that_overflow_are_reported_not_printed_as_nan() {
     assert!(out.is_empty(), "{out}");
     assert!(err.contains("overflows f64"), "{err}");
 }
+
+#[test]
+fn info_prints_rings_of_a_frame_and_writes_its_faces_with_holes_as_triangles() {
+    let dir = std::env::temp_dir().join(format!("wingedge-info-frame-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("frame.obj");
+    let (code, out, _) = wingedge(&[
+        "info",
+        "--builtin",
+        "frame",
+        "--write",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0);
+    assert!(out.contains("shells 1  rings 2"), "{out}");
+    assert!(
+        out.contains("rings 2  boundary edges 0  χ 0  genus 1"),
+        "{out}"
+    );
+    assert!(out.contains("volume 12.0000000000"), "{out}");
+    // OBJ has no holes: the written file (top and bottom triangulated)
+    // reads back as a valid closed solid of genus 1 with the same volume.
+    let (code, out, _) = wingedge(&["info", path.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(out.contains("rings 0"), "{out}");
+    assert!(out.contains("genus 1"), "{out}");
+    assert!(out.contains("volume 12.0000000000"), "{out}");
+    let (code, out, _) = wingedge(&["validate", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

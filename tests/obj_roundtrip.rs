@@ -15,6 +15,15 @@ fn every_builtin_survives_a_round_trip() {
         write_obj(&solid, &path).unwrap();
         let back = Solid::try_from_soup(&read_obj(&path).unwrap()).unwrap();
         back.check_consistency().unwrap();
+        if solid.ring_count() > 0 {
+            // OBJ has no holes: faces with rings come back as triangles,
+            // the same surface (same vertices, genus and volume).
+            assert_eq!(back.vertex_count(), solid.vertex_count(), "{name}");
+            assert_eq!(back.ring_count(), 0);
+            assert_eq!(back.shells()[0].genus(), solid.shells()[0].genus());
+            assert_eq!(back.volume(), solid.volume(), "{name}");
+            continue;
+        }
         assert_eq!(
             (back.vertex_count(), back.edge_count(), back.face_count()),
             (solid.vertex_count(), solid.edge_count(), solid.face_count()),

@@ -317,3 +317,42 @@ fn a_fan_on_one_edge_gives_a_short_message_and_the_full_lists() {
         "{message}"
     );
 }
+
+/// A closed cone whose apex and base centre each have valence 3,000 (a fan
+/// of 6,000 triangles) builds into the right solid (twins are found by
+/// halving the sorted edge lists of such vertices, not by scanning them once
+/// per edge).
+#[test]
+fn a_cone_of_high_valence_builds() {
+    let n = 3000;
+    let mut positions = vec![DVec3::Z, DVec3::ZERO];
+    positions.extend((0..n).map(|i| {
+        let a = std::f64::consts::TAU * i as f64 / n as f64;
+        DVec3::new(a.cos(), a.sin(), 0.0)
+    }));
+    let mut polygons = Vec::with_capacity(2 * n);
+    for i in 0..n {
+        let j = (i + 1) % n;
+        polygons.push(vec![0, 2 + i, 2 + j]);
+        polygons.push(vec![1, 2 + j, 2 + i]);
+    }
+    let solid = Solid::try_from_polygons(&positions, polygons).unwrap();
+    solid.check_consistency().unwrap();
+    assert_eq!(
+        (solid.vertex_count(), solid.edge_count(), solid.face_count()),
+        (n + 2, 3 * n, 2 * n)
+    );
+    assert!(solid.is_closed());
+    let apex = solid
+        .vertices()
+        .find(|(_, v)| v.position == DVec3::Z)
+        .unwrap()
+        .0;
+    assert_eq!(solid.vertex_degree(apex), n);
+    // The volume of the inscribed pyramid: (1/3) · (n/2) sin(2π/n) · 1.
+    let want = n as f64 / 6.0 * (std::f64::consts::TAU / n as f64).sin();
+    assert!((solid.volume() - want).abs() < 1e-12, "{}", solid.volume());
+    // Every edge has its twin: each edge of the apex is shared by two of
+    // the apex's triangles.
+    assert!(solid.vertex_faces(apex).count() == n);
+}

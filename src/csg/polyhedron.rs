@@ -102,19 +102,29 @@ impl Polyhedron {
     }
 
     /// Whether `p` (exactly in the face's plane) lies strictly inside the
-    /// face polygon, and not on one of its edges or vertices.
+    /// face (inside its outer loop, outside its rings), and not on one of
+    /// its edges or vertices.
     fn strictly_inside_face(&self, face: FaceId, p: DVec3) -> bool {
         let normal = self.face_normal(face);
         if normal == DVec3::ZERO {
             return false;
         }
         let projection = Projection::along(normal);
-        let points: smallvec::SmallVec<[_; 8]> = self
-            .solid
-            .face_vertices(face)
-            .map(|v| projection.apply(self.solid.position(v)))
-            .collect();
-        locate_point_in_polygon(&points, projection.apply(p)) == PolygonLocation::Inside
+        let q = projection.apply(p);
+        // Strictly inside the outer loop and strictly outside every ring.
+        self.solid.face_loops(face).enumerate().all(|(i, l)| {
+            let points: smallvec::SmallVec<[_; 8]> = self
+                .solid
+                .loop_vertices(l)
+                .map(|v| projection.apply(self.solid.position(v)))
+                .collect();
+            let want = if i == 0 {
+                PolygonLocation::Inside
+            } else {
+                PolygonLocation::Outside
+            };
+            locate_point_in_polygon(&points, q) == want
+        })
     }
 }
 

@@ -13,6 +13,14 @@ use crate::mesh::{Solid, VertexId};
 /// vertices counter-clockwise seen from outside (polygons are not
 /// triangulated). Faces carrying a group name are preceded by a `g` line when
 /// the group changes.
+///
+/// OBJ has no faces with holes: a face with rings is written as the
+/// triangles of its exact constrained triangulation
+/// ([`Solid::try_triangulate_face`]: no sliver of zero area, no flipped
+/// triangle), one `f` line each, wound like the face. A face whose loops do
+/// not bound a valid face (a ring outside or crossing, which validation
+/// reports) cannot be triangulated; its loops are then written as polygons
+/// of their own, so that reading the file back shows the defect.
 #[must_use]
 pub fn to_obj_string(solid: &Solid) -> String {
     let mut out = String::with_capacity(solid.vertex_count() * 40 + solid.face_count() * 24);
@@ -31,13 +39,28 @@ pub fn to_obj_string(solid: &Solid) -> String {
             let _ = writeln!(out, "g {}", g.unwrap_or_default());
             group = g;
         }
-        out.push('f');
-        for v in solid.face_vertices(id) {
-            let _ = write!(out, " {}", index[v]);
+        if face.rings.is_empty() {
+            write_polygon(&mut out, solid.face_vertices(id).map(|v| index[v]));
+        } else if let Ok(triangles) = solid.try_triangulate_face(id) {
+            for t in triangles {
+                write_polygon(&mut out, t.iter().map(|&v| index[v]));
+            }
+        } else {
+            for l in solid.face_loops(id) {
+                write_polygon(&mut out, solid.loop_vertices(l).map(|v| index[v]));
+            }
         }
-        out.push('\n');
     }
     out
+}
+
+/// One `f` line with the given 1-based vertex numbers.
+fn write_polygon(out: &mut String, vertices: impl Iterator<Item = usize>) {
+    out.push('f');
+    for v in vertices {
+        let _ = write!(out, " {v}");
+    }
+    out.push('\n');
 }
 
 /// Writes the solid to `path` as OBJ; see [`to_obj_string`].
@@ -47,4 +70,53 @@ pub fn to_obj_string(solid: &Solid) -> String {
 /// Any error from creating or writing the file.
 pub fn write_obj(solid: &Solid, path: &Path) -> io::Result<()> {
     std::fs::write(path, to_obj_string(solid))
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::to_obj_string;
+    use crate::geom::{Sign, orient3d};
+    use crate::mesh::builders;
+
+    /// The frame's top and bottom (8 vertices, one ring each) are written as
+    /// n + 2h − 2 = 8 triangles each, every one wound like its face (the
+    /// outward normal `±z`, decided exactly); the 8 sides stay quads.
+    #[test]
+    fn faces_with_rings_are_written_as_triangles_wound_like_the_face() {
+        let text = to_obj_string(&builders::frame());
+        let positions: Vec<DVec3> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("v "))
+            .map(|l| {
+                let c: Vec<f64> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+                DVec3::new(c[0], c[1], c[2])
+            })
+            .collect();
+        let faces: Vec<Vec<DVec3>> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("f "))
+            .map(|l| {
+                l.split(' ')
+                    .map(|i| positions[i.parse::<usize>().unwrap() - 1])
+                    .collect()
+            })
+            .collect();
+        let triangles: Vec<&Vec<DVec3>> = faces.iter().filter(|f| f.len() == 3).collect();
+        assert_eq!(triangles.len(), 16);
+        assert_eq!(faces.iter().filter(|f| f.len() == 4).count(), 8);
+        for t in triangles {
+            let z = t[0].z;
+            assert!(
+                t.iter().all(|p| p.z == z),
+                "a triangle of the top or bottom"
+            );
+            // Seen from outside (above the top, below the bottom) the
+            // triangle runs counter-clockwise: a point outside is on its
+            // positive side.
+            let outside = DVec3::new(0.0, 0.0, if z > 0.5 { 2.0 } else { -1.0 });
+            assert_eq!(orient3d(t[0], t[1], t[2], outside), Sign::Positive);
+        }
+    }
 }

@@ -1,10 +1,10 @@
 //! Building a winged-edge solid from an indexed polygon soup.
 //!
 //! The build works in index space first (half-edges numbered by polygon
-//! corner, a compressed vertex → outgoing half-edges table to find twins),
-//! checks everything a winged-edge solid cannot represent, and only then
-//! fills the slotmap tables. It runs in time linear in the number of corners
-//! (twin search is proportional to vertex degree).
+//! corner, a compressed vertex → outgoing half-edges table, sorted by end
+//! vertex, to find twins by binary search), checks everything a winged-edge
+//! solid cannot represent, and only then fills the slotmap tables. It runs
+//! in time O(n log d) for n corners and vertex valence d.
 
 use glam::DVec3;
 use slotmap::{Key, SlotMap};
@@ -12,8 +12,13 @@ use thiserror::Error;
 
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::Plane;
+use crate::geom::triangulate::TriangulateError;
 
-use super::{Edge, EdgeId, Face, FaceId, PolygonSoup, Solid, Vertex, VertexId};
+use super::euler::EulerError;
+use super::{
+    Edge, EdgeId, EdgeUse, Face, FaceId, Loop, LoopId, LoopStart, PolygonSoup, Side, Solid, Vertex,
+    VertexId,
+};
 
 /// Why a polygon soup cannot be built into a winged-edge solid.
 ///
@@ -108,6 +113,15 @@ pub enum BuildError {
     /// A sweep or apex that would give a flat solid.
     #[error("the sweep vector or apex lies in the polygon's plane")]
     Flat,
+    /// A profile with holes given to a builder that is not a valid face: a
+    /// hole not strictly inside the outer polygon, holes touching, a loop
+    /// not simple.
+    #[error("the profile is not a valid face: {0}")]
+    InvalidProfile(#[from] TriangulateError),
+    /// An Euler operator of a builder refused (the builder's own checks
+    /// should have caught its input first).
+    #[error(transparent)]
+    Euler(#[from] EulerError),
 }
 
 fn at_line(line: Option<usize>) -> String {
@@ -189,8 +203,8 @@ impl Solid {
         }
         check_polygons(soup)?;
         let mut halves = corner_half_edges(soup);
-        let outgoing = Outgoing::new(soup.positions.len(), &halves.from);
-        pair_twins(soup, &mut halves, &outgoing)?;
+        let mut outgoing = Outgoing::new(soup.positions.len(), &halves.from);
+        pair_twins(soup, &mut halves, &mut outgoing)?;
         link_holes(soup, &mut halves, &outgoing)?;
         check_fans(soup, &halves, &outgoing)?;
         // Freed before the solid's tables are allocated (lowers the peak).
@@ -265,6 +279,10 @@ fn corner_half_edges(soup: &PolygonSoup) -> HalfEdges {
     h
 }
 
+/// Outgoing lists up to this length are scanned; longer ones are sorted and
+/// searched by halving.
+const SCANNED: usize = 32;
+
 /// Compressed table of the face half-edges leaving each soup vertex.
 struct Outgoing {
     offsets: Vec<usize>,
@@ -292,24 +310,43 @@ impl Outgoing {
     fn of(&self, v: usize) -> &[usize] {
         &self.list[self.offsets[v]..self.offsets[v + 1]]
     }
+
+    /// Sorts the lists longer than [`SCANNED`] by the half-edges' end
+    /// vertices, stably (half-edges with one end stay in index order).
+    fn sort_by_end(&mut self, to: &[usize]) {
+        for v in 0..self.offsets.len() - 1 {
+            let list = &mut self.list[self.offsets[v]..self.offsets[v + 1]];
+            if list.len() > SCANNED {
+                list.sort_by_key(|&g| to[g]);
+            }
+        }
+    }
+
+    /// The half-edges from `a` to `b`, in index order (after
+    /// [`Outgoing::sort_by_end`]).
+    fn towards(&self, a: usize, b: usize, to: &[usize]) -> smallvec::SmallVec<[usize; 2]> {
+        let list = self.of(a);
+        if list.len() <= SCANNED {
+            return list.iter().copied().filter(|&g| to[g] == b).collect();
+        }
+        let start = list.partition_point(|&g| to[g] < b);
+        let end = start + list[start..].partition_point(|&g| to[g] == b);
+        list[start..end].iter().copied().collect()
+    }
 }
 
-fn pair_twins(soup: &PolygonSoup, h: &mut HalfEdges, out: &Outgoing) -> Result<(), BuildError> {
+/// Pairs each face half-edge with the one running its edge the other way.
+/// The outgoing lists of vertices of high valence are sorted by end vertex
+/// once and searched by halving; the short lists of every other vertex are
+/// scanned. O(n log d) for n corners and valence d, where a scan of every
+/// list once per half-edge cost O(n d).
+fn pair_twins(soup: &PolygonSoup, h: &mut HalfEdges, out: &mut Outgoing) -> Result<(), BuildError> {
+    out.sort_by_end(&h.to);
     let line = |h: &HalfEdges, e: usize| soup.polygons[h.polygon[e]].attributes.line;
     for e in 0..h.face_count {
         let (a, b) = (h.from[e], h.to[e]);
-        let same: smallvec::SmallVec<[usize; 2]> = out
-            .of(a)
-            .iter()
-            .copied()
-            .filter(|&g| h.to[g] == b)
-            .collect();
-        let opposite: smallvec::SmallVec<[usize; 2]> = out
-            .of(b)
-            .iter()
-            .copied()
-            .filter(|&g| h.to[g] == a)
-            .collect();
+        let same = out.towards(a, b, &h.to);
+        let opposite = out.towards(b, a, &h.to);
         if same.len() + opposite.len() >= 3 {
             let mut users: Vec<usize> = same.iter().chain(&opposite).copied().collect();
             users.sort_unstable();
@@ -432,6 +469,7 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
         vertices: SlotMap::with_capacity_and_key(referenced.iter().filter(|&&r| r).count()),
         edges: SlotMap::with_capacity_and_key(edge_count),
         faces: SlotMap::with_capacity_and_key(soup.polygons.len()),
+        loops: SlotMap::with_capacity_and_key(soup.polygons.len()),
     };
     let vertex_ids: Vec<VertexId> = referenced
         .iter()
@@ -442,12 +480,12 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
             }
             solid.vertices.insert(Vertex {
                 position: soup.positions[v],
-                edge: EdgeId::null(),
+                edge: None,
                 source_index: Some(v),
             })
         })
         .collect();
-    // Faces first with placeholder edges, so that edges can name them.
+    // Faces first with placeholder loops, so that edges can name them.
     let face_ids: Vec<FaceId> = soup
         .polygons
         .iter()
@@ -459,7 +497,8 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
             attributes.source_index = Some(index);
             solid.faces.insert(Face {
                 plane: Plane::try_fit_newell(&points).ok().map(|fit| fit.plane),
-                edge: EdgeId::null(),
+                outer: LoopId::null(),
+                rings: Vec::new(),
                 attributes,
             })
         })
@@ -498,9 +537,21 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
             edge.cw_right = prev;
         }
     }
+    // Each face's loop starts at the use of its last corner's edge.
+    let mut starts: Vec<Option<EdgeUse>> = vec![None; soup.polygons.len()];
     for e in 0..h.face_count {
-        solid.faces[face_ids[h.polygon[e]]].edge = edge_of[e];
-        solid.vertices[vertex_ids[h.from[e]]].edge = edge_of[e];
+        let edge = edge_of[e];
+        let side = if solid.edges[edge].origin == vertex_ids[h.from[e]] {
+            Side::Left
+        } else {
+            Side::Right
+        };
+        starts[h.polygon[e]] = Some(EdgeUse { edge, side });
+        solid.vertices[vertex_ids[h.from[e]]].edge = Some(edge);
+    }
+    for (&face, start) in face_ids.iter().zip(starts) {
+        let start = LoopStart::Edge(start.expect("a polygon has at least three corners"));
+        solid.faces[face].outer = solid.loops.insert(Loop { face, start });
     }
     debug_assert!(
         solid.check_consistency().is_ok(),

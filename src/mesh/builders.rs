@@ -1,13 +1,16 @@
-//! Builders for the seed's "Creating polyhedra": the five Platonic solids, a
-//! box, prisms swept from any simple polygon, and pyramids.
+//! Builders for the classic solids: the five Platonic solids, a box, prisms
+//! swept from any simple polygon (with holes: through holes), and pyramids.
 //!
-//! Every builder returns an outward-oriented closed solid that passes
-//! [`Solid::check_consistency`].
+//! Every builder makes its solid with Euler operators ([`super::euler`]):
+//! prisms are a lamina extruded ([`Solid::extrude_face`]), pyramids a lamina
+//! coned to the apex ([`Solid::cone_face`]), the Platonic solids a spanning
+//! tree of `mev`s closed by `mef`s. Every builder returns an
+//! outward-oriented closed solid that passes [`Solid::check_consistency`].
 
 use glam::DVec3;
 
 use crate::geom::polygon::{Projection, find_self_intersection};
-use crate::geom::{Plane, Sign, orient3d};
+use crate::geom::{Plane, Sign, orient3d, triangulate_3d};
 
 use super::{BuildError, PolygonSoup, Solid};
 
@@ -15,18 +18,20 @@ use super::{BuildError, PolygonSoup, Solid};
 const PHI: f64 = 1.618_033_988_749_895;
 
 /// The names accepted by [`by_name`], in a stable order.
-pub const NAMES: [&str; 6] = [
+pub const NAMES: [&str; 7] = [
     "tetrahedron",
     "cube",
     "octahedron",
     "dodecahedron",
     "icosahedron",
     "prism",
+    "frame",
 ];
 
 /// A built-in solid by name: the Platonic solids (`tetrahedron`, `cube`,
-/// `octahedron`, `dodecahedron`, `icosahedron`) and `prism`, an L-shaped
-/// (non-convex) prism. `None` for an unknown name.
+/// `octahedron`, `dodecahedron`, `icosahedron`), `prism`, an L-shaped
+/// (non-convex) prism, and `frame`, a square frame with a square hole
+/// through it (genus 1, faces with rings). `None` for an unknown name.
 #[must_use]
 pub fn by_name(name: &str) -> Option<Solid> {
     Some(match name {
@@ -36,6 +41,7 @@ pub fn by_name(name: &str) -> Option<Solid> {
         "dodecahedron" => dodecahedron(),
         "icosahedron" => icosahedron(),
         "prism" => l_prism(),
+        "frame" => frame(),
         _ => return None,
     })
 }
@@ -128,6 +134,28 @@ pub fn cuboid(min: DVec3, max: DVec3) -> Result<Solid, BuildError> {
 /// [`BuildError::Flat`] when `sweep` lies in the polygon's plane (decided
 /// exactly).
 pub fn prism(profile: &[DVec3], sweep: DVec3) -> Result<Solid, BuildError> {
+    prism_with_holes(profile, &[], sweep)
+}
+
+/// The prism swept from a polygon with holes along `sweep`: a solid with one
+/// through hole per hole of the profile (genus = number of holes). Built as
+/// a lamina ([`Solid::try_lamina`]), a ring per hole ([`Solid::add_ring`])
+/// turned into a ring of the opposite face ([`Solid::kfmrh`]), and the
+/// extrusion of the face with the rings ([`Solid::extrude_face`]). Polygons
+/// may be wound either way; the solid is oriented outward.
+///
+/// # Errors
+///
+/// Those of [`prism`] for the outer polygon, and
+/// [`BuildError::InvalidProfile`] when a hole is not simple, not strictly
+/// inside the outer polygon or touches another hole (decided exactly in the
+/// projection onto the axis plane closest to the profile; holes are assumed
+/// to lie in the outer polygon's plane).
+pub fn prism_with_holes(
+    profile: &[DVec3],
+    holes: &[&[DVec3]],
+    sweep: DVec3,
+) -> Result<Solid, BuildError> {
     let base = checked_profile(profile)?;
     if !sweep.is_finite() {
         return Err(BuildError::NonFinitePosition {
@@ -135,6 +163,7 @@ pub fn prism(profile: &[DVec3], sweep: DVec3) -> Result<Solid, BuildError> {
             position: sweep,
         });
     }
+    triangulate_3d(profile, holes)?;
     let side = orient3d(
         base.pivot[0],
         base.pivot[1],
@@ -146,18 +175,15 @@ pub fn prism(profile: &[DVec3], sweep: DVec3) -> Result<Solid, BuildError> {
         Sign::Positive => profile.to_vec(),
         Sign::Negative => profile.iter().rev().copied().collect(),
     };
-    // `ring` now runs counter-clockwise seen from the sweep direction.
-    let n = ring.len();
-    let mut positions = ring.clone();
-    positions.extend(ring.iter().map(|&p| p + sweep));
-    let mut polygons: Vec<Vec<usize>> = Vec::with_capacity(n + 2);
-    polygons.push((0..n).rev().collect());
-    polygons.push((n..2 * n).collect());
-    for i in 0..n {
-        let j = (i + 1) % n;
-        polygons.push(vec![i, j, n + j, n + i]);
+    // `ring` now runs counter-clockwise seen from the sweep direction: the
+    // lamina's front faces along the sweep and is the face extruded.
+    let (mut solid, front, back) = Solid::try_lamina(&ring)?;
+    for hole in holes {
+        let filling = solid.add_ring(front, hole)?;
+        solid.kfmrh(back, filling)?;
     }
-    Solid::try_from_soup(&PolygonSoup::new(positions, polygons))
+    solid.extrude_face(front, sweep)?;
+    Ok(solid)
 }
 
 /// The pyramid over a simple polygon with the given apex.
@@ -180,12 +206,11 @@ pub fn pyramid(base: &[DVec3], apex: DVec3) -> Result<Solid, BuildError> {
         Sign::Positive => base.to_vec(),
         Sign::Negative => base.iter().rev().copied().collect(),
     };
-    let n = ring.len();
-    let mut positions = ring;
-    positions.push(apex);
-    let mut polygons: Vec<Vec<usize>> = vec![(0..n).rev().collect()];
-    polygons.extend((0..n).map(|i| vec![i, (i + 1) % n, n]));
-    Solid::try_from_soup(&PolygonSoup::new(positions, polygons))
+    // `ring` runs counter-clockwise seen from the apex: the lamina's front
+    // faces the apex and is coned to it, its back is the base.
+    let (mut solid, front, _) = Solid::try_lamina(&ring)?;
+    solid.cone_face(front, apex)?;
+    Ok(solid)
 }
 
 /// A closed triangulated unit sphere (a UV sphere) as a soup: `rings`
@@ -242,6 +267,16 @@ pub fn l_prism() -> Solid {
     let l = [(0., 0.), (2., 0.), (2., 1.), (1., 1.), (1., 2.), (0., 2.)]
         .map(|(x, y)| DVec3::new(x, y, 0.));
     prism(&l, DVec3::Z).expect("the L profile is simple")
+}
+
+/// A square frame of height 1: the square `[−2, 2]²` with the square hole
+/// `[−1, 1]²` through it, swept along `z` (volume 12, genus 1; its top and
+/// bottom faces each have one ring).
+#[must_use]
+pub fn frame() -> Solid {
+    let square = |r: f64| [(-r, -r), (r, -r), (r, r), (-r, r)].map(|(x, y)| DVec3::new(x, y, 0.));
+    prism_with_holes(&square(2.0), &[&square(1.0)], DVec3::Z)
+        .expect("the inner square is strictly inside the outer one")
 }
 
 struct CheckedProfile {
@@ -326,7 +361,8 @@ fn dodecahedron_vertices() -> Vec<DVec3> {
 
 /// A regular convex polyhedron from its vertices and the directions of its
 /// face normals (the vertices of its dual): each face is the `k` vertices
-/// farthest along its normal, ordered counter-clockwise around it.
+/// farthest along its normal, ordered counter-clockwise around it; the
+/// solid is built from those faces by Euler operators.
 fn regular(vertices: &[DVec3], normals: &[DVec3], k: usize) -> Solid {
     let polygons: Vec<Vec<usize>> = normals
         .iter()
@@ -347,6 +383,6 @@ fn regular(vertices: &[DVec3], normals: &[DVec3], k: usize) -> Solid {
             ranked
         })
         .collect();
-    Solid::try_from_soup(&PolygonSoup::new(vertices.to_vec(), polygons))
-        .expect("a regular polyhedron's faces form a closed manifold")
+    Solid::try_sphere_from_polygons(&PolygonSoup::new(vertices.to_vec(), polygons))
+        .expect("a regular polyhedron's faces form a closed genus-0 manifold")
 }

@@ -1,14 +1,15 @@
 //! The internal consistency check: every invariant of the winged-edge tables,
 //! verified from scratch.
 //!
-//! Construction keeps these invariants by design; this check exists so that
-//! tests (and debug builds) can prove it after every construction.
+//! Construction and the Euler operators keep these invariants by design;
+//! this check exists so that tests (and debug builds) can prove it after
+//! every construction and every operator.
 
 use std::collections::{HashMap, HashSet};
 
 use thiserror::Error;
 
-use super::{EdgeId, EdgeUse, FaceId, Side, Solid, VertexId};
+use super::{EdgeId, EdgeUse, FaceId, LoopId, LoopStart, Side, Solid, VertexId};
 
 /// A broken invariant of a [`Solid`]: always a bug in wingedge, never a
 /// property of user input.
@@ -26,24 +27,25 @@ pub enum ConsistencyError {
     /// Two edges join the same pair of vertices.
     #[error("edges {0:?} and {1:?} join the same two vertices")]
     ParallelEdges(EdgeId, EdgeId),
-    /// A vertex's stored edge does not touch it.
+    /// A vertex's stored edge does not touch it, or a vertex without an
+    /// edge is not a lone-vertex loop.
     #[error("vertex {0:?} stores edge {1:?}, which does not touch it")]
-    VertexEdgeMismatch(VertexId, EdgeId),
-    /// A face's stored edge does not border it.
-    #[error("face {0:?} stores edge {1:?}, which does not border it")]
-    FaceEdgeMismatch(FaceId, EdgeId),
+    VertexEdgeMismatch(VertexId, Option<EdgeId>),
+    /// A face's loop does not name the face back, or a loop is listed by no
+    /// face or by two.
+    #[error("face {0:?} and loop {1:?} do not name each other")]
+    FaceLoopMismatch(FaceId, LoopId),
     /// A wing does not continue its loop at the shared vertex, or the loop
     /// changes face, or `next` and `prev` disagree.
     #[error("the loop through {0:?} is broken: {1}")]
     BrokenLoop(EdgeUse, String),
-    /// A face with fewer than three edges, or one that visits a vertex twice.
-    #[error("face {0:?} has a loop of {1} edges or repeats a vertex")]
-    BadFaceLoop(FaceId, usize),
+    /// A loop's start is not on its face, or a lone vertex is in two loops.
+    #[error("loop {0:?} is broken: {1}")]
+    BadLoop(LoopId, String),
     /// The faces around a vertex do not form one fan.
     #[error("vertex {0:?}: walking its star visits {1} of its {2} edges")]
     SplitStar(VertexId, usize, usize),
-    /// A face's stored plane is missing although the face has area, or a
-    /// vertex position is not finite.
+    /// A vertex position is not finite.
     #[error("{0}")]
     BadGeometry(String),
 }
@@ -52,13 +54,14 @@ impl Solid {
     /// Verifies every invariant of the winged-edge tables.
     ///
     /// Runs in time linear in the size of the solid. Tests call it after
-    /// every construction.
+    /// every construction and every Euler operator.
     ///
     /// # Errors
     ///
     /// The first broken invariant found.
     pub fn check_consistency(&self) -> Result<(), ConsistencyError> {
         self.check_links()?;
+        self.check_faces_and_loops()?;
         self.check_loops()?;
         self.check_stars()
     }
@@ -92,12 +95,14 @@ impl Solid {
             pairs.insert(key, id);
         }
         for (id, v) in &self.vertices {
-            let e = self
-                .edges
-                .get(v.edge)
-                .ok_or_else(|| dangling(format!("vertex {id:?} edge")))?;
-            if e.origin != id && e.dest != id {
-                return Err(ConsistencyError::VertexEdgeMismatch(id, v.edge));
+            if let Some(edge) = v.edge {
+                let e = self
+                    .edges
+                    .get(edge)
+                    .ok_or_else(|| dangling(format!("vertex {id:?} edge")))?;
+                if e.origin != id && e.dest != id {
+                    return Err(ConsistencyError::VertexEdgeMismatch(id, v.edge));
+                }
             }
             if !v.position.is_finite() {
                 return Err(ConsistencyError::BadGeometry(format!(
@@ -105,21 +110,74 @@ impl Solid {
                 )));
             }
         }
-        for (id, f) in &self.faces {
-            let e = self
-                .edges
-                .get(f.edge)
-                .ok_or_else(|| dangling(format!("face {id:?} edge")))?;
-            if e.left_face != id && e.right_face != Some(id) {
-                return Err(ConsistencyError::FaceEdgeMismatch(id, f.edge));
+        Ok(())
+    }
+
+    /// Faces and loops name each other; every loop is listed by exactly one
+    /// face; rings are sorted; loop starts lie on their face; lone vertices
+    /// have no edge and are in exactly one loop, and every vertex without an
+    /// edge is lone.
+    fn check_faces_and_loops(&self) -> Result<(), ConsistencyError> {
+        let mut listed: HashSet<LoopId> = HashSet::with_capacity(self.loops.len());
+        for (face, f) in &self.faces {
+            if !f.rings.windows(2).all(|w| w[0] < w[1]) {
+                return Err(ConsistencyError::BadLoop(
+                    f.outer,
+                    format!("the rings of face {face:?} are not sorted"),
+                ));
+            }
+            for l in std::iter::once(f.outer).chain(f.rings.iter().copied()) {
+                match self.loops.get(l) {
+                    Some(record) if record.face == face && listed.insert(l) => {}
+                    _ => return Err(ConsistencyError::FaceLoopMismatch(face, l)),
+                }
+            }
+        }
+        let mut lone: HashSet<VertexId> = HashSet::new();
+        for (id, l) in &self.loops {
+            if !listed.contains(&id) {
+                return Err(ConsistencyError::FaceLoopMismatch(l.face, id));
+            }
+            match l.start {
+                LoopStart::Edge(u) => {
+                    if !self.edges.contains_key(u.edge) {
+                        return Err(ConsistencyError::DanglingId {
+                            what: format!("loop {id:?} start"),
+                        });
+                    }
+                    if self.use_face(u) != Some(l.face) {
+                        return Err(ConsistencyError::BadLoop(
+                            id,
+                            "its start is not on its face".to_string(),
+                        ));
+                    }
+                }
+                LoopStart::Vertex(v) => {
+                    let Some(vertex) = self.vertices.get(v) else {
+                        return Err(ConsistencyError::DanglingId {
+                            what: format!("loop {id:?} vertex"),
+                        });
+                    };
+                    if vertex.edge.is_some() || !lone.insert(v) {
+                        return Err(ConsistencyError::BadLoop(
+                            id,
+                            format!("lone vertex {v:?} has an edge or is in two loops"),
+                        ));
+                    }
+                }
+            }
+        }
+        for (id, v) in &self.vertices {
+            if v.edge.is_none() && !lone.contains(&id) {
+                return Err(ConsistencyError::VertexEdgeMismatch(id, None));
             }
         }
         Ok(())
     }
 
     /// Every edge use continues at its end vertex, `prev` inverts `next`,
-    /// and every use of a loop has the same face; faces have ≥ 3 edges and
-    /// distinct vertices; every use belongs to exactly one loop.
+    /// and every use of a loop has the same face; every face use belongs to
+    /// exactly one loop.
     fn check_loops(&self) -> Result<(), ConsistencyError> {
         let broken = |u: EdgeUse, why: &str| ConsistencyError::BrokenLoop(u, why.to_string());
         for (edge, _) in &self.edges {
@@ -138,19 +196,23 @@ impl Solid {
             }
         }
         let mut seen: HashSet<EdgeUse> = HashSet::with_capacity(self.edges.len() * 2);
-        for (face, _) in &self.faces {
-            let uses: Vec<EdgeUse> = self.face_loop(face).collect();
-            if self.use_next(*uses.last().expect("a loop has at least one use")) != uses[0] {
-                return Err(broken(uses[0], "the face loop does not close"));
-            }
-            let vertices: HashSet<VertexId> = uses.iter().map(|&u| self.use_start(u)).collect();
-            if uses.len() < 3 || vertices.len() != uses.len() {
-                return Err(ConsistencyError::BadFaceLoop(face, uses.len()));
-            }
-            for u in uses {
-                if self.use_face(u) != Some(face) || !seen.insert(u) {
+        for (id, l) in &self.loops {
+            let LoopStart::Edge(start) = l.start else {
+                continue;
+            };
+            let mut count = 0;
+            for u in self.loop_from(start) {
+                count += 1;
+                if self.use_face(u) != Some(l.face) || !seen.insert(u) {
                     return Err(broken(u, "a use belongs to two loops"));
                 }
+            }
+            let last = self.loop_from(start).last();
+            if count == 0 || last.map(|u| self.use_next(u)) != Some(start) {
+                return Err(ConsistencyError::BadLoop(
+                    id,
+                    "the loop does not close".to_string(),
+                ));
             }
         }
         let face_uses = seen.len();

@@ -22,15 +22,18 @@ use super::{EdgeId, FaceId, VertexId};
 ///
 /// - `origin != dest`, and no other edge joins the same two vertices.
 /// - `left_face` always exists: the edge is oriented so that the face that
-///   first used it runs it from `origin` to `dest`.
+///   first used it runs it from `origin` to `dest`. Both sides may be on one
+///   face (an edge inside a face's loop, run out and back, while a solid is
+///   made by Euler operators).
 /// - `right_face` is `None` for a boundary edge (an edge of one face, on the
 ///   rim of a hole). The right-hand wings then run around the hole: the
 ///   boundary edges of one hole form a loop exactly as a face's edges do, so
 ///   every wing always names an edge and vertex stars can be walked across
 ///   holes.
 /// - Following `ccw_left`/`ccw_right` from any edge use returns to it after
-///   visiting exactly the edges of that face (or hole); `cw_*` walks the same
-///   loop backwards.
+///   visiting exactly the edges of one loop of that face (its outer loop or a
+///   ring; for a boundary edge's right side, the hole); `cw_*` walks the
+///   same loop backwards.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Edge {
     /// The start vertex.

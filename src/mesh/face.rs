@@ -4,27 +4,38 @@ use std::sync::Arc;
 
 use crate::geom::Plane;
 
-use super::EdgeId;
+use super::LoopId;
 
-/// A face: a planar polygon of any size, bounded by one loop of edges.
+/// A face: a planar polygon of any size, bounded by one outer loop and zero
+/// or more rings (inner loops: holes through the face).
 ///
 /// # Invariants
 ///
-/// - `edge` has this face as its `left_face` or `right_face`; walking the
-///   wings from it visits the face's boundary counter-clockwise seen from
-///   outside, through at least three edges, and returns to `edge`.
-/// - A face visits each vertex at most once.
-/// - `plane` is the Newell plane of the face's vertices, with its normal
-///   pointing outward; it is `None` exactly when the face encloses no area
-///   (all its vertices collinear), which only imported data can produce.
-///   The plane is a rounded construction: sides of a face are decided by
-///   [`Solid::face_side`](super::Solid::face_side), not by it.
+/// - `outer` and every id in `rings` name loops ([`super::Loop`]) whose
+///   `face` is this face; `rings` is sorted and holds no duplicate, and no
+///   loop is both outer and a ring.
+/// - `plane` is the Newell plane of the outer loop, with its normal pointing
+///   outward, or `None` when that loop encloses no area. The plane is a
+///   rounded construction: sides of a face are decided by
+///   [`Solid::face_side`](super::Solid::face_side), not by it. The Euler
+///   operators ([`Solid::mef`](super::Solid::mef) and friends) are
+///   topological: a face they create gets the Newell plane of its outer
+///   loop and the faces they change keep their planes; the builders and the
+///   editing operations refit the planes of the faces they move.
+///
+/// Faces of a solid built from a polygon soup have no rings and an outer
+/// loop of at least three distinct vertices. A solid under construction by
+/// Euler operators may have faces whose loops have one or two edges, or a
+/// lone vertex, or visit a vertex twice (a "strut" edge used from both
+/// sides); validation reports such faces.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Face {
     /// The face's plane, `None` for a face with zero area.
     pub plane: Option<Plane>,
-    /// One edge of the face's boundary.
-    pub edge: EdgeId,
+    /// The outer loop.
+    pub outer: LoopId,
+    /// The inner loops (rings), sorted by id.
+    pub rings: Vec<LoopId>,
     /// Where the face came from and what it carries.
     pub attributes: FaceAttributes,
 }

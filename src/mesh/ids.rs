@@ -7,4 +7,7 @@ slotmap::new_key_type! {
     pub struct EdgeId;
     /// A face of a [`Solid`](super::Solid).
     pub struct FaceId;
+    /// A loop (the outer boundary or a ring) of a face of a
+    /// [`Solid`](super::Solid).
+    pub struct LoopId;
 }

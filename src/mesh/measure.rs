@@ -1,5 +1,5 @@
 //! Measures of a solid: counts, volume, area, centroid, bounds, Euler
-//! characteristic, shells and genus.
+//! characteristic (with the ring term of Euler–Poincaré), shells and genus.
 //!
 //! All measures are floating-point constructions. Volumes are computed
 //! relative to the centre of the bounding box, which leaves the exact value
@@ -10,7 +10,7 @@ use glam::DVec3;
 
 use crate::geom::{Aabb, newell_vector_area};
 
-use super::{FaceId, Solid};
+use super::{FaceId, LoopStart, Solid, VertexId};
 
 /// One connected component of a solid's surface.
 ///
@@ -28,7 +28,9 @@ pub struct Shell {
     pub edge_count: usize,
     /// Edges of the shell with one face (the rims of its holes).
     pub boundary_edge_count: usize,
-    /// `V − E + F` of the shell.
+    /// Rings (inner loops of faces) on the shell.
+    pub ring_count: usize,
+    /// `V − E + F − R` of the shell (`R` its rings).
     pub euler_characteristic: i64,
     /// The signed volume enclosed (divergence theorem); positive for an
     /// outward-oriented closed shell, negative for an inward one. Meaningful
@@ -43,7 +45,8 @@ impl Shell {
         self.boundary_edge_count == 0
     }
 
-    /// The genus of a closed shell, from `χ = 2 − 2g`; `None` for a shell
+    /// The genus of a closed shell, from Euler–Poincaré
+    /// `V − E + F − R = 2 − 2g`; `None` for a shell
     /// with holes (genus is then not determined by `χ` alone) or an odd `χ`
     /// (impossible for an orientable closed surface).
     #[must_use]
@@ -54,10 +57,13 @@ impl Shell {
 }
 
 impl Solid {
-    /// `V − E + F` over the whole solid (2 for one closed sphere-like shell).
+    /// `V − E + F − R` over the whole solid, `R` the rings (inner loops of
+    /// faces): 2 for one closed sphere-like shell, and `2 (S − H)` for `S`
+    /// closed shells with `H` handles in all (Euler–Poincaré).
     #[must_use]
     pub fn euler_characteristic(&self) -> i64 {
         self.vertex_count() as i64 - self.edge_count() as i64 + self.face_count() as i64
+            - self.ring_count() as i64
     }
 
     /// The smallest box holding every vertex.
@@ -86,16 +92,23 @@ impl Solid {
         self.faces.keys().map(|f| self.face_area(f)).sum()
     }
 
-    /// The area of one face: the length of its Newell vector area.
+    /// The area of one face: the length of the sum of its loops' Newell
+    /// vector areas (rings run the other way, so their areas subtract).
     ///
     /// # Panics
     ///
     /// If `face` is not a face of this solid.
     #[must_use]
     pub fn face_area(&self, face: FaceId) -> f64 {
-        let points: smallvec::SmallVec<[DVec3; 8]> =
-            self.face_vertices(face).map(|v| self.position(v)).collect();
-        newell_vector_area(&points, points[0]).length()
+        let mut origin = None;
+        let mut area = DVec3::ZERO;
+        for l in self.face_loops(face) {
+            let points: smallvec::SmallVec<[DVec3; 8]> =
+                self.loop_vertices(l).map(|v| self.position(v)).collect();
+            let o = *origin.get_or_insert(points[0]);
+            area += newell_vector_area(&points, o);
+        }
+        area.length()
     }
 
     /// The centre of mass of the enclosed volume (uniform density), or
@@ -113,22 +126,21 @@ impl Solid {
 
     /// Six times the signed volume of the cone from `r` over `face`, and
     /// twenty-four times its first moment about `r` (the factors are applied
-    /// once, after summing, to round less).
+    /// once, after summing, to round less). Each loop is fanned on its own:
+    /// a ring, wound the other way, subtracts the cone over its hole.
     fn face_volume_moment(&self, face: FaceId, r: DVec3) -> (f64, DVec3) {
-        let mut corners = self.face_vertices(face).map(|v| self.position(v) - r);
-        let Some(a) = corners.next() else {
-            return (0.0, DVec3::ZERO);
-        };
-        let mut b = match corners.next() {
-            Some(b) => b,
-            None => return (0.0, DVec3::ZERO),
-        };
         let (mut volume, mut moment) = (0.0, DVec3::ZERO);
-        for c in corners {
-            let v = a.dot(b.cross(c));
-            volume += v;
-            moment += v * (a + b + c);
-            b = c;
+        for l in self.face_loops(face) {
+            let mut corners = self.loop_vertices(l).map(|v| self.position(v) - r);
+            let (Some(a), Some(mut b)) = (corners.next(), corners.next()) else {
+                continue;
+            };
+            for c in corners {
+                let v = a.dot(b.cross(c));
+                volume += v;
+                moment += v * (a + b + c);
+                b = c;
+            }
         }
         (volume, moment)
     }
@@ -163,6 +175,7 @@ impl Solid {
                 vertex_count: 0,
                 edge_count: 0,
                 boundary_edge_count: 0,
+                ring_count: 0,
                 euler_characteristic: 0,
                 signed_volume: 0.0,
             })
@@ -170,10 +183,23 @@ impl Solid {
         for f in self.faces.keys() {
             let shell = &mut shells[shell_of[f]];
             shell.faces.push(f);
+            shell.ring_count += self.faces[f].rings.len();
             shell.signed_volume += self.face_volume_moment(f, r).0;
         }
-        for v in self.vertices.values() {
-            shells[shell_of[self.edges[v.edge].left_face]].vertex_count += 1;
+        let lone_face: std::collections::HashMap<VertexId, FaceId> = self
+            .loops
+            .values()
+            .filter_map(|l| match l.start {
+                LoopStart::Vertex(v) => Some((v, l.face)),
+                LoopStart::Edge(_) => None,
+            })
+            .collect();
+        for (id, v) in &self.vertices {
+            let face = match v.edge {
+                Some(e) => self.edges[e].left_face,
+                None => lone_face[&id],
+            };
+            shells[shell_of[face]].vertex_count += 1;
         }
         for e in self.edges.values() {
             let shell = &mut shells[shell_of[e.left_face]];
@@ -182,8 +208,9 @@ impl Solid {
         }
         for shell in &mut shells {
             shell.signed_volume /= 6.0;
-            shell.euler_characteristic =
-                shell.vertex_count as i64 - shell.edge_count as i64 + shell.faces.len() as i64;
+            shell.euler_characteristic = shell.vertex_count as i64 - shell.edge_count as i64
+                + shell.faces.len() as i64
+                - shell.ring_count as i64;
         }
         shells
     }

@@ -5,17 +5,19 @@ use slotmap::SlotMap;
 
 use crate::geom::{Sign, orient3d};
 
-use super::{Edge, EdgeId, Face, FaceId, Vertex, VertexId};
+use super::{Edge, EdgeId, Face, FaceId, Loop, LoopId, Vertex, VertexId};
 
 /// A polyhedral boundary representation in winged-edge form.
 ///
 /// # Invariants
 ///
-/// Every invariant of [`Vertex`], [`Edge`] and [`Face`] holds, and every id
-/// stored in a table names an element of the same solid. Closed solids (no
-/// boundary edges) are oriented outward when built by the builders in this
-/// crate; imported ones are checked by validation. A `Solid` is only created
-/// through checked constructors and offers no mutable access to its tables,
+/// Every invariant of [`Vertex`], [`Edge`], [`Face`] and [`Loop`] holds, and
+/// every id stored in a table names an element of the same solid. Closed
+/// solids (no boundary edges) are oriented outward when built by the
+/// builders in this crate; imported ones are checked by validation. A
+/// `Solid` is only created through checked constructors and changed only by
+/// the Euler operators ([`super::euler`]), which check their pre-conditions
+/// before they change anything; it offers no mutable access to its tables,
 /// so the invariants cannot be broken from outside;
 /// [`Solid::check_consistency`] re-verifies all of them.
 #[derive(Clone, Debug, Default)]
@@ -23,6 +25,7 @@ pub struct Solid {
     pub(super) vertices: SlotMap<VertexId, Vertex>,
     pub(super) edges: SlotMap<EdgeId, Edge>,
     pub(super) faces: SlotMap<FaceId, Face>,
+    pub(super) loops: SlotMap<LoopId, Loop>,
 }
 
 impl Solid {
@@ -42,6 +45,19 @@ impl Solid {
     #[must_use]
     pub fn face_count(&self) -> usize {
         self.faces.len()
+    }
+
+    /// The number of loops (one outer loop per face plus the rings).
+    #[must_use]
+    pub fn loop_count(&self) -> usize {
+        self.loops.len()
+    }
+
+    /// The number of rings: inner loops of faces, `R` in the
+    /// Euler–Poincaré formula `V − E + F − R = 2 (S − H)`.
+    #[must_use]
+    pub fn ring_count(&self) -> usize {
+        self.loops.len() - self.faces.len()
     }
 
     /// The vertex `id`.
@@ -73,6 +89,22 @@ impl Solid {
     #[must_use]
     pub fn face(&self, id: FaceId) -> &Face {
         &self.faces[id]
+    }
+
+    /// The loop `id`.
+    ///
+    /// # Panics
+    ///
+    /// If `id` is not a loop of this solid.
+    #[must_use]
+    pub fn loop_record(&self, id: LoopId) -> &Loop {
+        &self.loops[id]
+    }
+
+    /// The loop `id`, or `None` if it is not a loop of this solid.
+    #[must_use]
+    pub fn get_loop(&self, id: LoopId) -> Option<&Loop> {
+        self.loops.get(id)
     }
 
     /// The vertex `id`, or `None` if it is not a vertex of this solid.
@@ -118,6 +150,11 @@ impl Solid {
         self.faces.iter()
     }
 
+    /// All loops with their ids, in creation order.
+    pub fn loops(&self) -> impl ExactSizeIterator<Item = (LoopId, &Loop)> + '_ {
+        self.loops.iter()
+    }
+
     /// Whether every edge has two faces (the surface has no holes).
     #[must_use]
     pub fn is_closed(&self) -> bool {
@@ -154,8 +191,9 @@ impl Solid {
         }
     }
 
-    /// Three vertices of `face` spanning its plane, in the face's winding: the
-    /// first vertex and the pair that forms the largest triangle with it.
+    /// Three vertices of `face`'s outer loop spanning its plane, in the
+    /// face's winding: the first vertex and the pair that forms the largest
+    /// triangle with it.
     /// `None` for a face of zero area.
     ///
     /// # Panics
@@ -163,9 +201,15 @@ impl Solid {
     /// If `face` is not a face of this solid.
     #[must_use]
     pub fn face_pivot(&self, face: FaceId) -> Option<[DVec3; 3]> {
-        let points: smallvec::SmallVec<[DVec3; 8]> =
-            self.face_vertices(face).map(|v| self.position(v)).collect();
+        let outer = self.faces[face].outer;
+        let points: smallvec::SmallVec<[DVec3; 8]> = self
+            .loop_vertices(outer)
+            .map(|v| self.position(v))
+            .collect();
         let n = points.len();
+        if n < 3 {
+            return None;
+        }
         if n == 3 {
             return Some([points[0], points[1], points[2]]);
         }

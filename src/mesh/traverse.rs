@@ -11,9 +11,12 @@
 //! | face | [`Solid::face_vertices`] | [`Solid::face_edges`] | [`Solid::face_neighbours`] |
 //!
 //! Vertex relations run counter-clockwise around the vertex seen from outside;
-//! face relations run counter-clockwise around the face seen from outside.
+//! face relations run counter-clockwise around the face seen from outside and
+//! visit all of a face's loops: the outer loop first, then each ring.
+//! [`Solid::face_loops`] lists a face's loops and [`Solid::loop_uses`] walks
+//! one of them.
 
-use super::{Edge, EdgeId, EdgeUse, FaceId, Side, Solid, VertexId};
+use super::{Edge, EdgeId, EdgeUse, FaceId, LoopId, LoopStart, Side, Solid, VertexId};
 
 impl Solid {
     /// The vertex an edge use starts at.
@@ -83,38 +86,97 @@ impl Solid {
         EdgeUse { edge: prev, side }
     }
 
-    /// The use of `face`'s stored edge that belongs to `face`.
+    /// The first edge use of `face`'s outer loop, `None` when that loop is
+    /// a lone vertex.
     #[must_use]
-    pub fn face_first_use(&self, face: FaceId) -> EdgeUse {
-        let edge = self.faces[face].edge;
-        let side = if self.edges[edge].left_face == face {
-            Side::Left
-        } else {
-            Side::Right
-        };
-        EdgeUse { edge, side }
+    pub fn face_first_use(&self, face: FaceId) -> Option<EdgeUse> {
+        match self.loops[self.faces[face].outer].start {
+            LoopStart::Edge(u) => Some(u),
+            LoopStart::Vertex(_) => None,
+        }
     }
 
-    /// The use of `vertex`'s stored edge that leaves `vertex`.
+    /// The use of `vertex`'s stored edge that leaves `vertex`, `None` for a
+    /// vertex without edges.
     #[must_use]
-    pub fn vertex_first_use(&self, vertex: VertexId) -> EdgeUse {
-        let edge = self.vertices[vertex].edge;
+    pub fn vertex_first_use(&self, vertex: VertexId) -> Option<EdgeUse> {
+        let edge = self.vertices[vertex].edge?;
         let side = if self.edges[edge].origin == vertex {
             Side::Left
         } else {
             Side::Right
         };
-        EdgeUse { edge, side }
+        Some(EdgeUse { edge, side })
     }
 
-    /// The edge uses bounding `face`, counter-clockwise seen from outside,
-    /// starting at the face's stored edge.
+    /// The loops of `face`: its outer loop, then its rings.
     ///
     /// # Panics
     ///
     /// If `face` is not a face of this solid.
-    pub fn face_loop(&self, face: FaceId) -> LoopWalk<'_> {
-        self.loop_from(self.face_first_use(face))
+    pub fn face_loops(&self, face: FaceId) -> impl Iterator<Item = LoopId> + '_ {
+        let f = &self.faces[face];
+        std::iter::once(f.outer).chain(f.rings.iter().copied())
+    }
+
+    /// The edge uses of one loop, in its order (counter-clockwise around the
+    /// face seen from outside for an outer loop, clockwise for a ring);
+    /// nothing for a loop that is a lone vertex.
+    ///
+    /// # Panics
+    ///
+    /// If `id` is not a loop of this solid.
+    pub fn loop_uses(&self, id: LoopId) -> LoopWalk<'_> {
+        match self.loops[id].start {
+            LoopStart::Edge(u) => self.loop_from(u),
+            LoopStart::Vertex(_) => LoopWalk {
+                solid: self,
+                start: None,
+                current: None,
+                budget: 0,
+            },
+        }
+    }
+
+    /// The vertices of one loop in its order: the start of each use, or the
+    /// lone vertex of a loop without edges.
+    ///
+    /// # Panics
+    ///
+    /// If `id` is not a loop of this solid.
+    pub fn loop_vertices(&self, id: LoopId) -> impl Iterator<Item = VertexId> + '_ {
+        let lone = match self.loops[id].start {
+            LoopStart::Vertex(v) => Some(v),
+            LoopStart::Edge(_) => None,
+        };
+        let mut walk = self.loop_uses(id);
+        lone.into_iter().chain(std::iter::from_fn(move || {
+            walk.next_with_edge().map(|(u, e)| match u.side {
+                Side::Left => e.origin,
+                Side::Right => e.dest,
+            })
+        }))
+    }
+
+    /// The number of rings (inner loops) of `face`.
+    ///
+    /// # Panics
+    ///
+    /// If `face` is not a face of this solid.
+    #[must_use]
+    pub fn face_ring_count(&self, face: FaceId) -> usize {
+        self.faces[face].rings.len()
+    }
+
+    /// The edge uses bounding `face`: its outer loop counter-clockwise seen
+    /// from outside, then each ring (clockwise), each loop from its stored
+    /// start.
+    ///
+    /// # Panics
+    ///
+    /// If `face` is not a face of this solid.
+    pub fn face_loop(&self, face: FaceId) -> impl Iterator<Item = EdgeUse> + '_ {
+        self.face_loops(face).flat_map(|l| self.loop_uses(l))
     }
 
     /// The edge uses of the loop (face or hole) that `start` belongs to,
@@ -122,7 +184,7 @@ impl Solid {
     pub fn loop_from(&self, start: EdgeUse) -> LoopWalk<'_> {
         LoopWalk {
             solid: self,
-            start,
+            start: Some(start),
             current: Some((start, &self.edges[start.edge])),
             budget: self.edges.len() * 2,
         }
@@ -139,7 +201,7 @@ impl Solid {
         StarWalk {
             solid: self,
             start,
-            current: Some(start),
+            current: start,
             budget: self.edges.len() * 2,
         }
     }
@@ -150,7 +212,7 @@ impl Solid {
     }
 
     /// Vertex → faces: the faces around `vertex`, in cyclic order (holes are
-    /// skipped).
+    /// skipped; a vertex without edges yields nothing).
     pub fn vertex_faces(&self, vertex: VertexId) -> impl Iterator<Item = FaceId> + '_ {
         self.vertex_star(vertex).filter_map(|u| self.use_face(u))
     }
@@ -183,16 +245,20 @@ impl Solid {
         [e.cw_left, e.ccw_left, e.cw_right, e.ccw_right]
     }
 
-    /// Face → vertices: the corners of `face`, counter-clockwise seen from
-    /// outside.
+    /// Face → vertices: the corners of `face`, loop by loop as in
+    /// [`Solid::face_loop`] (a lone-vertex loop gives its vertex).
     pub fn face_vertices(&self, face: FaceId) -> impl Iterator<Item = VertexId> + '_ {
-        let mut walk = self.face_loop(face);
-        std::iter::from_fn(move || {
-            walk.next_with_edge().map(|(u, e)| match u.side {
-                Side::Left => e.origin,
-                Side::Right => e.dest,
-            })
-        })
+        self.face_loops(face).flat_map(|l| self.loop_vertices(l))
+    }
+
+    /// The corners of `face`'s outer loop, counter-clockwise seen from
+    /// outside.
+    ///
+    /// # Panics
+    ///
+    /// If `face` is not a face of this solid.
+    pub fn face_outer_vertices(&self, face: FaceId) -> impl Iterator<Item = VertexId> + '_ {
+        self.loop_vertices(self.faces[face].outer)
     }
 
     /// Face → edges: the edges bounding `face`, counter-clockwise.
@@ -207,7 +273,7 @@ impl Solid {
             .filter_map(|u| self.use_face(u.opposite()))
     }
 
-    /// The number of edges around `face`.
+    /// The number of edge uses around `face`, over all its loops.
     #[must_use]
     pub fn face_degree(&self, face: FaceId) -> usize {
         self.face_loop(face).count()
@@ -220,14 +286,15 @@ impl Solid {
     }
 }
 
-/// An iterator over the edge uses of one loop; see [`Solid::face_loop`].
+/// An iterator over the edge uses of one loop; see [`Solid::loop_uses`] and
+/// [`Solid::loop_from`].
 ///
 /// It stops after one turn. A `budget` of twice the edge count guards the
 /// walk: on a consistent solid it is never reached.
 #[derive(Clone, Debug)]
 pub struct LoopWalk<'a> {
     solid: &'a Solid,
-    start: EdgeUse,
+    start: Option<EdgeUse>,
     /// The next use and its edge's record (looked up once per step: it
     /// names the use after it).
     current: Option<(EdgeUse, &'a Edge)>,
@@ -240,7 +307,7 @@ impl<'a> LoopWalk<'a> {
         let (u, e) = self.current?;
         self.budget = self.budget.checked_sub(1)?;
         let (next, n) = self.solid.use_next_from(u, e);
-        self.current = (next != self.start).then_some((next, n));
+        self.current = (Some(next) != self.start).then_some((next, n));
         Some((u, e))
     }
 }
@@ -258,7 +325,7 @@ impl Iterator for LoopWalk<'_> {
 #[derive(Clone, Debug)]
 pub struct StarWalk<'a> {
     solid: &'a Solid,
-    start: EdgeUse,
+    start: Option<EdgeUse>,
     current: Option<EdgeUse>,
     budget: usize,
 }
@@ -272,7 +339,7 @@ impl Iterator for StarWalk<'_> {
         // The previous use around u's face ends at u's start; its opposite
         // leaves the same vertex in the next face counter-clockwise.
         let next = self.solid.use_prev(u).opposite();
-        self.current = (next != self.start).then_some(next);
+        self.current = (Some(next) != self.start).then_some(next);
         Some(u)
     }
 }

@@ -13,12 +13,14 @@ use super::EdgeId;
 ///   `dest == self`; walking the wings from it visits every edge at the vertex
 ///   (the faces around a vertex form a single fan: a closed cycle, or an open
 ///   fan whose two boundary edges border the same hole).
+/// - `edge` is `None` exactly for a vertex without edges, which is then the
+///   whole of one loop ([`super::LoopStart::Vertex`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Vertex {
     /// Where the vertex is.
     pub position: DVec3,
-    /// One edge incident to the vertex.
-    pub edge: EdgeId,
+    /// One edge incident to the vertex, `None` for a lone vertex.
+    pub edge: Option<EdgeId>,
     /// The vertex's index in the polygon soup it was built from (0-based),
     /// if any: the link back to the OBJ file's `v` lines.
     pub source_index: Option<usize>,

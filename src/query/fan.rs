@@ -19,6 +19,10 @@ pub(super) fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
                 (Vec::with_capacity(run.len()), Vec::with_capacity(run.len()));
             let mut corners: Vec<DVec3> = Vec::with_capacity(8);
             for &id in run {
+                if solid.face_ring_count(id) > 0 {
+                    push_face_with_rings(solid, id, &mut tris, &mut faces);
+                    continue;
+                }
                 corners.clear();
                 for v in solid.face_vertices(id) {
                     corners.push(solid.position(v));
@@ -43,6 +47,38 @@ pub(super) fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
         tri_face.extend_from_slice(f);
     }
     (tris, tri_face)
+}
+
+/// The triangles of a face with rings (a fan cannot cover it): its exact
+/// constrained triangulation ([`Solid::try_triangulate_face`]). Loops that
+/// do not bound a valid face (validation reports them) are fanned one by
+/// one instead: the fans of a ring, wound against the outer loop, cover the
+/// hole a second time, so every line still crosses the face an odd number
+/// of times exactly where it crosses the face's region.
+fn push_face_with_rings(
+    solid: &Solid,
+    face: FaceId,
+    tris: &mut Vec<[DVec3; 3]>,
+    faces: &mut Vec<FaceId>,
+) {
+    let at = |v| solid.position(v);
+    match solid.try_triangulate_face(face) {
+        Ok(triangles) => {
+            for t in triangles {
+                tris.push(t.map(at));
+                faces.push(face);
+            }
+        }
+        Err(_) => {
+            for l in solid.face_loops(face) {
+                let corners: Vec<DVec3> = solid.loop_vertices(l).map(at).collect();
+                for k in 1..corners.len().saturating_sub(1) {
+                    tris.push([corners[0], corners[k], corners[k + 1]]);
+                    faces.push(face);
+                }
+            }
+        }
+    }
 }
 
 /// Faces per unit of parallel work in [`fan_triangles`].

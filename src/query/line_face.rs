@@ -123,14 +123,32 @@ pub fn intersect_line_face(
     if !in_range {
         return Ok(LineFaceHit::Miss);
     }
-    let uses: Vec<_> = solid.face_loop(face).collect();
-    let corners: Vec<VertexId> = uses.iter().map(|&u| solid.use_start(u)).collect();
-    let pos: Vec<DVec3> = corners.iter().map(|&v| solid.position(v)).collect();
-    let location = locate_with_oracle(
-        pos.len(),
-        |i, j| orient3d(p1, p2, pos[i], pos[j]),
-        |i, j, k| collinear3d(pos[i], pos[j], pos[k]),
-    );
+    // The outer loop, then (for a point inside it) each ring: inside a ring
+    // is outside the face.
+    let locate = |l| {
+        let uses: Vec<_> = solid.loop_uses(l).collect();
+        let corners: Vec<VertexId> = uses.iter().map(|&u| solid.use_start(u)).collect();
+        let pos: Vec<DVec3> = corners.iter().map(|&v| solid.position(v)).collect();
+        let location = locate_with_oracle(
+            pos.len(),
+            |i, j| orient3d(p1, p2, pos[i], pos[j]),
+            |i, j, k| collinear3d(pos[i], pos[j], pos[k]),
+        );
+        (location, uses, corners)
+    };
+    let mut loops = solid.face_loops(face);
+    let (mut location, mut uses, mut corners) = locate(loops.next().expect("a face has a loop"));
+    for ring in loops {
+        if location != PolygonLocation::Inside {
+            break;
+        }
+        let (in_ring, ring_uses, ring_corners) = locate(ring);
+        (location, uses, corners) = match in_ring {
+            PolygonLocation::Outside => continue,
+            PolygonLocation::Inside => (PolygonLocation::Outside, ring_uses, ring_corners),
+            on => (on, ring_uses, ring_corners),
+        };
+    }
     let u = if f1 == Sign::Zero {
         0.0
     } else if f2 == Sign::Zero {

@@ -10,12 +10,16 @@
 //! Each check lives in its own file under `checks/`, named after what is
 //! wrong; see [`Rule`] for the list and for how overlapping defects are
 //! attributed to exactly one rule.
+//!
+//! Faces with rings (holes through a face) exist only in solids made
+//! through the API; [`check_rings`] judges them ([`RingRule`]).
 
 mod checks;
 mod context;
 mod exact;
 mod json;
 mod report;
+mod rings;
 mod solid_view;
 
 use thiserror::Error;
@@ -26,6 +30,7 @@ use crate::mesh::{PolygonSoup, Solid};
 
 pub use json::report_json;
 pub use report::{Report, Rule, ShellSummary, Validity, Violation};
+pub use rings::{RingRule, RingViolation, check_rings};
 
 /// What to judge and how strictly.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -48,23 +48,25 @@ fn describe(name: &str, solid: &Solid) -> String {
     let bounds = solid.bounding_box();
     let shells = solid.shells();
     let mut out = format!(
-        "{name}\n  vertices {}  edges {}  faces {}  euler characteristic {}\n  closed {}  shells {}\n",
+        "{name}\n  vertices {}  edges {}  faces {}  euler characteristic {}\n  closed {}  shells {}  rings {}\n",
         solid.vertex_count(),
         solid.edge_count(),
         solid.face_count(),
         solid.euler_characteristic(),
         solid.is_closed(),
         shells.len(),
+        solid.ring_count(),
     );
     for (i, shell) in shells.iter().enumerate() {
         let genus = shell
             .genus()
             .map_or_else(|| "-".to_string(), |g| g.to_string());
         out += &format!(
-            "    shell {i}: faces {}  edges {}  vertices {}  boundary edges {}  χ {}  genus {genus}  volume {}\n",
+            "    shell {i}: faces {}  edges {}  vertices {}  rings {}  boundary edges {}  χ {}  genus {genus}  volume {}\n",
             shell.faces.len(),
             shell.edge_count,
             shell.vertex_count,
+            shell.ring_count,
             shell.boundary_edge_count,
             shell.euler_characteristic,
             measure(shell.signed_volume, 10),
