@@ -124,7 +124,11 @@ mod tests {
         let off = on.map(|p| DVec3::new(1f64.next_up(), p.y, p.z));
         assert!(!box_meets_triangle(&b, &off));
         // Touching only a corner, by a vertex.
-        let corner = [DVec3::ONE, DVec3::new(2.0, 1.0, 1.0), DVec3::new(1.0, 2.0, 3.0)];
+        let corner = [
+            DVec3::ONE,
+            DVec3::new(2.0, 1.0, 1.0),
+            DVec3::new(1.0, 2.0, 3.0),
+        ];
         assert!(box_meets_triangle(&b, &corner));
     }
 
@@ -143,8 +147,9 @@ mod tests {
         };
         assert!(box_meets_triangle(&b, &tri(3.0)));
         assert!(box_meets_triangle(&b, &tri(0.0)));
-        assert!(!box_meets_triangle(&b, &tri(3f64.next_up())));
-        assert!(!box_meets_triangle(&b, &tri(-1e-300)));
+        // (Offsets the corners' coordinates can carry: 2^-40 next to 13.)
+        assert!(!box_meets_triangle(&b, &tri(3.0 + 2f64.powi(-40))));
+        assert!(!box_meets_triangle(&b, &tri(-(2f64.powi(-40)))));
     }
 
     #[test]
@@ -189,7 +194,10 @@ mod tests {
         let mut uniform = crate::test_rng::uniform(0x0C71_5EED);
         let mut grid = || (uniform() * 8.0).floor() / 4.0 - 1.0;
         for _ in 0..3000 {
-            let (a, c) = (DVec3::new(grid(), grid(), grid()), DVec3::new(grid(), grid(), grid()));
+            let (a, c) = (
+                DVec3::new(grid(), grid(), grid()),
+                DVec3::new(grid(), grid(), grid()),
+            );
             let b = Aabb {
                 min: a.min(c),
                 max: a.max(c),
@@ -199,7 +207,11 @@ mod tests {
                 DVec3::new(grid(), grid(), grid()),
                 DVec3::new(grid(), grid(), grid()),
             ];
-            assert_eq!(box_meets_triangle(&b, &t), clip_keeps_a_point(&b, &t), "{b:?} {t:?}");
+            assert_eq!(
+                box_meets_triangle(&b, &t),
+                clip_keeps_a_point(&b, &t),
+                "{b:?} {t:?}"
+            );
         }
     }
 

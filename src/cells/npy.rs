@@ -48,7 +48,10 @@ mod tests {
         let length = usize::from(u16::from_le_bytes([bytes[8], bytes[9]]));
         assert_eq!((10 + length) % 64, 0);
         let header = std::str::from_utf8(&bytes[10..10 + length]).unwrap();
-        assert!(header.contains("'shape': (2, 2, 2)") && header.ends_with('\n'), "{header}");
+        assert!(
+            header.contains("'shape': (2, 2, 2)") && header.ends_with('\n'),
+            "{header}"
+        );
         assert_eq!(&bytes[10 + length..], &[0, 1, 2, 1, 0, 2, 2, 1]);
         assert!(write_npy(&path, &[0; 7], 2).is_err());
     }

@@ -204,7 +204,10 @@ impl Octree {
         }
         let accel = Accel::new(solid);
         if !accel.is_closed() {
-            let open = solid.edges().filter(|(_, e)| e.right_face.is_none()).count();
+            let open = solid
+                .edges()
+                .filter(|(_, e)| e.right_face.is_none())
+                .count();
             return Err(CellsError::NotClosed(open));
         }
         let (origin, side) = root_cube(&solid.bounding_box(), depth)?;
@@ -241,7 +244,12 @@ impl Octree {
                 });
             } else {
                 for k in 0..8 {
-                    stack.push((d + 1, 2 * x + (k & 1), 2 * y + (k >> 1 & 1), 2 * z + (k >> 2)));
+                    stack.push((
+                        d + 1,
+                        2 * x + (k & 1),
+                        2 * y + (k >> 1 & 1),
+                        2 * z + (k >> 2),
+                    ));
                 }
             }
         }
@@ -394,7 +402,11 @@ impl Octree {
             };
             let k = (self.depth - c.depth) as usize;
             let span = 1usize << k;
-            let (x0, y0, z0) = (c.x as usize * span, c.y as usize * span, c.z as usize * span);
+            let (x0, y0, z0) = (
+                c.x as usize * span,
+                c.y as usize * span,
+                c.z as usize * span,
+            );
             for x in x0..x0 + span {
                 for y in y0..y0 + span {
                     let row = (x * n + y) * n;
