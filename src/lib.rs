@@ -18,13 +18,15 @@
 //! [`geom`] (numbers) → [`mesh`] (topology) → [`io`] (OBJ in and out) →
 //! [`validate`] (named checks and a graded verdict) → [`query`] (line–face,
 //! ray–solid, point-in-polyhedron) → [`csg`] (ray-cast CSG: primitives,
-//! trees, the span merge) → [`scene`] (the JSON scene format; a mesh or a
+//! trees, the span merge) → [`field`] (implicit solids: blobby fields, field
+//! CSG, marching cubes to a valid solid) → [`scene`] (the JSON scene format; a mesh or a
 //! scene as one query target) → [`render`] (images).
 #![warn(missing_docs)]
 
 pub mod csg;
 pub mod curve;
 mod disjoint_sets;
+pub mod field;
 mod fixed_chunks;
 pub mod geom;
 pub mod io;
