@@ -47,10 +47,21 @@ fn every_single_cell_configuration_gives_a_valid_solid() {
         // Corner c of the cell is sample (c & 1, c >> 1 & 1, c >> 2 & 1),
         // which is also index c of the x-fastest 2×2×2 grid.
         for (inside, outside) in [(1.0, 0.0), (0.5, 0.49), (0.9, 0.3)] {
-            let values: Vec<f64> = (0..8).map(|c| if config >> c & 1 == 1 { inside } else { outside }).collect();
+            let values: Vec<f64> = (0..8)
+                .map(|c| {
+                    if config >> c & 1 == 1 {
+                        inside
+                    } else {
+                        outside
+                    }
+                })
+                .collect();
             for placement in [Placement::Interpolated, Placement::Midpoint] {
                 let (soup, _) = march_grid(&grid([2, 2, 2], values.clone()), &options(placement));
-                assert_valid(&soup, &format!("config {config:#010b} (case {})", base_case(config)));
+                assert_valid(
+                    &soup,
+                    &format!("config {config:#010b} (case {})", base_case(config)),
+                );
             }
         }
         if ["3", "6", "7", "10", "12", "13", "3c", "6c", "7c"].contains(&base_case(config)) {
@@ -90,7 +101,10 @@ fn two_cells_sharing_an_ambiguous_face_glue_into_a_valid_solid() {
                     continue;
                 }
                 let (soup, _) = march_grid(&grid([3, 2, 2], values), &MarchingOptions::default());
-                assert_valid(&soup, &format!("left {left:04b}, shared {shared:04b}, right {right:04b}"));
+                assert_valid(
+                    &soup,
+                    &format!("left {left:04b}, shared {shared:04b}, right {right:04b}"),
+                );
                 pairs += 1;
             }
         }
@@ -183,9 +197,26 @@ fn blob_fields_and_field_csg_give_valid_solids() {
     let cutter = || Box::new(blobs(&[(DVec3::new(0.6, 0.3, 0.9), 1.5, 1.0)])) as Box<dyn Field>;
     let fields: Vec<(&str, Box<dyn Field>)> = vec![
         ("three blobs", Box::new(three())),
-        ("union", Box::new(FieldCsg::new(FieldOp::Union, Box::new(three()), cutter()))),
-        ("intersection", Box::new(FieldCsg::new(FieldOp::Intersection, Box::new(three()), cutter()))),
-        ("difference", Box::new(FieldCsg::new(FieldOp::Difference, Box::new(three()), cutter()))),
+        (
+            "union",
+            Box::new(FieldCsg::new(FieldOp::Union, Box::new(three()), cutter())),
+        ),
+        (
+            "intersection",
+            Box::new(FieldCsg::new(
+                FieldOp::Intersection,
+                Box::new(three()),
+                cutter(),
+            )),
+        ),
+        (
+            "difference",
+            Box::new(FieldCsg::new(
+                FieldOp::Difference,
+                Box::new(three()),
+                cutter(),
+            )),
+        ),
     ];
     let mut volumes = Vec::new();
     for (name, field) in &fields {
@@ -202,9 +233,14 @@ fn blob_fields_and_field_csg_give_valid_solids() {
         }
     }
     // ∪ ≥ the blobs ≥ −, and ∩ + − ≈ the blobs (the same surface split).
-    let [blobs_v, union_v, inter_v, diff_v] = volumes[..] else { panic!() };
+    let [blobs_v, union_v, inter_v, diff_v] = volumes[..] else {
+        panic!()
+    };
     assert!(union_v > blobs_v && blobs_v > diff_v && inter_v > 0.0);
-    assert!(((inter_v + diff_v) - blobs_v).abs() < 0.03 * blobs_v, "{volumes:?}");
+    assert!(
+        ((inter_v + diff_v) - blobs_v).abs() < 0.03 * blobs_v,
+        "{volumes:?}"
+    );
 }
 
 #[test]
@@ -214,7 +250,14 @@ fn the_source_grid_keeps_far_sources_out_of_each_sample() {
         .map(|i| (DVec3::new(f64::from(i) * 0.8, 0.0, 0.0), 1.0, 1.0))
         .collect();
     let field = blobs(&sources);
-    let meshed = try_mesh(&field, &MarchingOptions { resolution: 800, ..MarchingOptions::default() }).unwrap();
+    let meshed = try_mesh(
+        &field,
+        &MarchingOptions {
+            resolution: 800,
+            ..MarchingOptions::default()
+        },
+    )
+    .unwrap();
     let per_sample = meshed.field.source_evaluations as f64 / meshed.field.samples as f64;
     let candidates = meshed.field.candidates as f64 / meshed.field.samples as f64;
     assert!(per_sample < 3.0 && candidates < 12.0, "{}", meshed.field);

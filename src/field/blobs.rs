@@ -118,7 +118,7 @@ impl Field for Blobs {
 #[cfg(test)]
 mod tests {
     use super::*;
-    
+
     #[test]
     fn the_grid_gives_the_brute_force_sum_and_skips_far_sources() {
         let mut u = crate::test_rng::uniform(7);
@@ -139,7 +139,10 @@ mod tests {
             let p = DVec3::new(range(-3.0, 23.0), range(-3.0, 23.0), range(-3.0, 23.0));
             let fast = blobs.value_counted(p, &mut stats);
             let slow = blobs.value_brute_force(p);
-            assert!((fast - slow).abs() <= 1e-12 * (1.0 + slow.abs()), "{p}: {fast} vs {slow}");
+            assert!(
+                (fast - slow).abs() <= 1e-12 * (1.0 + slow.abs()),
+                "{p}: {fast} vs {slow}"
+            );
         }
         assert_eq!(stats.samples, 2000);
         // Each sample looks at a few dozen candidates, not all 200 sources.
@@ -154,13 +157,19 @@ mod tests {
         bad.radius = 0.0;
         assert_eq!(
             Blobs::try_new(vec![good, bad], Falloff::default()).unwrap_err(),
-            FieldError::BadRadius { source_index: 1, radius: 0.0 }
+            FieldError::BadRadius {
+                source_index: 1,
+                radius: 0.0
+            }
         );
         bad.radius = 1.0;
         bad.center.y = f64::NAN;
         assert!(matches!(
             Blobs::try_new(vec![good, good, bad], Falloff::default()),
-            Err(FieldError::NonFiniteCenter { source_index: 2, .. })
+            Err(FieldError::NonFiniteCenter {
+                source_index: 2,
+                ..
+            })
         ));
     }
 

@@ -107,7 +107,8 @@ mod tests {
     #[test]
     fn the_operators_follow_max_min_and_one_minus() {
         // Two balls of radius 1 at x = 0 and x = 1.5.
-        let probe = |op, x: f64| FieldCsg::new(op, ball(0.0), ball(1.5)).contains(DVec3::new(x, 0.0, 0.0));
+        let probe =
+            |op, x: f64| FieldCsg::new(op, ball(0.0), ball(1.5)).contains(DVec3::new(x, 0.0, 0.0));
         for (x, union, inter, diff) in [
             (-0.9, true, false, true),
             (0.75, true, true, false),
@@ -115,7 +116,11 @@ mod tests {
             (3.0, false, false, false),
         ] {
             assert_eq!(probe(FieldOp::Union, x), union, "union at {x}");
-            assert_eq!(probe(FieldOp::Intersection, x), inter, "intersection at {x}");
+            assert_eq!(
+                probe(FieldOp::Intersection, x),
+                inter,
+                "intersection at {x}"
+            );
             assert_eq!(probe(FieldOp::Difference, x), diff, "difference at {x}");
         }
         let far = FieldCsg::new(FieldOp::Intersection, ball(0.0), ball(10.0));

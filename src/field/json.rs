@@ -132,7 +132,9 @@ fn parse_named(text: &str, name: &str) -> Result<FieldDocument, FieldJsonError> 
         },
     })?;
     let at = "field";
-    let o = value.as_object().ok_or_else(|| bad(at, "an object", &value))?;
+    let o = value
+        .as_object()
+        .ok_or_else(|| bad(at, "an object", &value))?;
     let resolution = match o.get("resolution") {
         None => None,
         Some(v) => Some(
@@ -171,10 +173,17 @@ fn read_node(
                 key: key.clone(),
                 expected: NODE_KEYS,
             }),
-            None => Err(value_error(at, format!("an empty object; expected one of {NODE_KEYS}"))),
+            None => Err(value_error(
+                at,
+                format!("an empty object; expected one of {NODE_KEYS}"),
+            )),
         };
     };
-    let allowed: &[&str] = if kind == "blobs" { &["blobs", "falloff"] } else { &[kind.as_str()] };
+    let allowed: &[&str] = if kind == "blobs" {
+        &["blobs", "falloff"]
+    } else {
+        &[kind.as_str()]
+    };
     if let Some(key) = o.keys().find(|k| !allowed.contains(&k.as_str())) {
         return Err(FieldJsonError::UnknownKey {
             at: at.to_string(),
@@ -189,14 +198,25 @@ fn read_node(
     if let Some(op) = op(kind) {
         let least = if op == FieldOp::Difference { 2 } else { 1 };
         if list.len() < least {
-            return Err(value_error(&here, format!("{} needs at least {least} operands, found {}", op.name(), list.len())));
+            return Err(value_error(
+                &here,
+                format!(
+                    "{} needs at least {least} operands, found {}",
+                    op.name(),
+                    list.len()
+                ),
+            ));
         }
         let mut children = list.iter().enumerate().map(|(i, v)| {
             let child_at = format!("{here}[{i}]");
-            let child = v.as_object().ok_or_else(|| bad(&child_at, "an object", v))?;
+            let child = v
+                .as_object()
+                .ok_or_else(|| bad(&child_at, "an object", v))?;
             read_node(child, &child_at, sources)
         });
-        let mut field = children.next().unwrap_or_else(|| Err(value_error(&here, "no operand".into())))?;
+        let mut field = children
+            .next()
+            .unwrap_or_else(|| Err(value_error(&here, "no operand".into())))?;
         for child in children {
             field = Box::new(FieldCsg::new(op, field, child?));
         }
@@ -206,11 +226,20 @@ fn read_node(
         None => Falloff::default(),
         Some(Value::String(s)) if s == "soft_object" => Falloff::SoftObject,
         Some(Value::String(s)) if s == "cubic_parabola" => Falloff::CubicParabola,
-        Some(v) => return Err(bad(&format!("{at}.falloff"), "\"soft_object\" or \"cubic_parabola\"", v)),
+        Some(v) => {
+            return Err(bad(
+                &format!("{at}.falloff"),
+                "\"soft_object\" or \"cubic_parabola\"",
+                v,
+            ));
+        }
     };
     *sources += list.len();
     if *sources > MAX_DOCUMENT_SOURCES {
-        return Err(value_error(&here, format!("more than {MAX_DOCUMENT_SOURCES} sources in the document (the limit)")));
+        return Err(value_error(
+            &here,
+            format!("more than {MAX_DOCUMENT_SOURCES} sources in the document (the limit)"),
+        ));
     }
     let parsed: Vec<Source> = list
         .iter()
@@ -223,7 +252,10 @@ fn read_node(
 
 fn read_source(v: &Value, at: &str) -> Result<Source, FieldJsonError> {
     let o = v.as_object().ok_or_else(|| bad(at, "an object", v))?;
-    if let Some(key) = o.keys().find(|k| !["center", "radius", "strength"].contains(&k.as_str())) {
+    if let Some(key) = o
+        .keys()
+        .find(|k| !["center", "radius", "strength"].contains(&k.as_str()))
+    {
         return Err(FieldJsonError::UnknownKey {
             at: at.to_string(),
             key: key.clone(),
@@ -239,7 +271,10 @@ fn read_source(v: &Value, at: &str) -> Result<Source, FieldJsonError> {
         None => return Err(value_error(&format!("{at}.radius"), "missing".into())),
     };
     if radius <= 0.0 {
-        return Err(value_error(&format!("{at}.radius"), format!("expected a positive number, found {radius}")));
+        return Err(value_error(
+            &format!("{at}.radius"),
+            format!("expected a positive number, found {radius}"),
+        ));
     }
     let strength = match o.get("strength") {
         Some(s) => number(s, &format!("{at}.strength"))?,
@@ -320,7 +355,9 @@ mod tests {
     #[test]
     fn errors_name_the_json_path() {
         assert_eq!(
-            error(r#"{"blobs": [{"center": [0,0,0], "radius": 1}, {"center": [0,0,0], "radius": 0}]}"#),
+            error(
+                r#"{"blobs": [{"center": [0,0,0], "radius": 1}, {"center": [0,0,0], "radius": 0}]}"#
+            ),
             "field.blobs[1].radius: expected a positive number, found 0"
         );
         assert_eq!(
@@ -331,13 +368,30 @@ mod tests {
             error(r#"{"blobs": [{"center": [0,0,0], "radius": -2}]}"#),
             "field.blobs[0].radius: expected a positive number, found -2"
         );
-        assert_eq!(error(r#"{"resolution": 0, "blobs": []}"#), "field.resolution: expected a whole number ≥ 1, found 0");
+        assert_eq!(
+            error(r#"{"resolution": 0, "blobs": []}"#),
+            "field.resolution: expected a whole number ≥ 1, found 0"
+        );
         assert!(error(r#"{"blob": []}"#).contains("unknown key \"blob\""));
-        assert!(error(r#"{"blobs": [{"centre": [0,0,0], "radius": 1}]}"#).contains("field.blobs[0]: unknown key \"centre\""));
-        assert!(error(r#"{"difference": [{"blobs": []}]}"#).starts_with("field.difference: difference needs at least 2"));
+        assert!(
+            error(r#"{"blobs": [{"centre": [0,0,0], "radius": 1}]}"#)
+                .contains("field.blobs[0]: unknown key \"centre\"")
+        );
+        assert!(
+            error(r#"{"difference": [{"blobs": []}]}"#)
+                .starts_with("field.difference: difference needs at least 2")
+        );
         assert!(error("{\"blobs\": [").starts_with("<string>: line 1"));
-        let nested = format!("{}{{\"blobs\": []}}{}", "{\"union\": [".repeat(70), "]}".repeat(70));
-        assert!(error(&nested).contains("nested deeper than 128 levels"), "{}", error(&nested));
+        let nested = format!(
+            "{}{{\"blobs\": []}}{}",
+            "{\"union\": [".repeat(70),
+            "]}".repeat(70)
+        );
+        assert!(
+            error(&nested).contains("nested deeper than 128 levels"),
+            "{}",
+            error(&nested)
+        );
     }
 
     #[test]

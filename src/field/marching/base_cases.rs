@@ -75,10 +75,7 @@ pub(crate) const BASE_CASES: [BaseCase; 17] = [
     BaseCase {
         name: "6",
         inside: &[0, 1, 6],
-        loops: &[
-            &[[0, 2], [1, 3], [1, 5], [0, 4]],
-            &[[2, 6], [4, 6], [6, 7]],
-        ],
+        loops: &[&[[0, 2], [1, 3], [1, 5], [0, 4]], &[[2, 6], [4, 6], [6, 7]]],
     },
     // Three corners pairwise diagonal on faces.
     BaseCase {

@@ -23,7 +23,11 @@ pub(crate) const EDGES: [[u8; 2]; 12] = [
 
 /// A corner's coordinates, each 0 or 1.
 pub(crate) fn corner_coords(c: u8) -> [i32; 3] {
-    [i32::from(c & 1), i32::from((c >> 1) & 1), i32::from((c >> 2) & 1)]
+    [
+        i32::from(c & 1),
+        i32::from((c >> 1) & 1),
+        i32::from((c >> 2) & 1),
+    ]
 }
 
 /// The axis an edge runs along (0 = x, 1 = y, 2 = z).

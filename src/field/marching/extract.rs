@@ -74,7 +74,10 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
             (triangles, surface_cells)
         })
         .collect();
-    let mut keys: Vec<EdgeKey> = slabs.iter().flat_map(|(t, _)| t.iter().flatten().copied()).collect();
+    let mut keys: Vec<EdgeKey> = slabs
+        .iter()
+        .flat_map(|(t, _)| t.iter().flatten().copied())
+        .collect();
     keys.par_sort_unstable();
     keys.dedup();
     let positions: Vec<DVec3> = keys

@@ -104,7 +104,11 @@ impl SampleGrid {
         let dims = [size.x, size.y, size.z].map(|s| {
             let n = (s / cell).ceil();
             // Saturate: check_size refuses it below.
-            if n < (MAX_SAMPLES as f64) { n as usize + 1 } else { MAX_SAMPLES + 1 }
+            if n < (MAX_SAMPLES as f64) {
+                n as usize + 1
+            } else {
+                MAX_SAMPLES + 1
+            }
         });
         let total = check_size(dims)?;
         let origin = bounds.min;
@@ -161,7 +165,11 @@ impl SampleGrid {
     #[must_use]
     pub fn value(&self, i: isize, j: isize, k: isize) -> f64 {
         let inside = |v: isize, n: usize| usize::try_from(v).ok().filter(|&v| v < n);
-        match (inside(i, self.dims[0]), inside(j, self.dims[1]), inside(k, self.dims[2])) {
+        match (
+            inside(i, self.dims[0]),
+            inside(j, self.dims[1]),
+            inside(k, self.dims[2]),
+        ) {
             (Some(i), Some(j), Some(k)) => self.values[(k * self.dims[1] + j) * self.dims[0] + i],
             _ => 0.0,
         }

@@ -96,7 +96,10 @@ fn generate() -> CaseTable {
             }
         }
     }
-    debug_assert!(cases.iter().all(Option::is_some), "a configuration is unreached");
+    debug_assert!(
+        cases.iter().all(Option::is_some),
+        "a configuration is unreached"
+    );
     CaseTable {
         cases: cases.into_iter().map(Option::unwrap_or_default).collect(),
     }
@@ -192,7 +195,10 @@ mod tests {
                 *count.entry((t[i], t[(i + 1) % 3])).or_default() += 1;
             }
         }
-        assert!(count.values().all(|&n| n == 1), "config {config:#010b}: an edge run twice the same way");
+        assert!(
+            count.values().all(|&n| n == 1),
+            "config {config:#010b}: an edge run twice the same way"
+        );
         count
             .keys()
             .filter(|&&(a, b)| !count.contains_key(&(b, a)))
@@ -237,8 +243,13 @@ mod tests {
                         .map(|i| BTreeSet::from([edge(i + 3), edge(i)]))
                         .collect()
                 } else {
-                    let crossings: BTreeSet<u8> = (0..4).map(edge).filter(|&e| crossed(config, e)).collect();
-                    if crossings.is_empty() { Vec::new() } else { vec![crossings] }
+                    let crossings: BTreeSet<u8> =
+                        (0..4).map(edge).filter(|&e| crossed(config, e)).collect();
+                    if crossings.is_empty() {
+                        Vec::new()
+                    } else {
+                        vec![crossings]
+                    }
                 };
                 expected.sort();
                 assert_eq!(found, expected, "config {config:#010b}, face {face:?}");
@@ -251,11 +262,17 @@ mod tests {
                 for i in 0..3 {
                     let (a, b) = (t[i], t[(i + 1) % 3]);
                     if !segments.contains(&(a, b)) {
-                        assert!(on_one_face(a, b).is_none(), "config {config:#010b}: diagonal {a}-{b} in a face");
+                        assert!(
+                            on_one_face(a, b).is_none(),
+                            "config {config:#010b}: diagonal {a}-{b} in a face"
+                        );
                     }
                 }
                 let flat = CubeFace::all().any(|f| t.iter().all(|&e| f.holds_edge(e)));
-                assert!(!flat, "config {config:#010b}: triangle {t:?} lies in a face");
+                assert!(
+                    !flat,
+                    "config {config:#010b}: triangle {t:?} lies in a face"
+                );
             }
         }
     }
@@ -307,7 +324,10 @@ mod tests {
                         .into_iter()
                         .filter(|&(a, b)| lower.holds_edge(a) && lower.holds_edge(b))
                         .collect();
-                    assert_eq!(on_face, theirs, "configs {first:#010b} / {second:#010b}, axis {axis}");
+                    assert_eq!(
+                        on_face, theirs,
+                        "configs {first:#010b} / {second:#010b}, axis {axis}"
+                    );
                 }
             }
         }
