@@ -42,6 +42,26 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
         ((k * py + j) * px + i) * 3 + axis as u64
     };
     let table = case_table();
+    // Each node of the padded grid classified once: 1 inside (F ≥ ½).
+    let pz = nz as u64 + 2;
+    let layer = (px * py) as usize;
+    let mut inside = vec![0u8; layer * pz as usize];
+    inside
+        .par_chunks_mut(layer)
+        .enumerate()
+        .for_each(|(k, nodes)| {
+            for j in 0..py as usize {
+                for i in 0..px as usize {
+                    let v = grid.value(i as isize - 1, j as isize - 1, k as isize - 1);
+                    nodes[j * px as usize + i] = u8::from(v >= THRESHOLD);
+                }
+            }
+        });
+    // Corner c of a cell is this far from the cell's lower node.
+    let offsets: [usize; 8] = std::array::from_fn(|c| {
+        let [x, y, z] = corner_coords(c as u8);
+        x as usize + y as usize * px as usize + z as usize * layer
+    });
     // Cells run from −1 to n − 1 along each axis (their lower node).
     let slabs: Vec<(Vec<[EdgeKey; 3]>, u64)> = (-1..nz as isize)
         .into_par_iter()
@@ -49,19 +69,17 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
             let mut triangles = Vec::new();
             let mut surface_cells = 0;
             for j in -1..ny as isize {
+                let row = ((k + 1) as usize * py as usize + (j + 1) as usize) * px as usize;
                 for i in -1..nx as isize {
-                    let mut config = 0u8;
-                    for c in 0..8u8 {
-                        let [x, y, z] = corner_coords(c);
-                        let v = grid.value(i + x as isize, j + y as isize, k + z as isize);
-                        if v >= THRESHOLD {
-                            config |= 1 << c;
-                        }
-                    }
-                    let case = table.case(config);
-                    if case.triangles.is_empty() {
+                    let node = row + (i + 1) as usize;
+                    let config = offsets
+                        .iter()
+                        .enumerate()
+                        .fold(0u8, |acc, (c, &o)| acc | inside[node + o] << c);
+                    if config == 0 || config == 0xff {
                         continue;
                     }
+                    let case = table.case(config);
                     surface_cells += 1;
                     for t in &case.triangles {
                         triangles.push(t.map(|e| {
