@@ -9,8 +9,9 @@
 //! SOURCE := {"center": [x, y, z], "radius": R, "strength": w}           (R > 0; strength optional, 1)
 //! ```
 //!
-//! Field documents are separate from scene files (`wingedge::scene`): a
-//! scene's leaves answer rays exactly, a field is meshed first.
+//! A document may stand alone ([`load_json`]) or sit inside a scene file as
+//! a `{"field": DOCUMENT}` leaf (`wingedge::scene`), which is meshed into a
+//! polyhedron ([`read_document`] reads it at the leaf's JSON path).
 
 use std::path::{Path, PathBuf};
 
@@ -131,10 +132,20 @@ fn parse_named(text: &str, name: &str) -> Result<FieldDocument, FieldJsonError> 
             e.to_string()
         },
     })?;
-    let at = "field";
+    read_document(&value, "field")
+}
+
+/// Reads a field document already parsed as JSON; `at` is the JSON path of
+/// `value` (`field` for a document of its own, the node's path inside a
+/// scene file), and every error names a path below it.
+///
+/// # Errors
+///
+/// [`FieldJsonError::Value`] or [`FieldJsonError::UnknownKey`].
+pub fn read_document(value: &Value, at: &str) -> Result<FieldDocument, FieldJsonError> {
     let o = value
         .as_object()
-        .ok_or_else(|| bad(at, "an object", &value))?;
+        .ok_or_else(|| bad(at, "an object", value))?;
     let resolution = match o.get("resolution") {
         None => None,
         Some(v) => Some(

@@ -32,6 +32,7 @@ pub use error::FieldError;
 pub use falloff::Falloff;
 pub use json::{
     FieldDocument, FieldJsonError, MAX_DOCUMENT_SOURCES, MAX_JSON_DEPTH, load_json, parse_json,
+    read_document,
 };
 pub use marching::{
     MAX_SAMPLES, MarchingOptions, Meshed, Placement, SampleGrid, try_mesh, try_mesh_solid,

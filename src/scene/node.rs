@@ -11,7 +11,7 @@ use super::json::{bad, check_keys, fields, object, positive, req, vec3, vec3_or}
 use super::reader::Reader;
 use crate::csg::{AxisBox, CsgExpr, Cylinder, HalfSpace, Primitive, Sphere};
 
-const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, union, intersection, difference, scene, or transform with child";
+const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, field, union, intersection, difference, scene, or transform with child";
 
 impl Reader<'_> {
     /// Reads a node `depth` nodes below the outermost root.
@@ -77,6 +77,7 @@ impl Reader<'_> {
                         })?;
                 Ok(leaf(primitive))
             }
+            "field" => super::field_leaf::field_leaf(body, &here, self.base).map(leaf),
             "scene" => {
                 let Value::String(relative) = body else {
                     return Err(bad(&here, "a scene file path (string)", body));
