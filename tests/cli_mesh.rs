@@ -92,6 +92,8 @@ fn an_empty_field_is_said_plainly_and_writes_nothing() {
         r#"{"blobs": []}"#,
         r#"{"blobs": [{"center": [0, 0, 0], "radius": 1, "strength": -1}]}"#,
         r#"{"intersection": [{"blobs": [{"center": [0, 0, 0], "radius": 1}]}, {"blobs": [{"center": [5, 0, 0], "radius": 1}]}]}"#,
+        // Influence boxes that only touch: flat bounds, nothing inside.
+        r#"{"intersection": [{"blobs": [{"center": [0, 0, 0], "radius": 1}]}, {"blobs": [{"center": [2, 0, 0], "radius": 1}]}]}"#,
     ] {
         let doc = dir.write("empty.json", text);
         let (code, stdout, err) = wingedge(&["mesh", doc.to_str().unwrap(), "-o", &out]);
@@ -130,6 +132,10 @@ fn bad_documents_and_grids_are_errors_naming_the_json_path_or_the_limit() {
             "field.blobs[0]: unknown key \"colour\"",
         ),
         ("{\"blobs\": [", "line 1, column 11: not valid JSON"),
+        (
+            r#"{"blobs": [{"center": [0, 0, 0], "radius": 1e-300}]}"#,
+            "field.blobs[0].radius: source 0 (radius 1e-300) is out of range",
+        ),
     ];
     for (text, expected) in cases {
         let doc = dir.write("bad.json", text);

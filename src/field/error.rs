@@ -3,6 +3,8 @@
 use glam::DVec3;
 use thiserror::Error;
 
+use crate::geom::{Readable, ReadableVec};
+
 /// Why a field, a sample grid or a meshing request is refused.
 ///
 /// Source numbers are 0-based indices into the list given to
@@ -10,7 +12,7 @@ use thiserror::Error;
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum FieldError {
     /// A source center with a NaN or infinite coordinate.
-    #[error("source {source_index} has a non-finite center {center}")]
+    #[error("source {source_index} has a non-finite center {}", ReadableVec(*.center))]
     NonFiniteCenter {
         /// The source.
         source_index: usize,
@@ -18,12 +20,26 @@ pub enum FieldError {
         center: DVec3,
     },
     /// A source radius that is zero, negative, NaN or infinite.
-    #[error("source {source_index} has radius {radius}; a radius must be finite and > 0")]
+    #[error("source {source_index} has radius {}; a radius must be finite and > 0", Readable(*.radius))]
     BadRadius {
         /// The source.
         source_index: usize,
         /// Its radius.
         radius: f64,
+    },
+    /// A source center or radius outside the range where squared distances
+    /// neither overflow nor underflow `f64`.
+    #[error(
+        "source {source_index} ({what} {}) is out of range: centers must lie within ±2^500 and radii in [2^-500, 2^500]",
+        Readable(*.value)
+    )]
+    OutOfRange {
+        /// The source.
+        source_index: usize,
+        /// `"center coordinate"` or `"radius"`.
+        what: &'static str,
+        /// The offending value.
+        value: f64,
     },
     /// A source strength that is NaN or infinite.
     #[error("source {source_index} has a non-finite strength {strength}")]
@@ -75,7 +91,11 @@ pub enum FieldError {
         value: f64,
     },
     /// A grid origin or cell size that is not finite, or a cell size ≤ 0.
-    #[error("grid origin {origin} and cell size {cell} must be finite, the cell size > 0")]
+    #[error(
+        "grid origin {} and cell size {} must be finite, the cell size > 0",
+        ReadableVec(*.origin),
+        Readable(*.cell)
+    )]
     BadGridFrame {
         /// The grid's first sample.
         origin: DVec3,

@@ -323,9 +323,26 @@ fn value_error(at: &str, message: String) -> FieldJsonError {
     }
 }
 
-/// A field error, at the path of the blobs list it concerns.
+/// A field error, at the path of the source value it concerns (below the
+/// blobs list `at`).
 fn located(at: &str, e: FieldError) -> FieldJsonError {
-    value_error(at, e.to_string())
+    let path = match &e {
+        FieldError::NonFiniteCenter { source_index, .. } => format!("{at}[{source_index}].center"),
+        FieldError::BadRadius { source_index, .. } => format!("{at}[{source_index}].radius"),
+        FieldError::BadStrength { source_index, .. } => format!("{at}[{source_index}].strength"),
+        FieldError::OutOfRange {
+            source_index, what, ..
+        } => {
+            let key = if *what == "radius" {
+                "radius"
+            } else {
+                "center"
+            };
+            format!("{at}[{source_index}].{key}")
+        }
+        _ => at.to_string(),
+    };
+    value_error(&path, e.to_string())
 }
 
 fn bad(at: &str, expected: &str, found: &Value) -> FieldJsonError {
@@ -393,6 +410,16 @@ mod tests {
                 .starts_with("field.difference: difference needs at least 2")
         );
         assert!(error("{\"blobs\": [").starts_with("<string>: line 1"));
+        assert!(
+            error(r#"{"blobs": [{"center": [0,0,0], "radius": 1}, {"center": [0,0,0], "radius": 1e-300}]}"#)
+                .starts_with("field.blobs[1].radius: source 1 (radius 1e-300) is out of range"),
+            "{}",
+            error(r#"{"blobs": [{"center": [0,0,0], "radius": 1}, {"center": [0,0,0], "radius": 1e-300}]}"#)
+        );
+        assert!(
+            error(r#"{"blobs": [{"center": [1e200,0,0], "radius": 1}]}"#)
+                .starts_with("field.blobs[0].center: source 0")
+        );
         let nested = format!(
             "{}{{\"blobs\": []}}{}",
             "{\"union\": [".repeat(70),

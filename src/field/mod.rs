@@ -38,5 +38,5 @@ pub use marching::{
     MAX_SAMPLES, MarchingOptions, Meshed, Placement, SampleGrid, try_mesh, try_mesh_solid,
 };
 pub use scalar_field::{Field, THRESHOLD};
-pub use source::Source;
+pub use source::{SOURCE_RANGE, Source};
 pub use stats::FieldStats;

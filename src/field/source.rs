@@ -6,13 +6,19 @@ use crate::geom::Aabb;
 
 use super::error::FieldError;
 
+/// The largest magnitude of a center coordinate or a radius, and the
+/// smallest radius: 2^±500 keeps every squared distance the field computes
+/// between 2^-1000 and 2^1004, a normal `f64`.
+pub const SOURCE_RANGE: f64 = f64::from_bits((1023 + 500) << 52);
+
 /// A point source of a blobby field: it adds `strength · g(|P − center|, radius)`
 /// to the field, and nothing beyond `radius`.
 ///
 /// # Invariants
 ///
 /// Once accepted by [`Source::try_new`]: `center` finite, `radius` finite
-/// and > 0, `strength` finite (negative strengths carve).
+/// and > 0, both within [`SOURCE_RANGE`] (the radius at least its
+/// reciprocal), `strength` finite (negative strengths carve).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Source {
     /// The center `P_i`.
@@ -38,8 +44,8 @@ impl Source {
     /// # Errors
     ///
     /// [`FieldError::NonFiniteCenter`], [`FieldError::BadRadius`] (zero,
-    /// negative or not finite) or [`FieldError::BadStrength`], naming source
-    /// 0 (lists renumber them).
+    /// negative or not finite), [`FieldError::OutOfRange`] or
+    /// [`FieldError::BadStrength`], naming source 0 (lists renumber them).
     pub fn try_new(center: DVec3, radius: f64, strength: f64) -> Result<Source, FieldError> {
         let source = Source {
             center,
@@ -62,6 +68,25 @@ impl Source {
             return Err(FieldError::BadRadius {
                 source_index: index,
                 radius: self.radius,
+            });
+        }
+        if let Some(&value) = self
+            .center
+            .to_array()
+            .iter()
+            .find(|c| c.abs() > SOURCE_RANGE)
+        {
+            return Err(FieldError::OutOfRange {
+                source_index: index,
+                what: "center coordinate",
+                value,
+            });
+        }
+        if !(1.0 / SOURCE_RANGE..=SOURCE_RANGE).contains(&self.radius) {
+            return Err(FieldError::OutOfRange {
+                source_index: index,
+                what: "radius",
+                value: self.radius,
             });
         }
         if !self.strength.is_finite() {

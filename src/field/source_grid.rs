@@ -98,15 +98,9 @@ impl SourceGrid {
 
     /// The monotone map from a point to its (clamped) cell coordinates.
     fn axis_cells(&self, p: DVec3) -> [usize; 3] {
-        let q = (p - self.bounds.min) / self.cell;
-        [q.x, q.y, q.z]
-            .map(|v| v.floor().max(0.0) as usize)
-            .into_iter()
-            .zip(self.dims)
-            .map(|(v, d)| v.min(d - 1))
-            .collect::<Vec<_>>()
-            .try_into()
-            .unwrap_or([0; 3])
+        let q = ((p - self.bounds.min) / self.cell).to_array();
+        // NaN (an infinite cell) and negatives go to cell 0.
+        std::array::from_fn(|a| (q[a].floor().max(0.0) as usize).min(self.dims[a] - 1))
     }
 
     fn index(&self, [i, j, k]: [usize; 3]) -> usize {

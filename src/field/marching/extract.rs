@@ -102,7 +102,12 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
         .par_iter()
         .map(|&key| vertex(grid, options, key, px, py))
         .collect();
-    let index = |k: EdgeKey| keys.binary_search(&k).unwrap_or(0);
+    // Every key of a triangle is in `keys`, which was made from them.
+    let index = |k: EdgeKey| {
+        let found = keys.binary_search(&k);
+        debug_assert!(found.is_ok());
+        found.unwrap_or(0)
+    };
     let mut soup = PolygonSoup {
         positions,
         polygons: Vec::new(),

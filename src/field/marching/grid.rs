@@ -90,10 +90,12 @@ impl SampleGrid {
             return Err(FieldError::ZeroResolution);
         }
         let bounds: Aabb = field.bounds();
-        if bounds.is_empty() {
+        let size = bounds.size();
+        // `F < ½` outside the box and on its faces: a box flat along an axis
+        // is all faces, so the solid is empty.
+        if bounds.is_empty() || size.min_element() <= 0.0 {
             return Err(FieldError::Empty);
         }
-        let size = bounds.size();
         let cell = size.max_element() / resolution as f64;
         if !(cell.is_finite() && cell > 0.0) {
             return Err(FieldError::BadGridFrame {
