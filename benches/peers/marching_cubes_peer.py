@@ -19,6 +19,7 @@ import sys
 import time
 
 import numpy as np
+import skimage
 from skimage import measure
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -64,7 +65,7 @@ def main():
         lambda: measure.marching_cubes(grid, level=0.5, spacing=(cell, cell, cell))
     )
     print(
-        f"scikit-image {measure.__name__} at resolution {resolution}: grid "
+        f"scikit-image {skimage.__version__} at resolution {resolution}: grid "
         f"{'×'.join(map(str, dims))} (+ padding), sample {sample_s:.3f} s (numpy), "
         f"march {march_s:.3f} s, {len(faces)} triangles, volume {volume(verts, faces):.6f}"
     )
