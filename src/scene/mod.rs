@@ -12,6 +12,7 @@
 //!       | {"sweep": {...}} | {"revolve": {...}} | {"loft": {...}}     (solids from profiles and curves: solid_leaf.rs)
 //!       | {"union": [NODE, ...]} | {"intersection": [NODE, ...]} | {"difference": [NODE, NODE, ...]}
 //!       | {"transform": {"translate": [..], "rotate_deg": [rx,ry,rz], "scale": [..]}, "child": NODE}
+//!       | {"field": FIELD | "relative/path.json"}  (a field document, meshed by marching cubes)
 //!       | {"scene": "relative/path.json"}       (the root of another scene file)
 //! camera := {"eye": [x,y,z], "look_at": [x,y,z], "up": [x,y,z], "fov_deg": f}   (up, fov_deg optional)
 //! light  := {"direction": [x,y,z]} | {"position": [x,y,z]}, plus optional "ambient": a in [0, 1]
@@ -32,18 +33,23 @@
 //! [`MAX_INCLUDE_DEPTH`], and a file that includes itself, directly or
 //! through others (paths compared after canonicalization). The camera,
 //! light and shadows of an included scene are ignored; a mesh named twice
-//! is read and validated once.
+//! is read and validated once. A field leaf is meshed at its document's
+//! `resolution` (default [`DEFAULT_FIELD_RESOLUTION`], at most
+//! [`MAX_FIELD_RESOLUTION`]) and must validate as a closed solid; `FIELD`
+//! is the document format of `wingedge::field` (blobs and field operators).
 //!
 //! # Files
 //!
 //! `json.rs` reads values with their JSON paths, `node.rs` the tree's
 //! nodes, `reader.rs` files and inclusions, `limits.rs` counts against the
 //! limits, `mesh_leaf.rs` loads and validates OBJ leaves, `solid_leaf.rs` builds
-//! and validates sweep, revolve and loft leaves, `view.rs` the
+//! and validates sweep, revolve and loft leaves, `field_leaf.rs` meshes
+//! field leaves, `view.rs` the
 //! camera and light, `load.rs` assembles a [`Scene`], `target.rs` is the
 //! mesh-or-scene [`Target`].
 
 mod error;
+mod field_leaf;
 mod json;
 mod limits;
 mod load;
@@ -55,6 +61,7 @@ mod target;
 mod view;
 
 pub use error::SceneError;
+pub use field_leaf::{DEFAULT_FIELD_RESOLUTION, MAX_FIELD_RESOLUTION};
 pub use limits::{MAX_INCLUDE_DEPTH, MAX_JSON_DEPTH, MAX_NODE_DEPTH, MAX_NODES};
 pub use load::Scene;
 pub use mesh_leaf::is_scene_path;

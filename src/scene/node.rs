@@ -12,7 +12,7 @@ use super::reader::Reader;
 use super::solid_leaf;
 use crate::csg::{AxisBox, CsgExpr, Cylinder, HalfSpace, Primitive, Sphere};
 
-const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, sweep, revolve, loft, union, intersection, difference, scene, or transform with child";
+const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, sweep, revolve, loft, field, union, intersection, difference, scene, or transform with child";
 
 impl Reader<'_> {
     /// Reads a node `depth` nodes below the outermost root.
@@ -81,6 +81,7 @@ impl Reader<'_> {
                         })?;
                 Ok(leaf(primitive))
             }
+            "field" => super::field_leaf::field_leaf(body, &here, self.base).map(leaf),
             "scene" => {
                 let Value::String(relative) = body else {
                     return Err(bad(&here, "a scene file path (string)", body));

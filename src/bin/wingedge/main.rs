@@ -7,6 +7,7 @@ use clap::{Parser, Subcommand};
 
 mod info;
 mod input;
+mod mesh;
 mod output;
 mod progress;
 mod query;
@@ -117,6 +118,27 @@ enum Command {
         #[arg(long, value_name = "N", default_value_t = wingedge::io::DEFAULT_MAX_FACE_CORNERS)]
         max_face_corners: usize,
     },
+    /// Mesh a field document (blobs and field CSG, JSON) by marching cubes
+    /// into a validated closed solid and write it as OBJ. Exit code 0 for a
+    /// valid solid, 1 for an empty field (nothing written), 2 for a
+    /// document or grid that is refused.
+    Mesh {
+        /// The field document (.json).
+        field: PathBuf,
+        /// The OBJ to write.
+        #[arg(short = 'o', long = "output", value_name = "OUT.obj")]
+        output: PathBuf,
+        /// Cells along the longest side of the field's bounds (default: the
+        /// document's "resolution", else 64).
+        #[arg(long, value_name = "N")]
+        resolution: Option<usize>,
+        /// Put vertices at edge midpoints instead of interpolating.
+        #[arg(long)]
+        midpoints: bool,
+        /// Print the field and march work counters to standard error.
+        #[arg(long)]
+        stats: bool,
+    },
     /// Render a scene to a PNG: Lambert shading with the scene's light,
     /// shadows only if the scene asks.
     Render {
@@ -176,6 +198,13 @@ fn main() -> ExitCode {
             integrate,
             stats,
         } => volume::run(&target, spacing, integrate, stats),
+        Command::Mesh {
+            field,
+            output,
+            resolution,
+            midpoints,
+            stats,
+        } => mesh::run(&field, &output, resolution, midpoints, stats),
         Command::Render {
             scene,
             output,

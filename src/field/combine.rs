@@ -1,0 +1,131 @@
+//! Field CSG: union, intersection and difference of two fields by `max`,
+//! `min` and `min(a, 1 − b)`.
+
+use glam::DVec3;
+
+use crate::geom::Aabb;
+
+use super::scalar_field::Field;
+use super::stats::FieldStats;
+
+/// How a [`FieldCsg`] node combines its two fields `a` and `b`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FieldOp {
+    /// `max(a, b)`: inside where either is ≥ ½.
+    Union,
+    /// `min(a, b)`: inside where both are ≥ ½.
+    Intersection,
+    /// `min(a, 1 − b)`: inside where `a ≥ ½` and `b ≤ ½` (A − B; the points
+    /// on B's surface stay in, so the result is closed).
+    Difference,
+}
+
+impl FieldOp {
+    /// The operator's name as in field documents.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            FieldOp::Union => "union",
+            FieldOp::Intersection => "intersection",
+            FieldOp::Difference => "difference",
+        }
+    }
+}
+
+/// Two fields combined by a [`FieldOp`]: itself a [`Field`], so trees nest.
+///
+/// Unlike ray-cast CSG there is no boundary to merge: the combination is a
+/// new scalar field whose ½ level set is the combined solid's surface, and
+/// marching cubes meshes it like any other field.
+pub struct FieldCsg {
+    op: FieldOp,
+    a: Box<dyn Field>,
+    b: Box<dyn Field>,
+}
+
+impl FieldCsg {
+    /// `a op b`.
+    #[must_use]
+    pub fn new(op: FieldOp, a: Box<dyn Field>, b: Box<dyn Field>) -> FieldCsg {
+        FieldCsg { op, a, b }
+    }
+
+    /// The operator.
+    #[must_use]
+    pub fn op(&self) -> FieldOp {
+        self.op
+    }
+}
+
+impl std::fmt::Debug for FieldCsg {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FieldCsg")
+            .field("op", &self.op)
+            .field("bounds", &self.bounds())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Field for FieldCsg {
+    fn value_counted(&self, p: DVec3, stats: &mut FieldStats) -> f64 {
+        let a = self.a.value_counted(p, stats);
+        let b = self.b.value_counted(p, stats);
+        match self.op {
+            FieldOp::Union => a.max(b),
+            FieldOp::Intersection => a.min(b),
+            FieldOp::Difference => a.min(1.0 - b),
+        }
+    }
+
+    fn bounds(&self) -> Aabb {
+        let (a, b) = (self.a.bounds(), self.b.bounds());
+        match self.op {
+            FieldOp::Union => match (a.is_empty(), b.is_empty()) {
+                (true, _) => b,
+                (_, true) => a,
+                _ => a.union(b),
+            },
+            FieldOp::Intersection => {
+                let both = a.intersection(b);
+                if both.is_empty() { Aabb::EMPTY } else { both }
+            }
+            FieldOp::Difference => a,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::field::{Blobs, Falloff, Source};
+
+    fn ball(x: f64) -> Box<dyn Field> {
+        let s = Source::try_unit(DVec3::new(x, 0.0, 0.0), 2.0).unwrap();
+        Box::new(Blobs::try_new(vec![s], Falloff::SoftObject).unwrap())
+    }
+
+    #[test]
+    fn the_operators_follow_max_min_and_one_minus() {
+        // Two balls of radius 1 at x = 0 and x = 1.5.
+        let probe =
+            |op, x: f64| FieldCsg::new(op, ball(0.0), ball(1.5)).contains(DVec3::new(x, 0.0, 0.0));
+        for (x, union, inter, diff) in [
+            (-0.9, true, false, true),
+            (0.75, true, true, false),
+            (2.4, true, false, false),
+            (3.0, false, false, false),
+        ] {
+            assert_eq!(probe(FieldOp::Union, x), union, "union at {x}");
+            assert_eq!(
+                probe(FieldOp::Intersection, x),
+                inter,
+                "intersection at {x}"
+            );
+            assert_eq!(probe(FieldOp::Difference, x), diff, "difference at {x}");
+        }
+        let far = FieldCsg::new(FieldOp::Intersection, ball(0.0), ball(10.0));
+        assert!(far.bounds().is_empty());
+        let d = FieldCsg::new(FieldOp::Difference, ball(0.0), ball(10.0));
+        assert_eq!(d.bounds(), ball(0.0).bounds());
+    }
+}

@@ -1,0 +1,440 @@
+//! Field documents: a blobby field or a field-CSG tree as JSON, read with
+//! errors that name the JSON path of the offending value.
+//!
+//! ```text
+//! DOCUMENT := NODE, optionally with "resolution": N (cells along the longest side)
+//! NODE := {"blobs": [SOURCE, ...], "falloff": "soft_object" | "cubic_parabola"}   (falloff optional)
+//!       | {"union": [NODE, ...]} | {"intersection": [NODE, ...]}
+//!       | {"difference": [NODE, NODE, ...]}                              (the first minus the rest)
+//! SOURCE := {"center": [x, y, z], "radius": R, "strength": w}           (R > 0; strength optional, 1)
+//! ```
+//!
+//! A document may stand alone ([`load_json`]) or sit inside a scene file as
+//! a `{"field": DOCUMENT}` leaf (`wingedge::scene`), which is meshed into a
+//! polyhedron ([`read_document`] reads it at the leaf's JSON path).
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use serde_json::{Map, Value};
+use thiserror::Error;
+
+use super::blobs::Blobs;
+use super::combine::{FieldCsg, FieldOp};
+use super::error::FieldError;
+use super::falloff::Falloff;
+use super::scalar_field::Field;
+use super::source::Source;
+
+/// The most sources a document may hold, all nodes together.
+pub const MAX_DOCUMENT_SOURCES: usize = 1_000_000;
+/// How deep JSON may nest (arrays and objects; an operator node is two
+/// levels): serde_json's recursion limit, refused before any node is read.
+pub const MAX_JSON_DEPTH: usize = 128;
+
+const NODE_KEYS: &str = "blobs (with falloff), union, intersection, difference";
+const SOURCE_KEYS: &str = "center, radius, strength";
+
+/// Why a field document cannot be loaded: each variant names the file or
+/// the JSON path (`field.union[1].blobs[3].radius`).
+#[derive(Debug, Error)]
+pub enum FieldJsonError {
+    /// The file could not be read.
+    #[error("{file}: cannot read: {source}")]
+    Read {
+        /// The file.
+        file: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The text is not JSON.
+    #[error("{file}: line {line}, column {column}: not valid JSON: {message}")]
+    Json {
+        /// The file (`<string>` for text).
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The parser's message.
+        message: String,
+    },
+    /// A value is missing, has the wrong type or is out of range.
+    #[error("{at}: {message}")]
+    Value {
+        /// The JSON path.
+        at: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A key the format does not have.
+    #[error("{at}: unknown key \"{key}\" (expected {expected})")]
+    UnknownKey {
+        /// The JSON path of the object.
+        at: String,
+        /// The key found.
+        key: String,
+        /// The keys allowed there.
+        expected: &'static str,
+    },
+}
+
+/// A loaded field document: the field and the resolution it asks for.
+pub struct FieldDocument {
+    /// The field.
+    pub field: Box<dyn Field>,
+    /// `"resolution"`, when the document gives one.
+    pub resolution: Option<usize>,
+    /// Sources in all `blobs` nodes.
+    pub sources: usize,
+}
+
+impl std::fmt::Debug for FieldDocument {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FieldDocument")
+            .field("bounds", &self.field.bounds())
+            .field("resolution", &self.resolution)
+            .field("sources", &self.sources)
+            .finish()
+    }
+}
+
+/// Reads a field document from a file.
+///
+/// # Errors
+///
+/// [`FieldJsonError`] naming the file, the JSON position or the JSON path.
+pub fn load_json(path: &Path) -> Result<FieldDocument, FieldJsonError> {
+    let text = std::fs::read_to_string(path).map_err(|source| FieldJsonError::Read {
+        file: path.to_path_buf(),
+        source,
+    })?;
+    parse_named(&text, &path.display().to_string())
+}
+
+/// Reads a field document from text.
+///
+/// # Errors
+///
+/// As [`load_json`], with `<string>` as the file name.
+pub fn parse_json(text: &str) -> Result<FieldDocument, FieldJsonError> {
+    parse_named(text, "<string>")
+}
+
+fn parse_named(text: &str, name: &str) -> Result<FieldDocument, FieldJsonError> {
+    let value: Value = serde_json::from_str(text).map_err(|e| FieldJsonError::Json {
+        file: name.to_string(),
+        line: e.line(),
+        column: e.column(),
+        message: if e.to_string().starts_with("recursion limit exceeded") {
+            format!("nested deeper than {MAX_JSON_DEPTH} levels (the limit)")
+        } else {
+            e.to_string()
+        },
+    })?;
+    read_document(&value, "field")
+}
+
+/// Reads a field document already parsed as JSON; `at` is the JSON path of
+/// `value` (`field` for a document of its own, the node's path inside a
+/// scene file), and every error names a path below it.
+///
+/// # Errors
+///
+/// [`FieldJsonError::Value`] or [`FieldJsonError::UnknownKey`].
+pub fn read_document(value: &Value, at: &str) -> Result<FieldDocument, FieldJsonError> {
+    let o = value
+        .as_object()
+        .ok_or_else(|| bad(at, "an object", value))?;
+    let resolution = match o.get("resolution") {
+        None => None,
+        Some(v) => Some(
+            v.as_u64()
+                .filter(|&n| n >= 1)
+                .and_then(|n| usize::try_from(n).ok())
+                .ok_or_else(|| bad(&format!("{at}.resolution"), "a whole number ≥ 1", v))?,
+        ),
+    };
+    let mut node = o.clone();
+    node.remove("resolution");
+    let mut sources = 0;
+    let field = read_node(&node, at, &mut sources)?;
+    Ok(FieldDocument {
+        field,
+        resolution,
+        sources,
+    })
+}
+
+fn read_node(
+    o: &Map<String, Value>,
+    at: &str,
+    sources: &mut usize,
+) -> Result<Box<dyn Field>, FieldJsonError> {
+    let op = |name: &str| match name {
+        "union" => Some(FieldOp::Union),
+        "intersection" => Some(FieldOp::Intersection),
+        "difference" => Some(FieldOp::Difference),
+        _ => None,
+    };
+    let Some(kind) = o.keys().find(|k| k.as_str() == "blobs" || op(k).is_some()) else {
+        return match o.keys().next() {
+            Some(key) => Err(FieldJsonError::UnknownKey {
+                at: at.to_string(),
+                key: key.clone(),
+                expected: NODE_KEYS,
+            }),
+            None => Err(value_error(
+                at,
+                format!("an empty object; expected one of {NODE_KEYS}"),
+            )),
+        };
+    };
+    let allowed: &[&str] = if kind == "blobs" {
+        &["blobs", "falloff"]
+    } else {
+        &[kind.as_str()]
+    };
+    if let Some(key) = o.keys().find(|k| !allowed.contains(&k.as_str())) {
+        return Err(FieldJsonError::UnknownKey {
+            at: at.to_string(),
+            key: key.clone(),
+            expected: NODE_KEYS,
+        });
+    }
+    let here = format!("{at}.{kind}");
+    let list = o[kind.as_str()]
+        .as_array()
+        .ok_or_else(|| bad(&here, "an array", &o[kind.as_str()]))?;
+    if let Some(op) = op(kind) {
+        let least = if op == FieldOp::Difference { 2 } else { 1 };
+        if list.len() < least {
+            return Err(value_error(
+                &here,
+                format!(
+                    "{} needs at least {least} operands, found {}",
+                    op.name(),
+                    list.len()
+                ),
+            ));
+        }
+        let mut children = list.iter().enumerate().map(|(i, v)| {
+            let child_at = format!("{here}[{i}]");
+            let child = v
+                .as_object()
+                .ok_or_else(|| bad(&child_at, "an object", v))?;
+            read_node(child, &child_at, sources)
+        });
+        let mut field = children
+            .next()
+            .unwrap_or_else(|| Err(value_error(&here, "no operand".into())))?;
+        for child in children {
+            field = Box::new(FieldCsg::new(op, field, child?));
+        }
+        return Ok(field);
+    }
+    let falloff = match o.get("falloff") {
+        None => Falloff::default(),
+        Some(Value::String(s)) if s == "soft_object" => Falloff::SoftObject,
+        Some(Value::String(s)) if s == "cubic_parabola" => Falloff::CubicParabola,
+        Some(v) => {
+            return Err(bad(
+                &format!("{at}.falloff"),
+                "\"soft_object\" or \"cubic_parabola\"",
+                v,
+            ));
+        }
+    };
+    *sources += list.len();
+    if *sources > MAX_DOCUMENT_SOURCES {
+        return Err(value_error(
+            &here,
+            format!("more than {MAX_DOCUMENT_SOURCES} sources in the document (the limit)"),
+        ));
+    }
+    let parsed: Vec<Source> = list
+        .iter()
+        .enumerate()
+        .map(|(i, v)| read_source(v, &format!("{here}[{i}]")))
+        .collect::<Result<_, _>>()?;
+    let blobs = Blobs::try_new(parsed, falloff).map_err(|e| located(&here, e))?;
+    Ok(Box::new(blobs))
+}
+
+fn read_source(v: &Value, at: &str) -> Result<Source, FieldJsonError> {
+    let o = v.as_object().ok_or_else(|| bad(at, "an object", v))?;
+    if let Some(key) = o
+        .keys()
+        .find(|k| !["center", "radius", "strength"].contains(&k.as_str()))
+    {
+        return Err(FieldJsonError::UnknownKey {
+            at: at.to_string(),
+            key: key.clone(),
+            expected: SOURCE_KEYS,
+        });
+    }
+    let center = match o.get("center") {
+        Some(c) => point(c, &format!("{at}.center"))?,
+        None => return Err(value_error(&format!("{at}.center"), "missing".into())),
+    };
+    let radius = match o.get("radius") {
+        Some(r) => number(r, &format!("{at}.radius"))?,
+        None => return Err(value_error(&format!("{at}.radius"), "missing".into())),
+    };
+    if radius <= 0.0 {
+        return Err(value_error(
+            &format!("{at}.radius"),
+            format!("expected a positive number, found {radius}"),
+        ));
+    }
+    let strength = match o.get("strength") {
+        Some(s) => number(s, &format!("{at}.strength"))?,
+        None => 1.0,
+    };
+    Ok(Source {
+        center,
+        radius,
+        strength,
+    })
+}
+
+fn number(v: &Value, at: &str) -> Result<f64, FieldJsonError> {
+    v.as_f64()
+        .filter(|x| x.is_finite())
+        .ok_or_else(|| bad(at, "a finite number", v))
+}
+
+fn point(v: &Value, at: &str) -> Result<DVec3, FieldJsonError> {
+    let a = v
+        .as_array()
+        .filter(|a| a.len() == 3)
+        .ok_or_else(|| bad(at, "an array of three numbers", v))?;
+    let mut xyz = [0.0; 3];
+    for (i, x) in a.iter().enumerate() {
+        xyz[i] = number(x, &format!("{at}[{i}]"))?;
+    }
+    Ok(DVec3::from_array(xyz))
+}
+
+fn value_error(at: &str, message: String) -> FieldJsonError {
+    FieldJsonError::Value {
+        at: at.to_string(),
+        message,
+    }
+}
+
+/// A field error, at the path of the source value it concerns (below the
+/// blobs list `at`).
+fn located(at: &str, e: FieldError) -> FieldJsonError {
+    let path = match &e {
+        FieldError::NonFiniteCenter { source_index, .. } => format!("{at}[{source_index}].center"),
+        FieldError::BadRadius { source_index, .. } => format!("{at}[{source_index}].radius"),
+        FieldError::BadStrength { source_index, .. } => format!("{at}[{source_index}].strength"),
+        FieldError::OutOfRange {
+            source_index, what, ..
+        } => {
+            let key = if *what == "radius" {
+                "radius"
+            } else {
+                "center"
+            };
+            format!("{at}[{source_index}].{key}")
+        }
+        _ => at.to_string(),
+    };
+    value_error(&path, e.to_string())
+}
+
+fn bad(at: &str, expected: &str, found: &Value) -> FieldJsonError {
+    let mut shown = found.to_string();
+    if shown.len() > 60 {
+        let mut cut = 57;
+        while !shown.is_char_boundary(cut) {
+            cut -= 1;
+        }
+        shown.truncate(cut);
+        shown.push('…');
+    }
+    value_error(at, format!("expected {expected}, found {shown}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn error(text: &str) -> String {
+        parse_json(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn a_document_reads_blobs_and_operators() {
+        let doc = parse_json(
+            r#"{"resolution": 20, "difference": [
+                {"blobs": [{"center": [0,0,0], "radius": 2}, {"center": [1,0,0], "radius": 2, "strength": 0.8}]},
+                {"blobs": [{"center": [0,0,1], "radius": 1}], "falloff": "cubic_parabola"}]}"#,
+        )
+        .unwrap();
+        assert_eq!(doc.resolution, Some(20));
+        assert_eq!(doc.sources, 3);
+        assert!(doc.field.contains(DVec3::new(0.5, 0.0, -0.5)));
+        assert!(!doc.field.contains(DVec3::new(0.0, 0.0, 0.9)));
+    }
+
+    #[test]
+    fn errors_name_the_json_path() {
+        assert_eq!(
+            error(
+                r#"{"blobs": [{"center": [0,0,0], "radius": 1}, {"center": [0,0,0], "radius": 0}]}"#
+            ),
+            "field.blobs[1].radius: expected a positive number, found 0"
+        );
+        assert_eq!(
+            error(r#"{"union": [{"blobs": []}, {"blobs": [{"center": [0,"x",0], "radius": 1}]}]}"#),
+            "field.union[1].blobs[0].center[1]: expected a finite number, found \"x\""
+        );
+        assert_eq!(
+            error(r#"{"blobs": [{"center": [0,0,0], "radius": -2}]}"#),
+            "field.blobs[0].radius: expected a positive number, found -2"
+        );
+        assert_eq!(
+            error(r#"{"resolution": 0, "blobs": []}"#),
+            "field.resolution: expected a whole number ≥ 1, found 0"
+        );
+        assert!(error(r#"{"blob": []}"#).contains("unknown key \"blob\""));
+        assert!(
+            error(r#"{"blobs": [{"centre": [0,0,0], "radius": 1}]}"#)
+                .contains("field.blobs[0]: unknown key \"centre\"")
+        );
+        assert!(
+            error(r#"{"difference": [{"blobs": []}]}"#)
+                .starts_with("field.difference: difference needs at least 2")
+        );
+        assert!(error("{\"blobs\": [").starts_with("<string>: line 1"));
+        assert!(
+            error(r#"{"blobs": [{"center": [0,0,0], "radius": 1}, {"center": [0,0,0], "radius": 1e-300}]}"#)
+                .starts_with("field.blobs[1].radius: source 1 (radius 1e-300) is out of range"),
+            "{}",
+            error(r#"{"blobs": [{"center": [0,0,0], "radius": 1}, {"center": [0,0,0], "radius": 1e-300}]}"#)
+        );
+        assert!(
+            error(r#"{"blobs": [{"center": [1e200,0,0], "radius": 1}]}"#)
+                .starts_with("field.blobs[0].center: source 0")
+        );
+        let nested = format!(
+            "{}{{\"blobs\": []}}{}",
+            "{\"union\": [".repeat(70),
+            "]}".repeat(70)
+        );
+        assert!(
+            error(&nested).contains("nested deeper than 128 levels"),
+            "{}",
+            error(&nested)
+        );
+    }
+
+    #[test]
+    fn an_empty_document_gives_an_empty_field() {
+        let doc = parse_json(r#"{"blobs": []}"#).unwrap();
+        assert!(doc.field.bounds().is_empty());
+    }
+}

@@ -1,0 +1,203 @@
+//! Samples of a field on a regular grid, padded by a layer of zeros.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::geom::Aabb;
+
+use super::super::error::FieldError;
+use super::super::scalar_field::Field;
+use super::super::stats::FieldStats;
+
+/// The most samples a grid may hold (2²⁵, 256 MiB of values): enough for
+/// 320³.
+pub const MAX_SAMPLES: usize = 1 << 25;
+
+/// Field values at the nodes `origin + cell · (i, j, k)` of a regular grid,
+/// `0 ≤ i < dims[0]` and so on.
+///
+/// Marching cubes reads the grid through [`SampleGrid::value`], which
+/// answers 0 one node beyond each side: the grid is padded by a layer of
+/// outside samples, so the surface always closes at the border.
+///
+/// # Invariants
+///
+/// `values.len() = dims[0] · dims[1] · dims[2] ≤ MAX_SAMPLES`, every value
+/// finite, `origin` finite, `cell` finite and > 0.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SampleGrid {
+    origin: DVec3,
+    cell: f64,
+    dims: [usize; 3],
+    values: Vec<f64>,
+}
+
+impl SampleGrid {
+    /// A grid of given values, x fastest, then y, then z.
+    ///
+    /// # Errors
+    ///
+    /// [`FieldError::BadGridFrame`], [`FieldError::GridTooLarge`],
+    /// [`FieldError::SampleCount`] or the first
+    /// [`FieldError::NonFiniteSample`].
+    pub fn try_new(
+        origin: DVec3,
+        cell: f64,
+        dims: [usize; 3],
+        values: Vec<f64>,
+    ) -> Result<SampleGrid, FieldError> {
+        if !(origin.is_finite() && cell.is_finite() && cell > 0.0) {
+            return Err(FieldError::BadGridFrame { origin, cell });
+        }
+        let expected = check_size(dims)?;
+        if values.len() != expected {
+            return Err(FieldError::SampleCount {
+                dims,
+                expected,
+                found: values.len(),
+            });
+        }
+        if let Some(n) = values.iter().position(|v| !v.is_finite()) {
+            return Err(FieldError::NonFiniteSample {
+                i: n % dims[0],
+                j: n / dims[0] % dims[1],
+                k: n / (dims[0] * dims[1]),
+                value: values[n],
+            });
+        }
+        Ok(SampleGrid {
+            origin,
+            cell,
+            dims,
+            values,
+        })
+    }
+
+    /// Samples `field` over its [`bounds`](Field::bounds) with `resolution`
+    /// cells along the longest side, in parallel (z slabs), and returns the
+    /// work done.
+    ///
+    /// # Errors
+    ///
+    /// [`FieldError::ZeroResolution`], [`FieldError::Empty`] when the
+    /// field's bounds are empty, [`FieldError::GridTooLarge`], or
+    /// [`FieldError::NonFiniteSample`] when the field returns NaN.
+    pub fn try_sample(
+        field: &dyn Field,
+        resolution: usize,
+    ) -> Result<(SampleGrid, FieldStats), FieldError> {
+        if resolution == 0 {
+            return Err(FieldError::ZeroResolution);
+        }
+        let bounds: Aabb = field.bounds();
+        let size = bounds.size();
+        // `F < ½` outside the box and on its faces: a box flat along an axis
+        // is all faces, so the solid is empty.
+        if bounds.is_empty() || size.min_element() <= 0.0 {
+            return Err(FieldError::Empty);
+        }
+        let cell = size.max_element() / resolution as f64;
+        if !(cell.is_finite() && cell > 0.0) {
+            return Err(FieldError::BadGridFrame {
+                origin: bounds.min,
+                cell,
+            });
+        }
+        let dims = [size.x, size.y, size.z].map(|s| {
+            let n = (s / cell).ceil();
+            // Saturate: check_size refuses it below.
+            if n < (MAX_SAMPLES as f64) {
+                n as usize + 1
+            } else {
+                MAX_SAMPLES + 1
+            }
+        });
+        let total = check_size(dims)?;
+        let origin = bounds.min;
+        let slab = dims[0] * dims[1];
+        let mut values = vec![0.0; total];
+        let stats: Vec<FieldStats> = values
+            .par_chunks_mut(slab)
+            .enumerate()
+            .map(|(k, slab_values)| {
+                let mut stats = FieldStats::default();
+                for j in 0..dims[1] {
+                    for i in 0..dims[0] {
+                        let p = origin + cell * DVec3::new(i as f64, j as f64, k as f64);
+                        slab_values[j * dims[0] + i] = field.value_counted(p, &mut stats);
+                    }
+                }
+                stats
+            })
+            .collect();
+        let mut sum = FieldStats::default();
+        for s in stats {
+            sum += s;
+        }
+        let grid = SampleGrid::try_new(origin, cell, dims, values)?;
+        Ok((grid, sum))
+    }
+
+    /// Samples along x, y and z.
+    #[must_use]
+    pub fn dims(&self) -> [usize; 3] {
+        self.dims
+    }
+
+    /// The edge length of a cell.
+    #[must_use]
+    pub fn cell(&self) -> f64 {
+        self.cell
+    }
+
+    /// The position of node `(0, 0, 0)`.
+    #[must_use]
+    pub fn origin(&self) -> DVec3 {
+        self.origin
+    }
+
+    /// The values, x fastest.
+    #[must_use]
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// The value at a node of the padded grid: the sample for
+    /// `0 ≤ i < dims[0]` (and so on), 0 elsewhere.
+    #[must_use]
+    pub fn value(&self, i: isize, j: isize, k: isize) -> f64 {
+        let inside = |v: isize, n: usize| usize::try_from(v).ok().filter(|&v| v < n);
+        match (
+            inside(i, self.dims[0]),
+            inside(j, self.dims[1]),
+            inside(k, self.dims[2]),
+        ) {
+            (Some(i), Some(j), Some(k)) => self.values[(k * self.dims[1] + j) * self.dims[0] + i],
+            _ => 0.0,
+        }
+    }
+
+    /// The position of a node of the padded grid.
+    #[must_use]
+    pub fn position(&self, i: isize, j: isize, k: isize) -> DVec3 {
+        self.origin + self.cell * DVec3::new(i as f64, j as f64, k as f64)
+    }
+}
+
+fn check_size(dims: [usize; 3]) -> Result<usize, FieldError> {
+    let samples = dims
+        .iter()
+        .try_fold(1usize, |acc, &d| acc.checked_mul(d))
+        .unwrap_or(usize::MAX);
+    if samples == 0 {
+        return Err(FieldError::EmptyGrid { dims });
+    }
+    if samples > MAX_SAMPLES {
+        return Err(FieldError::GridTooLarge {
+            dims,
+            samples,
+            limit: MAX_SAMPLES,
+        });
+    }
+    Ok(samples)
+}
