@@ -25,12 +25,10 @@ use crate::geom::{Aabb, Sign, orient2d, orient3d};
 #[must_use]
 pub fn box_meets_triangle(b: &Aabb, t: &[DVec3; 3]) -> bool {
     // The box's faces.
-    for axis in 0..3 {
-        let lo = t[0][axis].min(t[1][axis]).min(t[2][axis]);
-        let hi = t[0][axis].max(t[1][axis]).max(t[2][axis]);
-        if hi < b.min[axis] || lo > b.max[axis] {
-            return false;
-        }
+    let lo = t[0].min(t[1]).min(t[2]);
+    let hi = t[0].max(t[1]).max(t[2]);
+    if hi.cmplt(b.min).any() || lo.cmpgt(b.max).any() {
+        return false;
     }
     // The triangle's plane (a degenerate triangle has none: every sign is
     // zero and nothing is separated here).

@@ -5,7 +5,7 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use wingedge::cells::{Label, Octree, write_npy};
+use wingedge::cells::{Label, MAX_DENSE_DEPTH, Octree, write_npy};
 use wingedge::io::read_obj;
 use wingedge::mesh::Solid;
 use wingedge::scene::is_scene_path;
@@ -17,6 +17,11 @@ pub fn run(target: &Path, depth: u32, npy: Option<&Path>) -> Outcome {
         return Err(format!(
             "{}: cells of scene files are not built yet; give a solid (.obj)",
             target.display()
+        ));
+    }
+    if npy.is_some() && depth > MAX_DENSE_DEPTH {
+        return Err(format!(
+            "--npy: depth {depth} is beyond the limit of {MAX_DENSE_DEPTH} for a dense array"
         ));
     }
     let soup = read_obj(target).map_err(|e| e.to_string())?;
@@ -57,7 +62,11 @@ pub fn run(target: &Path, depth: u32, npy: Option<&Path>) -> Outcome {
             .map_err(|e| format!("{}: --npy: {e}", path.display()))?;
         write_npy(path, &dense, 1 << tree.depth())
             .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        let on = tree.leaves().iter().filter(|c| c.label == Label::On).count();
+        let on = tree
+            .leaves()
+            .iter()
+            .filter(|c| c.label == Label::On)
+            .count();
         eprintln!(
             "wrote {} ({n}×{n}×{n} uint8: 0 out, 1 on, 2 in; {on} on cells)",
             path.display(),
