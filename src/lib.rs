@@ -21,11 +21,13 @@
 //! [`mesh`] (topology) → [`io`] (OBJ in and out) → [`validate`] (named
 //! checks and a graded verdict) and [`query`] (line–face, ray–solid,
 //! point-in-polyhedron) → [`csg`] (ray-cast CSG: primitives, trees, the span
-//! merge) → [`field`] (implicit solids: blobby fields, field CSG, marching
+//! merge) → [`cells`] (octree cells In, Out or On, certified volumes) →
+//! [`field`] (implicit solids: blobby fields, field CSG, marching
 //! cubes to a valid solid) → [`scene`] (the JSON scene format; a mesh or a
 //! scene as one query target) → [`render`] (images).
 #![warn(missing_docs)]
 
+pub mod cells;
 pub mod csg;
 pub mod curve;
 mod disjoint_sets;

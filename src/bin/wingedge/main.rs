@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod cells;
 mod info;
 mod input;
 mod mesh;
@@ -118,6 +119,20 @@ enum Command {
         #[arg(long, value_name = "N", default_value_t = wingedge::io::DEFAULT_MAX_FACE_CORNERS)]
         max_face_corners: usize,
     },
+    /// The octree cells of a solid, each In, Out or On its boundary (exact),
+    /// with the certified volume interval [V_in, V_in + V_on]; only cells
+    /// the boundary meets are refined.
+    Cells {
+        /// The solid (.obj).
+        solid: PathBuf,
+        /// The finest depth (2^depth cells along each side of the root cube).
+        #[arg(long, default_value_t = 6)]
+        depth: u32,
+        /// Write the dense array of the finest cells as a numpy .npy file
+        /// (uint8, shape (n, n, n): 0 out, 1 on, 2 in; depth at most 9).
+        #[arg(long, value_name = "OUT.npy")]
+        npy: Option<PathBuf>,
+    },
     /// Mesh a field document (blobs and field CSG, JSON) by marching cubes
     /// into a validated closed solid and write it as OBJ. Exit code 0 for a
     /// valid solid, 1 for an empty field (nothing written), 2 for a
@@ -198,6 +213,7 @@ fn main() -> ExitCode {
             integrate,
             stats,
         } => volume::run(&target, spacing, integrate, stats),
+        Command::Cells { solid, depth, npy } => cells::run(&solid, depth, npy.as_deref()),
         Command::Mesh {
             field,
             output,

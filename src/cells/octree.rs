@@ -1,0 +1,452 @@
+//! The octree: cells the boundary meets are split down to the depth asked
+//! for; every other cell is `In` or `Out`, decided for a whole connected
+//! region by one point classification.
+//!
+//! # How cells are labelled
+//!
+//! 1. The root is the smallest cube of power-of-two side whose corner is a
+//!    multiple of the finest cell side and which holds the solid's box, so
+//!    that every cell corner is an exact `f64` and every cell volume a power
+//!    of two.
+//! 2. A cell is `On` exactly when the solid's boundary meets the closed
+//!    cell: its faces, triangulated exactly (`Solid::try_triangulate_face`,
+//!    rings included), are
+//!    fetched by a box query on the shared BVH and tested by
+//!    [`box_meets_triangle`]. `On` cells above the finest depth are split;
+//!    cells the boundary does not meet are leaves.
+//! 3. Two leaves that share a face and are both not `On` lie in one region
+//!    without boundary, so they have the same label. Leaves are joined
+//!    across shared faces (union–find; a leaf looks for its neighbour at
+//!    its own depth and above, so every adjacency is found from its finer
+//!    side), and one point of each region — the centre of its first cell,
+//!    rounded, still inside that cell — is classified exactly. A region
+//!    costs one query, not one per cell.
+//!
+//! # The volume interval
+//!
+//! `In` cells lie inside the solid and `On` cells hold all of its
+//! boundary, so the solid's volume lies in `[V_in, V_in + V_on]`. Cell
+//! volumes are powers of two and counts are integers, so each level's sum
+//! is exact; the totals are rounded down and up, so the interval is
+//! certified.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+use thiserror::Error;
+
+use super::box_triangle::box_meets_triangle;
+use crate::disjoint_sets::DisjointSets;
+use crate::geom::{Aabb, Readable};
+use crate::mesh::{FaceId, Solid};
+use crate::query::{Accel, Containment};
+use crate::spatial::Bvh;
+
+/// The deepest octree [`Octree::classify`] builds: `2^16` cells along a
+/// side, far past what memory holds for a surface of any size.
+pub const MAX_DEPTH: u32 = 16;
+
+/// The deepest octree whose dense array [`Octree::dense`] writes:
+/// `2^9 = 512` cells along a side, 128 MiB.
+pub const MAX_DENSE_DEPTH: u32 = 9;
+
+/// Where a cell is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Label {
+    /// Inside the solid: the boundary does not meet the closed cell.
+    In,
+    /// Outside the solid: the boundary does not meet the closed cell.
+    Out,
+    /// The boundary meets the closed cell (only at the finest depth).
+    On,
+}
+
+/// A leaf of the octree: cell `(x, y, z)` of the `2^depth` cells along each
+/// side at `depth`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Cell {
+    /// Its depth (0: the root).
+    pub depth: u32,
+    /// Its index along `x` at its depth.
+    pub x: u32,
+    /// Its index along `y`.
+    pub y: u32,
+    /// Its index along `z`.
+    pub z: u32,
+    /// Where it is.
+    pub label: Label,
+}
+
+/// How many leaves of each label one depth holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LevelCounts {
+    /// `In` leaves.
+    pub inside: u64,
+    /// `Out` leaves.
+    pub outside: u64,
+    /// `On` leaves.
+    pub on: u64,
+}
+
+/// Why cells cannot be made.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum CellsError {
+    /// A depth beyond [`MAX_DEPTH`] (or, for the dense array, beyond
+    /// [`MAX_DENSE_DEPTH`]).
+    #[error("depth {depth} is beyond the limit of {limit}")]
+    TooDeep {
+        /// The depth asked for.
+        depth: u32,
+        /// The limit.
+        limit: u32,
+    },
+    /// In and out need a closed surface.
+    #[error("the solid is not closed ({0} edges have one face): in and out are undefined")]
+    NotClosed(usize),
+    /// A solid without faces.
+    #[error("the solid has no faces")]
+    Empty,
+    /// A face that is not a simple planar polygon cannot be tiled exactly.
+    #[error("face {face:?} cannot be triangulated: {message}")]
+    Face {
+        /// The face.
+        face: FaceId,
+        /// Why.
+        message: String,
+    },
+    /// The solid's box is too large for cell corners to be exact.
+    #[error("the solid's box (size {}) is too large or too far out for exact cell corners", Readable(*.size))]
+    OutOfRange {
+        /// The longest side of the solid's box.
+        size: f64,
+    },
+}
+
+/// An octree over a solid with every leaf labelled.
+///
+/// # Invariants
+///
+/// - `leaves` tile the root cube; `On` leaves are all at depth `depth`.
+/// - `counts[d]` counts the leaves at depth `d` by label.
+#[derive(Clone, Debug)]
+pub struct Octree {
+    origin: DVec3,
+    side: f64,
+    depth: u32,
+    leaves: Vec<Cell>,
+    counts: Vec<LevelCounts>,
+    regions: usize,
+}
+
+/// The exact triangles of a solid's faces and the BVH over their boxes.
+struct Surface {
+    triangles: Vec<[DVec3; 3]>,
+    boxes: Vec<Aabb>,
+    bvh: Bvh,
+}
+
+impl Surface {
+    fn new(solid: &Solid) -> Result<Surface, CellsError> {
+        let mut triangles = Vec::new();
+        for (face, _) in solid.faces() {
+            let tiles = solid
+                .try_triangulate_face(face)
+                .map_err(|e| CellsError::Face {
+                    face,
+                    message: e.to_string(),
+                })?;
+            triangles.extend(tiles.iter().map(|t| t.map(|v| solid.position(v))));
+        }
+        let boxes: Vec<Aabb> = triangles
+            .iter()
+            .map(|t| Aabb::from_points(t.iter().copied()))
+            .collect();
+        let (bvh, order) = Bvh::build(&boxes);
+        let triangles: Vec<[DVec3; 3]> = order.iter().map(|&i| triangles[i as usize]).collect();
+        let boxes = order.iter().map(|&i| boxes[i as usize]).collect();
+        Ok(Surface {
+            triangles,
+            boxes,
+            bvh,
+        })
+    }
+
+    /// Whether the boundary meets the closed box.
+    fn meets(&self, cell: &Aabb) -> bool {
+        let mut met = false;
+        self.bvh.items_overlapping(
+            cell,
+            |p| self.boxes[p],
+            |p| met = met || box_meets_triangle(cell, &self.triangles[p]),
+        );
+        met
+    }
+}
+
+impl Octree {
+    /// Labels the cells of an octree of depth `depth` over `solid`.
+    ///
+    /// # Errors
+    ///
+    /// [`CellsError::TooDeep`], [`CellsError::Empty`],
+    /// [`CellsError::NotClosed`], [`CellsError::Face`] for a face that is
+    /// not a simple planar polygon, [`CellsError::OutOfRange`] for a box
+    /// whose cell corners would not be exact.
+    pub fn classify(solid: &Solid, depth: u32) -> Result<Octree, CellsError> {
+        if depth > MAX_DEPTH {
+            return Err(CellsError::TooDeep {
+                depth,
+                limit: MAX_DEPTH,
+            });
+        }
+        if solid.face_count() == 0 {
+            return Err(CellsError::Empty);
+        }
+        let accel = Accel::new(solid);
+        if !accel.is_closed() {
+            let open = solid
+                .edges()
+                .filter(|(_, e)| e.right_face.is_none())
+                .count();
+            return Err(CellsError::NotClosed(open));
+        }
+        let (origin, side) = root_cube(&solid.bounding_box(), depth)?;
+        let surface = Surface::new(solid)?;
+        let mut tree = Octree {
+            origin,
+            side,
+            depth,
+            leaves: Vec::new(),
+            counts: vec![LevelCounts::default(); depth as usize + 1],
+            regions: 0,
+        };
+        // Refine what the boundary meets.
+        let mut stack = vec![(0u32, 0u32, 0u32, 0u32)];
+        let mut undecided = Vec::new();
+        while let Some((d, x, y, z)) = stack.pop() {
+            let cell = tree.cell_box(d, x, y, z);
+            if !surface.meets(&cell) {
+                undecided.push(tree.leaves.len());
+                tree.leaves.push(Cell {
+                    depth: d,
+                    x,
+                    y,
+                    z,
+                    label: Label::Out,
+                });
+            } else if d == depth {
+                tree.leaves.push(Cell {
+                    depth: d,
+                    x,
+                    y,
+                    z,
+                    label: Label::On,
+                });
+            } else {
+                for k in 0..8 {
+                    stack.push((
+                        d + 1,
+                        2 * x + (k & 1),
+                        2 * y + (k >> 1 & 1),
+                        2 * z + (k >> 2),
+                    ));
+                }
+            }
+        }
+        tree.label_regions(&undecided, &accel);
+        for c in &tree.leaves {
+            let counts = &mut tree.counts[c.depth as usize];
+            match c.label {
+                Label::In => counts.inside += 1,
+                Label::Out => counts.outside += 1,
+                Label::On => counts.on += 1,
+            }
+        }
+        Ok(tree)
+    }
+
+    /// Joins face-adjacent undecided leaves and labels each region by one
+    /// exact point classification.
+    fn label_regions(&mut self, undecided: &[usize], accel: &Accel) {
+        let index: HashMap<(u32, u32, u32, u32), usize> = self
+            .leaves
+            .iter()
+            .enumerate()
+            .map(|(i, c)| ((c.depth, c.x, c.y, c.z), i))
+            .collect();
+        let mut sets = DisjointSets::new(self.leaves.len());
+        for &i in undecided {
+            let c = self.leaves[i];
+            let n = 1u32 << c.depth;
+            for (axis, step) in [(0, -1i64), (0, 1), (1, -1), (1, 1), (2, -1), (2, 1)] {
+                let mut at = [i64::from(c.x), i64::from(c.y), i64::from(c.z)];
+                at[axis] += step;
+                if at[axis] < 0 || at[axis] >= i64::from(n) {
+                    continue;
+                }
+                // The neighbour at this depth, or the coarser leaf holding it.
+                let mut d = c.depth;
+                let mut at = at.map(|v| v as u32);
+                loop {
+                    if let Some(&j) = index.get(&(d, at[0], at[1], at[2])) {
+                        if self.leaves[j].label != Label::On {
+                            sets.union(i, j);
+                        }
+                        break;
+                    }
+                    if d == 0 {
+                        break;
+                    }
+                    d -= 1;
+                    at = at.map(|v| v / 2);
+                }
+            }
+        }
+        let mut region_label: HashMap<usize, Label> = HashMap::new();
+        for &i in undecided {
+            let root = sets.find(i);
+            let label = *region_label.entry(root).or_insert_with(|| {
+                let c = self.leaves[root];
+                let b = self.cell_box(c.depth, c.x, c.y, c.z);
+                let centre = (b.min + (b.max - b.min) * 0.5).clamp(b.min, b.max);
+                match accel.classify(centre) {
+                    Ok(Containment::Inside) => Label::In,
+                    Ok(Containment::Outside) => Label::Out,
+                    // The closed cell meets no boundary: neither can happen;
+                    // `On` would still be a safe (conservative) answer.
+                    Ok(Containment::OnBoundary) | Err(_) => Label::On,
+                }
+            });
+            self.leaves[i].label = label;
+        }
+        self.regions = region_label.len();
+    }
+
+    /// The closed box of cell `(x, y, z)` at depth `d`: exact corners.
+    #[must_use]
+    pub fn cell_box(&self, d: u32, x: u32, y: u32, z: u32) -> Aabb {
+        let s = self.side / f64::from(1u32 << d);
+        let lo = self.origin + DVec3::new(f64::from(x), f64::from(y), f64::from(z)) * s;
+        Aabb {
+            min: lo,
+            max: lo + DVec3::splat(s),
+        }
+    }
+
+    /// The leaves.
+    #[must_use]
+    pub fn leaves(&self) -> &[Cell] {
+        &self.leaves
+    }
+
+    /// Leaves per depth and label (index: depth).
+    #[must_use]
+    pub fn counts(&self) -> &[LevelCounts] {
+        &self.counts
+    }
+
+    /// The depth of the finest cells.
+    #[must_use]
+    pub fn depth(&self) -> u32 {
+        self.depth
+    }
+
+    /// The root cube: its smallest corner and its side.
+    #[must_use]
+    pub fn root(&self) -> (DVec3, f64) {
+        (self.origin, self.side)
+    }
+
+    /// How many regions of `In` and `Out` leaves were labelled: the number
+    /// of point classifications made.
+    #[must_use]
+    pub fn regions(&self) -> usize {
+        self.regions
+    }
+
+    /// The certified volume interval `[V_in, V_in + V_on]`, which holds
+    /// the solid's exact volume.
+    #[must_use]
+    pub fn volume_bounds(&self) -> (f64, f64) {
+        let mut low = 0.0f64;
+        let mut high = 0.0f64;
+        for (d, c) in self.counts.iter().enumerate() {
+            // A power of two; times an integer below 2^53: exact.
+            let cell = (self.side / f64::from(1u32 << d)).powi(3);
+            low = (low + c.inside as f64 * cell).next_down().max(0.0);
+            high = (high + (c.inside + c.on) as f64 * cell).next_up();
+        }
+        (low, high)
+    }
+
+    /// The dense array of the finest cells, `n³` bytes for `n = 2^depth`,
+    /// index `(x · n + y) · n + z`: 0 `Out`, 1 `On`, 2 `In`.
+    ///
+    /// # Errors
+    ///
+    /// [`CellsError::TooDeep`] beyond [`MAX_DENSE_DEPTH`].
+    pub fn dense(&self) -> Result<Vec<u8>, CellsError> {
+        if self.depth > MAX_DENSE_DEPTH {
+            return Err(CellsError::TooDeep {
+                depth: self.depth,
+                limit: MAX_DENSE_DEPTH,
+            });
+        }
+        let n = 1usize << self.depth;
+        let mut out = vec![0u8; n * n * n];
+        for c in &self.leaves {
+            let value = match c.label {
+                Label::Out => continue,
+                Label::On => 1,
+                Label::In => 2,
+            };
+            let k = (self.depth - c.depth) as usize;
+            let span = 1usize << k;
+            let (x0, y0, z0) = (
+                c.x as usize * span,
+                c.y as usize * span,
+                c.z as usize * span,
+            );
+            for x in x0..x0 + span {
+                for y in y0..y0 + span {
+                    let row = (x * n + y) * n;
+                    out[row + z0..row + z0 + span].fill(value);
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The root cube: side a power of two holding the box, corner a multiple
+/// of the finest side (so that every cell corner is exact).
+fn root_cube(bounds: &Aabb, depth: u32) -> Result<(DVec3, f64), CellsError> {
+    let extent = bounds.size().max_element();
+    let out_of_range = || CellsError::OutOfRange { size: extent };
+    if !(extent.is_finite() && bounds.min.is_finite()) {
+        return Err(out_of_range());
+    }
+    let mut side = if extent > 0.0 {
+        2f64.powi(extent.log2().ceil() as i32)
+    } else {
+        1.0
+    };
+    for _ in 0..64 {
+        let finest = side / f64::from(1u32 << depth);
+        let origin = (bounds.min / finest).floor() * finest;
+        if !(origin.is_finite() && finest > 0.0 && finest.is_normal()) {
+            return Err(out_of_range());
+        }
+        if (origin + DVec3::splat(side)).cmpge(bounds.max).all() {
+            // Corners exact: every coordinate a multiple of `finest` below
+            // 2^53 of them.
+            let cells = ((origin.abs() + DVec3::splat(side)) / finest).max_element();
+            if cells >= 2f64.powi(53) {
+                return Err(out_of_range());
+            }
+            return Ok((origin, side));
+        }
+        side *= 2.0;
+    }
+    Err(out_of_range())
+}

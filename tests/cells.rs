@@ -1,0 +1,169 @@
+//! Octree cells of solids: exact `On` cells, one classification per region,
+//! and certified volume intervals that hold closed-form volumes.
+
+use std::path::Path;
+
+use wingedge::cells::{CellsError, Label, MAX_DEPTH, Octree};
+use wingedge::glam::DVec3;
+use wingedge::io::read_obj;
+use wingedge::mesh::{PolygonSoup, Solid, builders};
+
+fn fixture(name: &str) -> Solid {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/valid")
+        .join(name);
+    Solid::try_from_soup(&read_obj(&path).unwrap()).unwrap()
+}
+
+fn assert_holds(tree: &Octree, volume: f64, what: &str) {
+    let (low, high) = tree.volume_bounds();
+    assert!(
+        low <= volume && volume <= high,
+        "{what}: {volume} not in [{low}, {high}]"
+    );
+}
+
+#[test]
+fn intervals_hold_closed_form_volumes_and_shrink_with_depth() {
+    let phi = (1.0 + 5f64.sqrt()) / 2.0;
+    let ico = |r: f64| 5.0 / 12.0 * (3.0 + 5f64.sqrt()) * (2.0 * r).powi(3);
+    let cases: Vec<(&str, Solid, f64)> = vec![
+        ("cube", builders::cube(), 8.0),
+        ("tetrahedron", builders::tetrahedron(), 8.0 / 3.0),
+        ("L-prism", builders::l_prism(), 3.0),
+        ("icosahedron", builders::icosahedron(), ico(1.0)),
+        (
+            "dodecahedron",
+            builders::dodecahedron(),
+            (15.0 + 7.0 * 5f64.sqrt()) / 4.0 * (2.0 / phi).powi(3),
+        ),
+        ("torus", fixture("torus_genus1.obj"), 8.0),
+        ("double torus", fixture("double_torus_genus2.obj"), 13.0),
+        (
+            "hollow ball",
+            fixture("hollow_ball.obj"),
+            ico(2.0) - ico(1.0),
+        ),
+    ];
+    for (name, solid, volume) in cases {
+        let mut width = f64::INFINITY;
+        let mut first = None;
+        for depth in [2, 3, 5] {
+            let tree = Octree::classify(&solid, depth).unwrap();
+            assert_holds(&tree, volume, name);
+            let (low, high) = tree.volume_bounds();
+            assert!(
+                high - low <= width,
+                "{name}: the interval grows at depth {depth}"
+            );
+            width = high - low;
+            first.get_or_insert(width);
+            // On cells only at the finest depth; leaves tile the root cube.
+            let (_, side) = tree.root();
+            let covered: f64 = tree
+                .leaves()
+                .iter()
+                .map(|c| (side / f64::from(1u32 << c.depth)).powi(3))
+                .sum();
+            assert_eq!(covered, side.powi(3), "{name}");
+            assert!(
+                tree.leaves()
+                    .iter()
+                    .all(|c| c.label != Label::On || c.depth == depth)
+            );
+        }
+        // The On cells cover the surface: about half the width per level.
+        let first = first.expect("three depths");
+        assert!(
+            width < first / 2.0,
+            "{name}: width {width} at depth 5, {first} at 2"
+        );
+    }
+}
+
+#[test]
+fn one_classification_per_region_not_per_cell() {
+    // The hollow ball: outside, the shell's inside and the cavity are three
+    // regions, however many cells they hold.
+    let tree = Octree::classify(&fixture("hollow_ball.obj"), 5).unwrap();
+    assert_eq!(tree.regions(), 3, "{:?}", tree.counts());
+    let inside: u64 = tree.counts().iter().map(|c| c.inside).sum();
+    let outside: u64 = tree.counts().iter().map(|c| c.outside).sum();
+    assert!(inside > 100 && outside > 100);
+    // A cube centred on a cell corner: every cell is In, Out or On as its
+    // position says, checked cell by cell against the closed form.
+    let solid = builders::cuboid(DVec3::splat(-0.75), DVec3::splat(0.75)).unwrap();
+    let tree = Octree::classify(&solid, 5).unwrap();
+    for c in tree.leaves() {
+        let b = tree.cell_box(c.depth, c.x, c.y, c.z);
+        let want = if b.min.cmpge(DVec3::splat(-0.75)).all()
+            && b.max.cmple(DVec3::splat(0.75)).all()
+        {
+            if b.min.cmpgt(DVec3::splat(-0.75)).all() && b.max.cmplt(DVec3::splat(0.75)).all() {
+                Label::In
+            } else {
+                Label::On
+            }
+        } else if b.max.cmplt(DVec3::splat(-0.75)).any() || b.min.cmpgt(DVec3::splat(0.75)).any() {
+            Label::Out
+        } else {
+            Label::On
+        };
+        assert_eq!(c.label, want, "{c:?} {b:?}");
+    }
+}
+
+#[test]
+fn the_dense_array_matches_the_leaves() {
+    let tree = Octree::classify(&builders::l_prism(), 4).unwrap();
+    let dense = tree.dense().unwrap();
+    let n = 16usize;
+    assert_eq!(dense.len(), n * n * n);
+    let count = |v: u8| dense.iter().filter(|&&x| x == v).count() as u64;
+    let finest = |label: Label| -> u64 {
+        tree.leaves()
+            .iter()
+            .filter(|c| c.label == label)
+            .map(|c| 1u64 << (3 * (4 - c.depth)))
+            .sum()
+    };
+    assert_eq!(count(2), finest(Label::In));
+    assert_eq!(count(1), finest(Label::On));
+    assert_eq!(count(0), finest(Label::Out));
+}
+
+#[test]
+fn bad_requests_are_refused() {
+    let cube = builders::cube();
+    assert_eq!(
+        Octree::classify(&cube, MAX_DEPTH + 1).unwrap_err(),
+        CellsError::TooDeep {
+            depth: MAX_DEPTH + 1,
+            limit: MAX_DEPTH
+        }
+    );
+    assert!(matches!(
+        Octree::classify(&cube, 10).unwrap().dense(),
+        Err(CellsError::TooDeep { .. })
+    ));
+    let open = PolygonSoup::new(
+        vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+        [[0, 2, 1], [0, 1, 3], [0, 3, 2]],
+    );
+    let open = Solid::try_from_soup(&open).unwrap();
+    assert_eq!(
+        Octree::classify(&open, 3).unwrap_err(),
+        CellsError::NotClosed(3)
+    );
+    let far = builders::cuboid(DVec3::splat(1e50), DVec3::splat(1.5e50)).unwrap();
+    assert!(Octree::classify(&far, 3).is_ok());
+    let mut huge = builders::cube().to_soup();
+    for p in &mut huge.positions {
+        *p *= 1e308;
+    }
+    let huge = Solid::try_from_soup(&huge).unwrap();
+    assert!(matches!(
+        Octree::classify(&huge, 3),
+        Err(CellsError::OutOfRange { .. })
+    ));
+}

@@ -1,0 +1,63 @@
+//! `wingedge cells`: counts per depth, the certified interval, the .npy
+//! array, and refusals.
+
+mod common;
+
+use common::cli::{TempDir, wingedge};
+
+#[test]
+fn cells_of_the_cube_hold_its_volume_and_write_a_numpy_array() {
+    let dir = TempDir::new("cells");
+    let npy = dir.path().join("cube.npy");
+    let (code, out, err) = wingedge(&[
+        "cells",
+        "fixtures/valid/cube.obj",
+        "--depth",
+        "4",
+        "--npy",
+        npy.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("volume in ["))
+        .expect(&out);
+    let inside = &line["volume in [".len()..line.find(']').unwrap()];
+    let (low, high) = inside.split_once(", ").unwrap();
+    let (low, high): (f64, f64) = (low.parse().unwrap(), high.parse().unwrap());
+    assert!(low <= 8.0 && 8.0 <= high, "{line}");
+    assert!(
+        out.contains("point classifications (one per region)"),
+        "{out}"
+    );
+    let bytes = std::fs::read(&npy).unwrap();
+    assert_eq!(&bytes[..6], b"\x93NUMPY");
+    assert_eq!(bytes.len() % 64, 16 * 16 * 16 % 64);
+    assert!(err.contains("16×16×16 uint8"), "{err}");
+}
+
+#[test]
+fn bad_requests_name_what_is_wrong() {
+    let (code, _, err) = wingedge(&["cells", "fixtures/scenes/platonic.json"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("cells of scene files are not built yet"),
+        "{err}"
+    );
+    let (code, _, err) = wingedge(&["cells", "fixtures/valid/cube.obj", "--depth", "17"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("depth 17 is beyond the limit of 16"), "{err}");
+    let (code, _, err) = wingedge(&[
+        "cells",
+        "fixtures/valid/cube.obj",
+        "--depth",
+        "10",
+        "--npy",
+        "x.npy",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("depth 10 is beyond the limit of 9"), "{err}");
+    let (code, _, err) = wingedge(&["cells", "fixtures/no-such.obj"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("fixtures/no-such.obj"), "{err}");
+}
