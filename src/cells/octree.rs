@@ -26,9 +26,9 @@
 //!
 //! `In` cells lie inside the solid and `On` cells hold all of its
 //! boundary, so the solid's volume lies in `[V_in, V_in + V_on]`. Cell
-//! volumes are powers of two and counts are integers, so each level's sum
-//! is exact; the totals are rounded down and up, so the interval is
-//! certified.
+//! volumes are powers of two: the totals are counted exactly in units of
+//! the finest cell and rounded down and up only past 2^53 units, so the
+//! interval is certified.
 
 use std::collections::HashMap;
 
@@ -368,14 +368,18 @@ impl Octree {
     /// the solid's exact volume.
     #[must_use]
     pub fn volume_bounds(&self) -> (f64, f64) {
-        let mut low = 0.0f64;
-        let mut high = 0.0f64;
+        // Sums in units of the finest cell (a cell at depth d is 8^(depth − d)
+        // of them): integers, exact. Converted to f64 rounding down and up,
+        // then scaled by the finest cell's volume (a power of two).
+        let (mut inside, mut on) = (0u128, 0u128);
         for (d, c) in self.counts.iter().enumerate() {
-            // A power of two; times an integer below 2^53: exact.
-            let cell = (self.side / f64::from(1u32 << d)).powi(3);
-            low = (low + c.inside as f64 * cell).next_down().max(0.0);
-            high = (high + (c.inside + c.on) as f64 * cell).next_up();
+            let units = 1u128 << (3 * (self.depth as usize - d));
+            inside += u128::from(c.inside) * units;
+            on += u128::from(c.on) * units;
         }
+        let finest = (self.side / f64::from(1u32 << self.depth)).powi(3);
+        let low = round_down(inside) * finest;
+        let high = round_up(inside + on) * finest;
         (low, high)
     }
 
@@ -416,6 +420,18 @@ impl Octree {
         }
         Ok(out)
     }
+}
+
+/// `n` as an `f64` no larger than `n`.
+fn round_down(n: u128) -> f64 {
+    let x = n as f64;
+    if x as u128 > n { x.next_down() } else { x }
+}
+
+/// `n` as an `f64` no smaller than `n`.
+fn round_up(n: u128) -> f64 {
+    let x = n as f64;
+    if (x as u128) < n { x.next_up() } else { x }
 }
 
 /// The root cube: side a power of two holding the box, corner a multiple
