@@ -507,7 +507,6 @@ mod tests {
         assert_eq!(c(0.5, 0.0, 0.0), Containment::Inside);
     }
 
-    /// A xorshift generator of uniform numbers in `[0, 1)`.
     /// Points that stress both ray directions: random points in and around
     /// the box, points next to both ends of it in `x`, every vertex and edge
     /// midpoint (on the boundary, or on the `x` line through one), the
