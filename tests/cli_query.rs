@@ -147,3 +147,42 @@ fn a_reader_that_goes_away_ends_the_output_quietly() {
         assert!(o.stderr.is_empty(), "{args:?}: {}", o.stderr);
     }
 }
+
+/// A closed mesh with a pinch vertex (two tetrahedra sharing their tip)
+/// answers point and ray queries, and answers them as the same mesh with
+/// the tip split by hand into one vertex per tetrahedron does; `validate`
+/// still reports the pinch.
+#[test]
+fn a_pinch_vertex_is_queried_like_the_same_mesh_split_by_hand() {
+    let pinched = "fixtures/broken/non_manifold_vertex.obj";
+    let text = std::fs::read_to_string(pinched).unwrap();
+    // The second tetrahedron's corners at the tip (OBJ vertex 4) become a
+    // new vertex 8 at the same place.
+    let split = text
+        .replacen("v 0 -1 2\n", "v 0 -1 2\nv 0 0 1\n", 1)
+        .replace("f 4 6 5\nf 4 7 6\nf 4 5 7\n", "f 8 6 5\nf 8 7 6\nf 8 5 7\n");
+    assert_ne!(split, text);
+    let dir = TempDir::new("pinch");
+    let split = dir.write("split.obj", split);
+    let split = split.to_str().unwrap();
+    let points = "0.1 0.1 0.3\n0 0 1\n-0.1 -0.1 1.8\n0 0 1.5\n2 2 2\n0 0 0.5\n0.2 0.2 0.2\n0 0 1.000000001\n";
+    let rays = "-1 0.1 0.3 1 0 0\n0 0 -1 0 0 1\n-0.1 -0.1 5 0 0 -1\n0.05 0.05 3 0 0 -1\n";
+    for (command, input) in [("classify", points), ("raycast", rays)] {
+        let a = run(&[command, pinched, "-"], Some(input));
+        let b = run(&[command, split, "-"], Some(input));
+        assert_eq!(a.code, 0, "{}", stderr(&a));
+        assert_eq!(stdout(&a), stdout(&b), "{command}");
+    }
+    assert_eq!(
+        stdout(&run(&["classify", pinched, "-"], Some(points))),
+        // The last point is on the second tetrahedron's edge along z.
+        "inside\nboundary\ninside\nboundary\noutside\nboundary\ninside\nboundary\n"
+    );
+    let v = run(&["validate", pinched], None);
+    assert_eq!(v.code, 1);
+    assert!(
+        stdout(&v).contains("non_manifold_vertex: 1"),
+        "{}",
+        stdout(&v)
+    );
+}

@@ -90,8 +90,10 @@ pub enum BuildError {
         /// Their OBJ lines, where known.
         lines: [Option<usize>; 2],
     },
-    /// The polygons around a vertex form more than one fan (a pinch point,
-    /// such as the shared tip of two cones).
+    /// Two holes of an open surface meet at a vertex, so their boundary
+    /// loops cannot be told apart there. (A pinch where fans of faces meet
+    /// without holes, such as the shared tip of two cones, builds: each fan
+    /// gets a vertex of its own.)
     #[error(
         "vertex {vertex} is a pinch point: the polygons around it {} form {fans} separate fans",
         capped(.polygons)
@@ -166,6 +168,9 @@ struct HalfEdges {
     twin: Vec<usize>,
     /// How many half-edges belong to polygons; the rest run around holes.
     face_count: usize,
+    /// The soup vertex of each vertex made by splitting a pinch: vertex
+    /// `soup.positions.len() + k` is a copy of `split_from[k]`.
+    split_from: Vec<usize>,
 }
 
 impl Solid {
@@ -196,7 +201,13 @@ impl Solid {
     /// [`BuildError::RepeatedVertex`], [`BuildError::NonFinitePosition`],
     /// [`BuildError::NonManifoldEdge`] (three or more polygons on an edge),
     /// [`BuildError::InconsistentOrientation`] (an edge run twice in one
-    /// direction) and [`BuildError::NonManifoldVertex`].
+    /// direction) and [`BuildError::NonManifoldVertex`] (two holes meeting
+    /// at a vertex). A vertex around which the faces form several fans
+    /// without a hole between them (a pinch) is not an error: each fan after
+    /// the first gets its own vertex at the same position with the same
+    /// soup index ([`Vertex::source_index`](super::Vertex::source_index)),
+    /// so the solid builds and queries answer; validation reports the pinch
+    /// from the soup.
     pub fn try_from_soup(soup: &PolygonSoup) -> Result<Solid, BuildError> {
         if soup.polygons.is_empty() {
             return Err(BuildError::NoPolygons);
@@ -206,7 +217,7 @@ impl Solid {
         let mut outgoing = Outgoing::new(soup.positions.len(), &halves.from);
         pair_twins(soup, &mut halves, &mut outgoing)?;
         link_holes(soup, &mut halves, &outgoing)?;
-        check_fans(soup, &halves, &outgoing)?;
+        split_pinches(soup, &mut halves, &outgoing);
         // Freed before the solid's tables are allocated (lowers the peak).
         drop(outgoing);
         Ok(assemble(soup, &halves))
@@ -263,6 +274,7 @@ fn corner_half_edges(soup: &PolygonSoup) -> HalfEdges {
         prev: Vec::with_capacity(corners),
         twin: Vec::new(),
         face_count: corners,
+        split_from: Vec::new(),
     };
     for (index, p) in soup.polygons.iter().enumerate() {
         let base = h.from.len();
@@ -400,36 +412,69 @@ fn link_holes(soup: &PolygonSoup, h: &mut HalfEdges, out: &Outgoing) -> Result<(
     Ok(())
 }
 
-fn check_fans(soup: &PolygonSoup, h: &HalfEdges, out: &Outgoing) -> Result<(), BuildError> {
+/// Gives each fan of faces around a pinch vertex (two cones sharing a tip)
+/// a vertex of its own: the first fan keeps the soup's vertex, each other
+/// fan gets a copy at the same position with the same soup index (so
+/// reports still name the OBJ vertex). The solid is then a 2-manifold
+/// whose copies touch; validation reports the pinch from the soup.
+fn split_pinches(soup: &PolygonSoup, h: &mut HalfEdges, out: &Outgoing) {
     // Every edge leaves each endpoint exactly once (as a face or a hole
     // half-edge); a single fan visits them all from any of them.
-    let mut degree = vec![0usize; soup.positions.len()];
+    let len = soup.positions.len();
+    let mut degree = vec![0usize; len];
     for &v in &h.from {
         degree[v] += 1;
     }
-    let mut done = vec![false; soup.positions.len()];
+    let mut done = vec![false; len];
+    let mut seen = vec![false; h.from.len()];
     for e in 0..h.face_count {
         let v = h.from[e];
-        if done[v] {
+        if v >= len || done[v] {
             continue;
         }
         done[v] = true;
-        let mut steps = 0;
-        let mut g = e;
-        loop {
-            steps += 1;
-            g = h.twin[h.prev[g]];
-            if g == e || steps > degree[v] {
-                break;
+        if walk_fan(h, e, &mut seen) == degree[v] {
+            continue;
+        }
+        // More than one fan: every other one moves to a copy of `v`.
+        for &start in out.of(v) {
+            if seen[start] {
+                continue;
+            }
+            let copy = len + h.split_from.len();
+            h.split_from.push(v);
+            let mut g = start;
+            loop {
+                seen[g] = true;
+                h.from[g] = copy;
+                let incoming = h.prev[g];
+                h.to[incoming] = copy;
+                g = h.twin[incoming];
+                if g == start {
+                    break;
+                }
             }
         }
-        if steps != degree[v] {
-            return Err(pinch(h, out, v));
-        }
     }
-    Ok(())
 }
 
+/// Marks the fan of half-edges leaving `e`'s origin that `e` is in; returns
+/// its size.
+fn walk_fan(h: &HalfEdges, e: usize, seen: &mut [bool]) -> usize {
+    let mut size = 0;
+    let mut g = e;
+    loop {
+        seen[g] = true;
+        size += 1;
+        g = h.twin[h.prev[g]];
+        if g == e {
+            return size;
+        }
+    }
+}
+
+/// The error for a vertex where two holes meet (their loops cannot be told
+/// apart there): the polygons at the vertex and how many fans they form.
 fn pinch(h: &HalfEdges, out: &Outgoing, vertex: usize) -> BuildError {
     let polygons: Vec<usize> = out.of(vertex).iter().map(|&g| h.polygon[g]).collect();
     // Count fans by grouping the polygons at the vertex through shared edges.
@@ -455,7 +500,9 @@ fn pinch(h: &HalfEdges, out: &Outgoing, vertex: usize) -> BuildError {
 
 fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
     // Vertices in soup order, referenced ones only.
-    let mut referenced = vec![false; soup.positions.len()];
+    let len = soup.positions.len();
+    let soup_vertex = |v: usize| if v < len { v } else { h.split_from[v - len] };
+    let mut referenced = vec![false; len + h.split_from.len()];
     for &v in &h.from[..h.face_count] {
         referenced[v] = true;
     }
@@ -479,9 +526,9 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
                 return VertexId::null();
             }
             solid.vertices.insert(Vertex {
-                position: soup.positions[v],
+                position: soup.positions[soup_vertex(v)],
                 edge: None,
-                source_index: Some(v),
+                source_index: Some(soup_vertex(v)),
             })
         })
         .collect();
