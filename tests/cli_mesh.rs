@@ -173,3 +173,23 @@ fn bad_documents_and_grids_are_errors_naming_the_json_path_or_the_limit() {
         "{err}"
     );
 }
+
+/// A field document is read like every other input: bounded, and binary
+/// data after valid JSON is refused, not ignored.
+#[test]
+fn binary_data_in_a_field_document_is_refused() {
+    let dir = TempDir::new("field-binary");
+    let doc = dir.write(
+        "blob.json",
+        b"{\"blobs\": [{\"center\": [0,0,0], \"radius\": 1}]}\0\xff\xfe",
+    );
+    let out = dir.path().join("out.obj");
+    let o = common::cli::run(
+        &["mesh", doc.to_str().unwrap(), "-o", out.to_str().unwrap()],
+        "",
+        &[],
+    );
+    assert_eq!(o.code, 2, "{}", o.stderr);
+    assert!(o.stderr.contains("binary data"), "{}", o.stderr);
+    assert!(!out.exists());
+}

@@ -25,12 +25,13 @@ use super::error::FieldError;
 use super::falloff::Falloff;
 use super::scalar_field::Field;
 use super::source::Source;
+use crate::io::json_value::{self, JsonValueError};
 
 /// The most sources a document may hold, all nodes together.
 pub const MAX_DOCUMENT_SOURCES: usize = 1_000_000;
 /// How deep JSON may nest (arrays and objects; an operator node is two
 /// levels): serde_json's recursion limit, refused before any node is read.
-pub const MAX_JSON_DEPTH: usize = 128;
+pub use crate::io::json_value::MAX_JSON_DEPTH;
 
 const NODE_KEYS: &str = "blobs (with falloff), union, intersection, difference";
 const SOURCE_KEYS: &str = "center, radius, strength";
@@ -105,10 +106,18 @@ impl std::fmt::Debug for FieldDocument {
 ///
 /// [`FieldJsonError`] naming the file, the JSON position or the JSON path.
 pub fn load_json(path: &Path) -> Result<FieldDocument, FieldJsonError> {
-    let text = std::fs::read_to_string(path).map_err(|source| FieldJsonError::Read {
+    // The bounded reader every input goes through (size limit, stops at a
+    // NUL byte); what is not UTF-8 text is refused as binary data.
+    let read_error = |source| FieldJsonError::Read {
         file: path.to_path_buf(),
         source,
-    })?;
+    };
+    let binary = || read_error(std::io::Error::other("binary data (not UTF-8 text)"));
+    let bytes = crate::io::read_input(path).map_err(read_error)?;
+    if crate::io::text_len(&bytes) < bytes.len() {
+        return Err(binary());
+    }
+    let text = String::from_utf8(bytes).map_err(|_| binary())?;
     parse_named(&text, &path.display().to_string())
 }
 
@@ -122,16 +131,7 @@ pub fn parse_json(text: &str) -> Result<FieldDocument, FieldJsonError> {
 }
 
 fn parse_named(text: &str, name: &str) -> Result<FieldDocument, FieldJsonError> {
-    let value: Value = serde_json::from_str(text).map_err(|e| FieldJsonError::Json {
-        file: name.to_string(),
-        line: e.line(),
-        column: e.column(),
-        message: if e.to_string().starts_with("recursion limit exceeded") {
-            format!("nested deeper than {MAX_JSON_DEPTH} levels (the limit)")
-        } else {
-            e.to_string()
-        },
-    })?;
+    let value = json_value::parse_json::<FieldJsonError>(text, name)?;
     read_document(&value, "field")
 }
 
@@ -195,13 +195,7 @@ fn read_node(
     } else {
         &[kind.as_str()]
     };
-    if let Some(key) = o.keys().find(|k| !allowed.contains(&k.as_str())) {
-        return Err(FieldJsonError::UnknownKey {
-            at: at.to_string(),
-            key: key.clone(),
-            expected: NODE_KEYS,
-        });
-    }
+    json_value::check_keys::<FieldJsonError>(o, at, allowed, NODE_KEYS)?;
     let here = format!("{at}.{kind}");
     let list = o[kind.as_str()]
         .as_array()
@@ -262,17 +256,12 @@ fn read_node(
 }
 
 fn read_source(v: &Value, at: &str) -> Result<Source, FieldJsonError> {
-    let o = v.as_object().ok_or_else(|| bad(at, "an object", v))?;
-    if let Some(key) = o
-        .keys()
-        .find(|k| !["center", "radius", "strength"].contains(&k.as_str()))
-    {
-        return Err(FieldJsonError::UnknownKey {
-            at: at.to_string(),
-            key: key.clone(),
-            expected: SOURCE_KEYS,
-        });
-    }
+    let o = json_value::fields::<FieldJsonError>(
+        v,
+        at,
+        &["center", "radius", "strength"],
+        SOURCE_KEYS,
+    )?;
     let center = match o.get("center") {
         Some(c) => point(c, &format!("{at}.center"))?,
         None => return Err(value_error(&format!("{at}.center"), "missing".into())),
@@ -299,28 +288,15 @@ fn read_source(v: &Value, at: &str) -> Result<Source, FieldJsonError> {
 }
 
 fn number(v: &Value, at: &str) -> Result<f64, FieldJsonError> {
-    v.as_f64()
-        .filter(|x| x.is_finite())
-        .ok_or_else(|| bad(at, "a finite number", v))
+    json_value::number(v, at)
 }
 
 fn point(v: &Value, at: &str) -> Result<DVec3, FieldJsonError> {
-    let a = v
-        .as_array()
-        .filter(|a| a.len() == 3)
-        .ok_or_else(|| bad(at, "an array of three numbers", v))?;
-    let mut xyz = [0.0; 3];
-    for (i, x) in a.iter().enumerate() {
-        xyz[i] = number(x, &format!("{at}[{i}]"))?;
-    }
-    Ok(DVec3::from_array(xyz))
+    json_value::vec3(v, at)
 }
 
 fn value_error(at: &str, message: String) -> FieldJsonError {
-    FieldJsonError::Value {
-        at: at.to_string(),
-        message,
-    }
+    json_value::value_error(at, message)
 }
 
 /// A field error, at the path of the source value it concerns (below the
@@ -346,16 +322,29 @@ fn located(at: &str, e: FieldError) -> FieldJsonError {
 }
 
 fn bad(at: &str, expected: &str, found: &Value) -> FieldJsonError {
-    let mut shown = found.to_string();
-    if shown.len() > 60 {
-        let mut cut = 57;
-        while !shown.is_char_boundary(cut) {
-            cut -= 1;
+    json_value::bad(at, expected, found)
+}
+
+impl From<JsonValueError> for FieldJsonError {
+    fn from(e: JsonValueError) -> FieldJsonError {
+        match e {
+            JsonValueError::Text {
+                file,
+                line,
+                column,
+                message,
+            } => FieldJsonError::Json {
+                file,
+                line,
+                column,
+                message,
+            },
+            JsonValueError::Value { at, message } => FieldJsonError::Value { at, message },
+            JsonValueError::UnknownKey { at, key, expected } => {
+                FieldJsonError::UnknownKey { at, key, expected }
+            }
         }
-        shown.truncate(cut);
-        shown.push('…');
     }
-    value_error(at, format!("expected {expected}, found {shown}"))
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! OBJ in and out: reading with tobj plus a line pass of our own (every face
 //! knows its line), welding split vertices, writing.
 
+pub(crate) mod json_value;
 mod obj;
 mod obj_write;
 mod read;

@@ -1,46 +1,31 @@
-//! Reading JSON values of the scene format: each reader names the JSON
-//! path of the value it refuses, e.g. `root.difference[1].sphere.radius`.
+//! Reading JSON values of the scene format by JSON path (the readers are
+//! shared with field documents: `io::json_value`), and how their refusals
+//! become [`SceneError`]s.
 
 use glam::DVec3;
 use serde_json::{Map, Value};
 
 use super::SceneError;
-use super::limits::MAX_JSON_DEPTH;
+use crate::io::json_value::{self as shared, JsonValueError};
 
 /// Parses JSON text, naming `name` and the position on failure.
 pub(super) fn parse_json(text: &str, name: &str) -> Result<Value, SceneError> {
-    // serde_json refuses text nested deeper than its recursion limit.
-    serde_json::from_str(text).map_err(|e| {
-        let message = if e.to_string().starts_with("recursion limit exceeded") {
-            format!("nested deeper than {MAX_JSON_DEPTH} levels (the limit)")
-        } else {
-            e.to_string()
-        };
-        SceneError::Json {
-            file: name.to_string(),
-            line: e.line(),
-            column: e.column(),
-            message,
-        }
-    })
+    shared::parse_json(text, name)
 }
 
 /// The value as an object.
 pub(super) fn object<'v>(value: &'v Value, at: &str) -> Result<&'v Map<String, Value>, SceneError> {
-    value.as_object().ok_or_else(|| bad(at, "an object", value))
+    shared::object(value, at)
 }
 
-/// The value as an object with only `allowed` keys (`expected` lists them
-/// for the message).
+/// The value as an object with only `allowed` keys.
 pub(super) fn fields<'v>(
     value: &'v Value,
     at: &str,
     allowed: &[&str],
     expected: &'static str,
 ) -> Result<&'v Map<String, Value>, SceneError> {
-    let o = object(value, at)?;
-    check_keys(o, at, allowed, expected)?;
-    Ok(o)
+    shared::fields(value, at, allowed, expected)
 }
 
 /// Refuses the first key of `o` that is not in `allowed`.
@@ -50,14 +35,7 @@ pub(super) fn check_keys(
     allowed: &[&str],
     expected: &'static str,
 ) -> Result<(), SceneError> {
-    match o.keys().find(|k| !allowed.contains(&k.as_str())) {
-        Some(key) => Err(SceneError::UnknownKey {
-            at: at.to_string(),
-            key: key.clone(),
-            expected,
-        }),
-        None => Ok(()),
-    }
+    shared::check_keys(o, at, allowed, expected)
 }
 
 /// The value under `key`, which must be there.
@@ -66,59 +44,27 @@ pub(super) fn req<'v>(
     at: &str,
     key: &str,
 ) -> Result<&'v Value, SceneError> {
-    o.get(key).ok_or_else(|| SceneError::Value {
-        at: format!("{at}.{key}"),
-        message: "missing".into(),
-    })
+    shared::req(o, at, key)
 }
 
-/// "expected …, found …", with long values cut short.
+/// "expected …, found …" at `at`.
 pub(super) fn bad(at: &str, expected: &str, found: &Value) -> SceneError {
-    let mut shown = found.to_string();
-    if shown.len() > 60 {
-        // At a character boundary: a value may hold multi-byte characters
-        // (found by fuzzing, fixtures/fuzz/scene_load/).
-        let cut = (0..=57)
-            .rev()
-            .find(|&i| shown.is_char_boundary(i))
-            .unwrap_or(0);
-        shown.truncate(cut);
-        shown.push_str("...");
-    }
-    SceneError::Value {
-        at: at.to_string(),
-        message: format!("expected {expected}, found {shown}"),
-    }
+    shared::bad(at, expected, found)
 }
 
 /// A finite number.
 pub(super) fn number(value: &Value, at: &str) -> Result<f64, SceneError> {
-    match value.as_f64() {
-        Some(x) if x.is_finite() => Ok(x),
-        _ => Err(bad(at, "a finite number", value)),
-    }
+    shared::number(value, at)
 }
 
 /// A finite number above zero.
 pub(super) fn positive(value: &Value, at: &str) -> Result<f64, SceneError> {
-    match number(value, at) {
-        Ok(x) if x > 0.0 => Ok(x),
-        _ => Err(bad(at, "a positive number", value)),
-    }
+    shared::positive(value, at)
 }
 
 /// An array of three finite numbers.
 pub(super) fn vec3(value: &Value, at: &str) -> Result<DVec3, SceneError> {
-    match value.as_array() {
-        Some(items) if items.len() == 3 => {
-            let mut v = DVec3::ZERO;
-            for (k, item) in items.iter().enumerate() {
-                v[k] = number(item, &format!("{at}[{k}]"))?;
-            }
-            Ok(v)
-        }
-        _ => Err(bad(at, "an array of three numbers", value)),
-    }
+    shared::vec3(value, at)
 }
 
 /// An optional three-vector under `key`, or `default`.
@@ -128,8 +74,27 @@ pub(super) fn vec3_or(
     key: &str,
     default: DVec3,
 ) -> Result<DVec3, SceneError> {
-    o.get(key)
-        .map(|v| vec3(v, &format!("{at}.{key}")))
-        .transpose()
-        .map(|v| v.unwrap_or(default))
+    shared::vec3_or(o, at, key, default)
+}
+
+impl From<JsonValueError> for SceneError {
+    fn from(e: JsonValueError) -> SceneError {
+        match e {
+            JsonValueError::Text {
+                file,
+                line,
+                column,
+                message,
+            } => SceneError::Json {
+                file,
+                line,
+                column,
+                message,
+            },
+            JsonValueError::Value { at, message } => SceneError::Value { at, message },
+            JsonValueError::UnknownKey { at, key, expected } => {
+                SceneError::UnknownKey { at, key, expected }
+            }
+        }
+    }
 }

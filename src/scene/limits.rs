@@ -7,7 +7,7 @@ use super::SceneError;
 
 /// How deep JSON may nest (arrays and objects); deeper text is refused by
 /// the JSON reader before any node is read.
-pub const MAX_JSON_DEPTH: usize = 128;
+pub use crate::io::json_value::MAX_JSON_DEPTH;
 /// How deep nodes may nest, counting through included scene files (a node
 /// per operator, transform or inclusion).
 pub const MAX_NODE_DEPTH: usize = 256;
