@@ -27,6 +27,7 @@
 //! scene as one query target) → [`render`] (images).
 #![warn(missing_docs)]
 
+pub mod boolean;
 pub mod cells;
 pub mod csg;
 pub mod curve;

@@ -100,6 +100,34 @@ impl Dyadic {
         &Dyadic::of(plus) - &Dyadic::of(minus)
     }
 
+    /// `self / denominator` rounded to an `f64` (within one unit in the
+    /// last place; an infinity or 0 when the quotient is beyond the range of
+    /// `f64`), or NaN when `denominator` is 0.
+    #[must_use]
+    pub(crate) fn quotient_to_f64(&self, denominator: &Dyadic) -> f64 {
+        if denominator.mantissa.sign() == num_bigint::Sign::NoSign {
+            return f64::NAN;
+        }
+        if self.mantissa.sign() == num_bigint::Sign::NoSign {
+            return 0.0;
+        }
+        let (num, den) = (self.mantissa.magnitude(), denominator.mantissa.magnitude());
+        // Enough bits that the integer quotient carries 64 significant ones.
+        let widen = (den.bits() + 64).saturating_sub(num.bits());
+        let quotient = (num << widen) / den;
+        let drop = quotient.bits().saturating_sub(64);
+        let top = (quotient >> drop).iter_u64_digits().next().unwrap_or(0);
+        let exponent = self.exponent - denominator.exponent - widen as i64 + drop as i64;
+        let magnitude = scale_by_power_of_two(top as f64, exponent);
+        if (self.mantissa.sign() == num_bigint::Sign::Minus)
+            != (denominator.mantissa.sign() == num_bigint::Sign::Minus)
+        {
+            -magnitude
+        } else {
+            magnitude
+        }
+    }
+
     fn zero() -> Dyadic {
         Dyadic {
             mantissa: BigInt::ZERO,
@@ -170,6 +198,23 @@ impl Neg for Dyadic {
             exponent: self.exponent,
         }
     }
+}
+
+/// `x · 2^exponent`, in steps that stay within the range of `f64` until
+/// the result itself leaves it.
+fn scale_by_power_of_two(mut x: f64, mut exponent: i64) -> f64 {
+    const STEP: i64 = 1000;
+    let up = 2f64.powi(STEP as i32);
+    let down = 2f64.powi(-STEP as i32);
+    while exponent > STEP && x.is_finite() {
+        x *= up;
+        exponent -= STEP;
+    }
+    while exponent < -STEP && x != 0.0 {
+        x *= down;
+        exponent += STEP;
+    }
+    x * 2f64.powi(exponent as i32)
 }
 
 /// The exact sign of the 3×3 determinant with entries `rows[i][j]` (each

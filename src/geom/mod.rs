@@ -9,6 +9,7 @@ mod dot;
 pub(crate) mod dyadic;
 pub mod exact;
 pub(crate) mod expansion;
+pub mod implicit;
 mod plane;
 pub mod polygon;
 mod predicates;

@@ -29,6 +29,32 @@ pub struct Solid {
 }
 
 impl Solid {
+    /// Replaces the attributes of `face` (labels only: no topology or
+    /// geometry changes, so no invariant is affected). Does nothing for an
+    /// unknown face.
+    pub fn set_face_attributes(&mut self, face: FaceId, attributes: super::FaceAttributes) {
+        if let Some(f) = self.faces.get_mut(face) {
+            f.attributes = attributes;
+        }
+    }
+
+    /// Makes `ring`, a ring of `face`, the face's outer loop and the outer
+    /// loop a ring (which loop is outer is a designation, not topology:
+    /// no wing or count changes). Returns whether it did; `false` when
+    /// `ring` is not a ring of `face`.
+    pub fn swap_outer_loop(&mut self, face: FaceId, ring: super::LoopId) -> bool {
+        let Some(f) = self.faces.get_mut(face) else {
+            return false;
+        };
+        let Some(k) = f.rings.iter().position(|&r| r == ring) else {
+            return false;
+        };
+        f.rings[k] = f.outer;
+        f.outer = ring;
+        f.rings.sort_unstable();
+        true
+    }
+
     /// The number of vertices.
     #[must_use]
     pub fn vertex_count(&self) -> usize {

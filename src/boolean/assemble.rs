@@ -1,0 +1,281 @@
+//! Stage 6: the kept pieces made into a winged-edge solid — implicit
+//! points rounded to `f64` only now, after every decision was made on their
+//! exact definitions — and the rounded solid proven valid by wingedge's
+//! own validator.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use crate::geom::implicit::rounded;
+use crate::mesh::{FaceId, Polygon, PolygonSoup, Solid};
+use crate::validate::{Options, Report, Validity, check_rings, validate_soup};
+
+use super::BooleanError;
+use super::merge::{PieceSource, merge_faces};
+use super::operand::{Operand, Prepared};
+use super::points::PointTable;
+
+/// A piece that bounds the result, wound as it faces out of the result.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct KeptPiece {
+    pub corners: [u32; 3],
+    pub side: Operand,
+    pub face: FaceId,
+    /// The operand triangle the piece lies in, wound as the piece.
+    pub plane: [DVec3; 3],
+}
+
+/// The face of an operand a result face came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct FaceOrigin {
+    /// Which operand.
+    pub side: Operand,
+    /// The operand's face.
+    pub face: FaceId,
+}
+
+/// The soup of the kept pieces: each canonical point once, rounded; each
+/// polygon with its source.
+pub(crate) fn soup_of(
+    table: &PointTable,
+    pieces: &[KeptPiece],
+    operands: [&Prepared; 2],
+) -> (PolygonSoup, Vec<PieceSource>) {
+    let mut index: HashMap<u32, usize> = HashMap::new();
+    let mut positions: Vec<DVec3> = Vec::new();
+    let mut constructed: Vec<bool> = Vec::new();
+    for piece in pieces {
+        for &c in &piece.corners {
+            index.entry(c).or_insert_with(|| {
+                let point = &table.get(c).point;
+                positions.push(rounded(point));
+                constructed.push(point.explicit().is_none());
+                positions.len() - 1
+            });
+        }
+    }
+    let snapped = snap(&positions, &constructed);
+    let mut sources = Vec::with_capacity(pieces.len());
+    let mut polygons = Vec::with_capacity(pieces.len());
+    let mut seen: HashMap<[usize; 3], usize> = HashMap::new();
+    let mut dropped = vec![false; pieces.len()];
+    for piece in pieces {
+        let corners = piece.corners.map(|c| snapped[index[&c]]);
+        if corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0] {
+            continue;
+        }
+        // A sliver pair collapsed by the snap: two copies of one triangle
+        // wound opposite ways cancel.
+        let mut sorted = corners;
+        sorted.sort_unstable();
+        if let Some(&other) = seen.get(&sorted)
+            && !dropped[other]
+        {
+            dropped[other] = true;
+            continue;
+        }
+        seen.insert(sorted, polygons.len());
+        let origin = FaceOrigin {
+            side: piece.side,
+            face: piece.face,
+        };
+        sources.push(PieceSource {
+            origin,
+            plane: piece.plane,
+        });
+        let operand = match piece.side {
+            Operand::First => operands[0],
+            Operand::Second => operands[1],
+        };
+        let mut polygon = Polygon::new(corners);
+        let face = operand.solid.face(piece.face);
+        polygon.attributes.group = face.attributes.group.clone();
+        polygon.attributes.material = face.attributes.material.clone();
+        polygons.push(polygon);
+    }
+    let keep: Vec<bool> = (0..polygons.len()).map(|i| !dropped[i]).collect();
+    let mut k = 0;
+    polygons.retain(|_| {
+        k += 1;
+        keep[k - 1]
+    });
+    let mut k = 0;
+    sources.retain(|_| {
+        k += 1;
+        keep[k - 1]
+    });
+    (
+        PolygonSoup {
+            positions,
+            polygons,
+        },
+        sources,
+    )
+}
+
+/// Snap rounding of the constructed points: a constructed point whose
+/// rounded position lies within [`SNAP`] (relative to the largest
+/// coordinate) of another point's is moved onto it, so that features the
+/// exact result has but `f64` cannot represent (two intersection points a
+/// few units in the last place apart) collapse instead of folding. Returns
+/// the representative index of each position. Input vertices are never
+/// moved onto each other.
+fn snap(positions: &[DVec3], constructed: &[bool]) -> Vec<usize> {
+    let scale = positions
+        .iter()
+        .map(|p| p.abs().max_element())
+        .fold(0.0f64, f64::max);
+    let reach = scale * SNAP;
+    let mut representative: Vec<usize> = (0..positions.len()).collect();
+    if reach == 0.0 || !reach.is_finite() {
+        return representative;
+    }
+    let cell = |p: DVec3| ((p / reach).floor()).as_i64vec3();
+    let mut grid: HashMap<glam::I64Vec3, Vec<usize>> = HashMap::new();
+    for (i, &p) in positions.iter().enumerate() {
+        grid.entry(cell(p)).or_default().push(i);
+    }
+    let find = |rep: &Vec<usize>, mut i: usize| {
+        while rep[i] != i {
+            i = rep[i];
+        }
+        i
+    };
+    for (i, &p) in positions.iter().enumerate() {
+        if !constructed[i] {
+            continue;
+        }
+        let c = cell(p);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(near) = grid.get(&(c + glam::I64Vec3::new(dx, dy, dz))) else {
+                        continue;
+                    };
+                    for &j in near {
+                        if j == i || (positions[j] - p).abs().max_element() > reach {
+                            continue;
+                        }
+                        let (ri, rj) = (find(&representative, i), find(&representative, j));
+                        if ri == rj {
+                            continue;
+                        }
+                        // An input vertex stays where it is.
+                        if constructed[ri] {
+                            representative[ri] = rj;
+                        } else if constructed[rj] {
+                            representative[rj] = ri;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    (0..positions.len())
+        .map(|i| find(&representative, i))
+        .collect()
+}
+
+/// How close (relative to the largest coordinate) a constructed point must
+/// round to another point to be snapped onto it: 2⁻⁴⁸, a few units in the
+/// last place.
+const SNAP: f64 = 1.0 / (1u64 << 48) as f64;
+
+/// Builds the solid of `soup`, merges coplanar neighbours, and validates
+/// the result (every rule, the exact self-intersection check included, on
+/// the faces' exact triangulations; rings by their own checks). Returns
+/// the solid (faces' `source_index` into the returned origins), the
+/// origins and the validator's report.
+pub(crate) fn build_and_prove(
+    soup: &PolygonSoup,
+    sources: &[PieceSource],
+) -> Result<(Solid, Vec<FaceOrigin>, Report), BooleanError> {
+    if soup.polygons.is_empty() {
+        let report = validate_soup(soup, None, &Options::default())
+            .map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
+        return Ok((Solid::default(), Vec::new(), report));
+    }
+    let mut solid =
+        Solid::try_from_soup(soup).map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
+    merge_faces(&mut solid, sources);
+    let mut origins = Vec::new();
+    let mut origin_index: HashMap<FaceOrigin, usize> = HashMap::new();
+    let faces: Vec<FaceId> = solid.faces().map(|(f, _)| f).collect();
+    for f in faces {
+        let Some(i) = solid.face(f).attributes.source_index else {
+            continue;
+        };
+        let origin = sources[i].origin;
+        let index = *origin_index.entry(origin).or_insert_with(|| {
+            origins.push(origin);
+            origins.len() - 1
+        });
+        let mut attributes = solid.face(f).attributes.clone();
+        attributes.source_index = Some(index);
+        solid.set_face_attributes(f, attributes);
+    }
+    let proof = triangulated(&solid)?;
+    let report = validate_soup(&proof, None, &Options::default())
+        .map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
+    let rings = check_rings(&solid);
+    if report.validity != Validity::ValidSolid || !rings.is_empty() {
+        let mut located = summary(&report);
+        for r in rings.iter().take(5) {
+            located.push_str("; ");
+            located.push_str(&r.message);
+        }
+        return Err(BooleanError::InvalidResult {
+            validity: report.validity.describe().to_string(),
+            report: located,
+        });
+    }
+    Ok((solid, origins, report))
+}
+
+/// The solid as a soup of the exact triangulations of its faces (rings
+/// included), which the soup validator can check.
+fn triangulated(solid: &Solid) -> Result<PolygonSoup, BooleanError> {
+    let mut index = HashMap::new();
+    let mut positions = Vec::with_capacity(solid.vertex_count());
+    for (i, (v, vertex)) in solid.vertices().enumerate() {
+        index.insert(v, i);
+        positions.push(vertex.position);
+    }
+    let mut polygons = Vec::new();
+    for (f, face) in solid.faces() {
+        let triangles = solid
+            .try_triangulate_face(f)
+            .map_err(|e| BooleanError::InvalidResult {
+                validity: "a face is not a simple polygon after rounding".into(),
+                report: format!("face {f:?}: {e}"),
+            })?;
+        for t in triangles {
+            let mut polygon = Polygon::new(t.map(|v| index[&v]));
+            polygon.attributes = face.attributes.clone();
+            polygons.push(polygon);
+        }
+    }
+    Ok(PolygonSoup {
+        positions,
+        polygons,
+    })
+}
+
+/// The first few defects of a report, one line each.
+#[must_use]
+pub(crate) fn summary(report: &Report) -> String {
+    let mut lines: Vec<String> = report
+        .violations
+        .iter()
+        .take(5)
+        .map(|v| format!("{}: {}", v.rule.name(), v.message))
+        .collect();
+    if report.violations.len() > 5 {
+        lines.push(format!("and {} more", report.violations.len() - 5));
+    }
+    if let Some(reason) = &report.not_built {
+        lines.push(reason.clone());
+    }
+    lines.join("; ")
+}

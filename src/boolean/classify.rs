@@ -1,0 +1,194 @@
+//! Stage 4: which pieces bound the result — membership classification.
+//!
+//! Pieces of one operand that share an edge not on an intersection segment
+//! form a patch, and a patch lies wholly inside, outside or on the other
+//! operand (its interior never meets the other's surface except where it is
+//! coplanar with it). So one decision per patch suffices: a piece inside a
+//! coplanar triangle of the other operand is *on* it (with the same or the
+//! opposite orientation); otherwise the first patch corner off the other
+//! surface is classified by the exact point classifier; a patch with no
+//! such corner (every corner constructed or on the other surface) casts an
+//! exact `+x` ray from a piece's centroid, an implicit point, against the
+//! other operand's triangles.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use crate::disjoint_sets::DisjointSets;
+use crate::geom::implicit::{
+    Centroid, HasHomogeneous, ImplicitPoint, XRayCrossing, orient2d_projected, x_ray_crossing,
+};
+use crate::geom::{Aabb, Sign};
+use crate::query::Containment;
+
+use super::BooleanError;
+use super::operand::Prepared;
+use super::points::{CachedPoint, PointTable};
+
+/// Where a patch lies against the other operand.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Label {
+    /// Strictly inside.
+    Inside,
+    /// Strictly outside.
+    Outside,
+    /// On its surface, both normals pointing the same way.
+    OnSame,
+    /// On its surface, the normals opposite.
+    OnOpposite,
+}
+
+/// A piece of an operand's triangle.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Piece {
+    /// Canonical point indices, wound like the triangle.
+    pub corners: [u32; 3],
+    /// The operand triangle it is part of.
+    pub triangle: u32,
+}
+
+/// A coplanar triangle of the other operand, and whether it faces the same
+/// way.
+pub(crate) type Partner = (u32, bool);
+
+/// Labels every piece of `mine` against `other`.
+pub(crate) fn label_pieces(
+    table: &PointTable,
+    mine: &Prepared,
+    pieces: &[Piece],
+    constrained: &std::collections::HashSet<(u32, u32)>,
+    partners: &HashMap<u32, Vec<Partner>>,
+    other: &Prepared,
+) -> Result<Vec<Label>, BooleanError> {
+    let mut sets = DisjointSets::new(pieces.len());
+    let mut by_edge: HashMap<(u32, u32), u32> = HashMap::with_capacity(pieces.len() * 2);
+    for (i, piece) in pieces.iter().enumerate() {
+        for k in 0..3 {
+            let (u, v) = (piece.corners[k], piece.corners[(k + 1) % 3]);
+            let key = (u.min(v), u.max(v));
+            if constrained.contains(&key) {
+                continue;
+            }
+            if let Some(j) = by_edge.remove(&key) {
+                sets.union(i, j as usize);
+            } else {
+                by_edge.insert(key, i as u32);
+            }
+        }
+    }
+    let mut patches: HashMap<usize, Vec<u32>> = HashMap::new();
+    for i in 0..pieces.len() {
+        patches.entry(sets.find(i)).or_default().push(i as u32);
+    }
+    let mut labels = vec![Label::Outside; pieces.len()];
+    let mut roots: Vec<usize> = patches.keys().copied().collect();
+    roots.sort_unstable();
+    for root in roots {
+        let members = &patches[&root];
+        let label = label_patch(table, mine, pieces, members, partners, other)?;
+        for &m in members {
+            labels[m as usize] = label;
+        }
+    }
+    Ok(labels)
+}
+
+fn label_patch(
+    table: &PointTable,
+    mine: &Prepared,
+    pieces: &[Piece],
+    members: &[u32],
+    partners: &HashMap<u32, Vec<Partner>>,
+    other: &Prepared,
+) -> Result<Label, BooleanError> {
+    // On the other surface?
+    if let Some(&m) = members
+        .iter()
+        .find(|&&m| partners.contains_key(&pieces[m as usize].triangle))
+    {
+        let piece = pieces[m as usize];
+        let centroid = Centroid(piece.corners.map(|c| table.get(c)));
+        for &(t, same) in &partners[&piece.triangle] {
+            if strictly_inside(&centroid, other.corners(t)) {
+                return Ok(if same {
+                    Label::OnSame
+                } else {
+                    Label::OnOpposite
+                });
+            }
+        }
+    }
+    // A corner off the other surface.
+    for &m in members {
+        for c in pieces[m as usize].corners {
+            let Some(p) = table.explicit(c) else {
+                continue;
+            };
+            match other.accel.classify(p) {
+                Ok(Containment::Inside) => return Ok(Label::Inside),
+                Ok(Containment::Outside) => return Ok(Label::Outside),
+                _ => {}
+            }
+        }
+    }
+    // A ray from an implicit centroid.
+    let piece = pieces[members[0] as usize];
+    let centroid = Centroid(piece.corners.map(|c| table.get(c)));
+    let _ = mine;
+    match ray_parity(&centroid, other) {
+        Some(true) => Ok(Label::Inside),
+        Some(false) => Ok(Label::Outside),
+        None => Err(BooleanError::Inconsistent(format!(
+            "a piece of the {:?} operand has its centroid on the other operand's surface",
+            mine.side
+        ))),
+    }
+}
+
+/// Whether `p` (in the plane of `tri`) is strictly inside `tri`.
+fn strictly_inside(p: &Centroid<CachedPoint>, tri: [DVec3; 3]) -> bool {
+    let corners = tri.map(|v| CachedPoint::new(ImplicitPoint::Explicit(v)));
+    let mut axis_facing = None;
+    for axis in 0..3u8 {
+        let s = orient2d_projected(&corners[0], &corners[1], &corners[2], axis);
+        if s != Sign::Zero {
+            axis_facing = Some((axis, s));
+            break;
+        }
+    }
+    let Some((axis, facing)) = axis_facing else {
+        return false;
+    };
+    (0..3).all(|k| orient2d_projected(&corners[k], &corners[(k + 1) % 3], p, axis) == facing)
+}
+
+/// The parity of the `+x` ray from `p` through `other`'s triangles
+/// (`true`: inside), or `None` when `p` lies on one.
+fn ray_parity(p: &Centroid<CachedPoint>, other: &Prepared) -> Option<bool> {
+    let filter = p.filter();
+    let bound = |i: usize| -> (f64, f64) {
+        let (x, w) = (filter.xyz[i], filter.w);
+        if w.lo <= 0.0 && w.hi >= 0.0 {
+            return (f64::NEG_INFINITY, f64::INFINITY);
+        }
+        let q = [x.lo / w.lo, x.lo / w.hi, x.hi / w.lo, x.hi / w.hi];
+        let lo = q.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = q.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        (lo.next_down().next_down(), hi.next_up().next_up())
+    };
+    let (x, y, z) = (bound(0), bound(1), bound(2));
+    let far = other.bvh.bounds().max.x.max(x.1);
+    let query = Aabb {
+        min: DVec3::new(x.0, y.0, z.0),
+        max: DVec3::new(far, y.1, z.1),
+    };
+    let mut crossings = 0usize;
+    let mut on_surface = false;
+    other.triangles_overlapping(&query, |t| match x_ray_crossing(p, other.corners(t)) {
+        XRayCrossing::Crosses => crossings += 1,
+        XRayCrossing::Contains => on_surface = true,
+        XRayCrossing::Misses => {}
+    });
+    (!on_surface).then_some(crossings % 2 == 1)
+}

@@ -1,0 +1,437 @@
+//! Boundary evaluation: exact booleans of polyhedral solids that produce a
+//! valid winged-edge solid.
+//!
+//! The boundaries of `a` and `b` are cut where they meet, and membership
+//! classification decides which cut pieces bound the result (Requicha and
+//! Voelcker's boundary evaluation; the seeds' §9.5). The stages, one file
+//! each, in the order they run:
+//!
+//! 1. [`operand`]: each face triangulated exactly, a BVH over the triangles;
+//!    operands that are not valid closed solids are refused first.
+//! 2. [`intersect`]: the BVH pair walk hands over triangle pairs whose boxes
+//!    meet; each pair's contact (points and segments, or a coplanar overlap)
+//!    is decided with exact predicates, new points kept implicit.
+//! 3. [`points`]: every point once, by exact comparison.
+//! 4. [`split`]: each cut triangle triangulated along its segments.
+//! 5. [`classify`]: pieces grouped into patches, one exact membership
+//!    decision per patch.
+//! 6. [`select`]: the operator's rule.
+//! 7. [`assemble`]: points rounded to `f64`, the solid built, and proven
+//!    valid by the validator (closed, oriented, no self-intersection).
+//!
+//! No sign is decided on a rounded constructed point: implicit points
+//! ([`ImplicitPoint`](crate::geom::implicit::ImplicitPoint)) carry their
+//! definitions until the output is written.
+
+mod assemble;
+mod classify;
+mod error;
+mod intersect;
+mod merge;
+mod operand;
+mod points;
+mod select;
+mod split;
+
+use std::collections::{HashMap, HashSet};
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use crate::geom::implicit::ImplicitPoint;
+use crate::mesh::Solid;
+use crate::validate::{Options, Report, Validity, validate_soup};
+
+pub use assemble::FaceOrigin;
+pub use error::BooleanError;
+pub use operand::Operand;
+
+use classify::{Partner, Piece};
+use intersect::{Contact, PointRef, Tri};
+use operand::Prepared;
+use points::PointTable;
+
+/// A regularized set operation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Operation {
+    /// `a ∪ b`.
+    Union,
+    /// `a ∩ b`.
+    Intersection,
+    /// `a − b`.
+    Difference,
+}
+
+/// Where a boolean spent its time, in seconds, and how much work it found.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BooleanStats {
+    /// Checking both operands with the validator.
+    pub check_seconds: f64,
+    /// Triangulating the operands and building their BVHs and classifiers.
+    pub prepare_seconds: f64,
+    /// The pair walk and the exact contact of each candidate pair.
+    pub intersect_seconds: f64,
+    /// Merging equal points.
+    pub points_seconds: f64,
+    /// Cutting triangles along their segments.
+    pub split_seconds: f64,
+    /// Patches and membership.
+    pub classify_seconds: f64,
+    /// Rounding, building and validating the result.
+    pub output_seconds: f64,
+    /// Pairs of triangles that meet.
+    pub contacts: usize,
+    /// Points made by the intersection (before merging equal ones).
+    pub new_points: usize,
+    /// Triangles that were cut.
+    pub cut_triangles: usize,
+}
+
+/// The result of a boolean: a valid solid, where each face came from, and
+/// the validator's report on it.
+#[derive(Clone, Debug)]
+pub struct Boolean {
+    /// The result (possibly empty: no faces).
+    pub solid: Solid,
+    /// For each face of `solid` (by its `attributes.source_index`), the
+    /// operand face it is part of.
+    pub origins: Vec<FaceOrigin>,
+    /// The validator's report on the result.
+    pub report: Report,
+    /// Time and work.
+    pub stats: BooleanStats,
+}
+
+/// What a boolean checks before it starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BooleanOptions {
+    /// Validate both operands (closed, oriented, no self-intersection)
+    /// before any work; on by default. Turn off only for operands known to
+    /// be valid (the output of an earlier boolean, a builder's solid).
+    pub check_operands: bool,
+}
+
+impl Default for BooleanOptions {
+    fn default() -> BooleanOptions {
+        BooleanOptions {
+            check_operands: true,
+        }
+    }
+}
+
+impl Solid {
+    /// `self ∪ other`, exact; see [`boolean`].
+    ///
+    /// # Errors
+    ///
+    /// As for [`boolean`].
+    pub fn union(&self, other: &Solid) -> Result<Boolean, BooleanError> {
+        boolean(self, other, Operation::Union, BooleanOptions::default())
+    }
+
+    /// `self ∩ other`, exact; see [`boolean`].
+    ///
+    /// # Errors
+    ///
+    /// As for [`boolean`].
+    pub fn intersection(&self, other: &Solid) -> Result<Boolean, BooleanError> {
+        boolean(
+            self,
+            other,
+            Operation::Intersection,
+            BooleanOptions::default(),
+        )
+    }
+
+    /// `self − other`, exact; see [`boolean`].
+    ///
+    /// # Errors
+    ///
+    /// As for [`boolean`].
+    pub fn difference(&self, other: &Solid) -> Result<Boolean, BooleanError> {
+        boolean(
+            self,
+            other,
+            Operation::Difference,
+            BooleanOptions::default(),
+        )
+    }
+}
+
+/// The regularized boolean `a op b` of two closed solids, as a valid
+/// winged-edge solid.
+///
+/// # Errors
+///
+/// [`BooleanError::InvalidOperand`] when an operand is not a valid closed
+/// solid (with the validator's located defects);
+/// [`BooleanError::NotBuilt`] when the result is not a 2-manifold (solids
+/// touching only along an edge or at a vertex);
+/// [`BooleanError::InvalidResult`] when rounding the result's constructed
+/// points to `f64` broke it (located); [`BooleanError::Inconsistent`]
+/// never, unless wingedge has a defect.
+pub fn boolean(
+    a: &Solid,
+    b: &Solid,
+    operation: Operation,
+    options: BooleanOptions,
+) -> Result<Boolean, BooleanError> {
+    let mut stats = BooleanStats::default();
+    let clock = Instant::now();
+    if options.check_operands {
+        check_operand(a, Operand::First)?;
+        check_operand(b, Operand::Second)?;
+    }
+    stats.check_seconds = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let (first, second) = rayon::join(
+        || Prepared::new(a, Operand::First),
+        || Prepared::new(b, Operand::Second),
+    );
+    let (first, second) = (first?, second?);
+    stats.prepare_seconds = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let offset = first.positions.len() as u32;
+    let contacts = contacts(&first, &second, offset);
+    stats.contacts = contacts.len();
+    stats.intersect_seconds = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let mut raw: Vec<ImplicitPoint> = first
+        .positions
+        .iter()
+        .chain(&second.positions)
+        .map(|&p| ImplicitPoint::Explicit(p))
+        .collect();
+    let mut cuts: [HashMap<u32, Cuts>; 2] = [HashMap::new(), HashMap::new()];
+    let mut partners: [HashMap<u32, Vec<Partner>>; 2] = [HashMap::new(), HashMap::new()];
+    for (ta, tb, contact) in &contacts {
+        let ids: Vec<u32> = contact
+            .points
+            .iter()
+            .map(|r| match r {
+                PointRef::Vertex(i) => *i,
+                PointRef::New(p) => {
+                    raw.push(*p);
+                    (raw.len() - 1) as u32
+                }
+            })
+            .collect();
+        for (side, t, segments) in [
+            (0, *ta, &contact.first_cuts),
+            (1, *tb, &contact.second_cuts),
+        ] {
+            let entry = cuts[side].entry(t).or_default();
+            entry.points.extend(&ids);
+            entry.segments.extend(
+                segments
+                    .iter()
+                    .map(|&(i, j)| (ids[i as usize], ids[j as usize])),
+            );
+        }
+        if let Some(same) = contact.coplanar_same {
+            partners[0].entry(*ta).or_default().push((*tb, same));
+            partners[1].entry(*tb).or_default().push((*ta, same));
+        }
+    }
+    stats.new_points = raw.len() - (first.positions.len() + second.positions.len());
+    let table = PointTable::new(raw);
+    stats.points_seconds = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    stats.cut_triangles = cuts[0].len() + cuts[1].len();
+    let (pieces_a, constrained_a) = pieces(&table, &first, 0, &cuts[0])?;
+    let (pieces_b, constrained_b) = pieces(&table, &second, offset, &cuts[1])?;
+    let constrained: HashSet<(u32, u32)> = constrained_a.into_iter().chain(constrained_b).collect();
+    stats.split_seconds = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let (labels_a, labels_b) = rayon::join(
+        || {
+            classify::label_pieces(
+                &table,
+                &first,
+                &pieces_a,
+                &constrained,
+                &partners[0],
+                &second,
+            )
+        },
+        || {
+            classify::label_pieces(
+                &table,
+                &second,
+                &pieces_b,
+                &constrained,
+                &partners[1],
+                &first,
+            )
+        },
+    );
+    let (labels_a, labels_b) = (labels_a?, labels_b?);
+    stats.classify_seconds = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let mut kept = Vec::new();
+    for (operand, pieces, labels) in [
+        (&first, &pieces_a, &labels_a),
+        (&second, &pieces_b, &labels_b),
+    ] {
+        for (piece, &label) in pieces.iter().zip(labels.iter()) {
+            if let Some(flip) = select::keep(operation, operand.side, label) {
+                let [x, y, z] = piece.corners;
+                let [p, q, r] = operand.corners(piece.triangle);
+                kept.push(assemble::KeptPiece {
+                    corners: if flip { [x, z, y] } else { [x, y, z] },
+                    side: operand.side,
+                    face: operand.faces[piece.triangle as usize],
+                    plane: if flip { [p, r, q] } else { [p, q, r] },
+                });
+            }
+        }
+    }
+    let (soup, sources) = assemble::soup_of(&table, &kept, [&first, &second]);
+    let (solid, origins, report) = assemble::build_and_prove(&soup, &sources)?;
+    stats.output_seconds = clock.elapsed().as_secs_f64();
+    Ok(Boolean {
+        solid,
+        origins,
+        report,
+        stats,
+    })
+}
+
+/// An operand's pieces and the edges of them that lie on segments.
+type Pieces = (Vec<Piece>, Vec<(u32, u32)>);
+
+/// The points and segments found on one triangle (raw point indices).
+#[derive(Clone, Debug, Default)]
+struct Cuts {
+    points: Vec<u32>,
+    segments: Vec<(u32, u32)>,
+}
+
+/// Refuses an operand that is not a valid closed solid.
+fn check_operand(solid: &Solid, side: Operand) -> Result<(), BooleanError> {
+    let refuse = |validity: String, report: String| BooleanError::InvalidOperand {
+        side,
+        validity,
+        report,
+    };
+    if solid.ring_count() > 0 {
+        // A soup cannot hold rings: check closure and the rings themselves.
+        let rings = crate::validate::check_rings(solid);
+        if !solid.is_closed() || !rings.is_empty() {
+            return Err(refuse(
+                "not a closed solid with valid rings".into(),
+                rings
+                    .iter()
+                    .take(5)
+                    .map(|r| r.message.clone())
+                    .collect::<Vec<_>>()
+                    .join("; "),
+            ));
+        }
+        return Ok(());
+    }
+    let report = validate_soup(&solid.to_soup(), None, &Options::default())
+        .map_err(|e| refuse("unreadable".into(), e.to_string()))?;
+    if report.validity != Validity::ValidSolid {
+        return Err(refuse(
+            report.validity.describe().to_string(),
+            assemble::summary(&report),
+        ));
+    }
+    Ok(())
+}
+
+/// Every pair of triangles that meet, with its contact, in an order fixed
+/// by the two BVHs.
+fn contacts(first: &Prepared, second: &Prepared, offset: u32) -> Vec<(u32, u32, Contact)> {
+    let tri = |operand: &Prepared, t: u32, base: u32| Tri {
+        corners: operand.corners(t),
+        ids: operand.triangles[t as usize].map(|i| i + base),
+    };
+    first.bvh.par_leaf_pairs(&second.bvh, |la, lb, found| {
+        let (Some(items_a), Some(items_b)) = (first.bvh.leaf(la), second.bvh.leaf(lb)) else {
+            return;
+        };
+        for pa in items_a.range() {
+            let ta = first.order[pa];
+            let box_a = first.bounds[ta as usize];
+            for pb in items_b.range() {
+                let tb = second.order[pb];
+                if box_a.intersection(second.bounds[tb as usize]).is_empty() {
+                    continue;
+                }
+                if let Some(contact) =
+                    intersect::contact(&tri(first, ta, 0), &tri(second, tb, offset))
+                {
+                    found.push((ta, tb, contact));
+                }
+            }
+        }
+    })
+}
+
+/// The pieces of every triangle of `operand`: whole triangles where
+/// nothing cuts them, split ones elsewhere; and the constrained edges.
+fn pieces(
+    table: &PointTable,
+    operand: &Prepared,
+    base: u32,
+    cuts: &HashMap<u32, Cuts>,
+) -> Result<Pieces, BooleanError> {
+    let canonical = |i: u32| table.canonical[i as usize];
+    let results: Vec<Result<Pieces, BooleanError>> = (0..operand.triangles.len() as u32)
+        .into_par_iter()
+        .map(|t| {
+            let corners = operand.triangles[t as usize].map(|i| canonical(i + base));
+            let Some(cut) = cuts.get(&t) else {
+                return Ok((
+                    vec![Piece {
+                        corners,
+                        triangle: t,
+                    }],
+                    Vec::new(),
+                ));
+            };
+            let mut points: Vec<u32> = cut.points.iter().map(|&i| canonical(i)).collect();
+            points.sort_unstable();
+            points.dedup();
+            let segments: Vec<(u32, u32)> = cut
+                .segments
+                .iter()
+                .map(|&(i, j)| (canonical(i), canonical(j)))
+                .filter(|(i, j)| i != j)
+                .collect();
+            let (axis, _) = intersect::projection(&operand.corners(t));
+            let split =
+                split::split_triangle(table, corners, axis, &points, &segments).map_err(|e| {
+                    BooleanError::Inconsistent(format!(
+                        "cutting triangle {t} of the {:?} operand: {}",
+                        operand.side, e.0
+                    ))
+                })?;
+            let pieces = split
+                .triangles
+                .into_iter()
+                .map(|corners| Piece {
+                    corners,
+                    triangle: t,
+                })
+                .collect();
+            Ok((pieces, split.constrained))
+        })
+        .collect();
+    let mut all = Vec::new();
+    let mut constrained = Vec::new();
+    for r in results {
+        let (p, c) = r?;
+        all.extend(p);
+        constrained.extend(c);
+    }
+    Ok((all, constrained))
+}

@@ -1,0 +1,101 @@
+//! Stage 0: an operand as the boolean sees it — the solid's faces
+//! triangulated (exactly, rings included), each triangle remembering its
+//! face, with a BVH over the triangles and the exact point classifier.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use crate::geom::Aabb;
+use crate::mesh::{FaceId, Solid, VertexId};
+use crate::query::Accel;
+use crate::spatial::Bvh;
+
+use super::BooleanError;
+
+/// Which operand of a boolean.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Operand {
+    /// The left operand (`a` in `a ∪ b`, `a − b`).
+    First,
+    /// The right operand.
+    Second,
+}
+
+/// A solid prepared for a boolean.
+///
+/// # Invariants
+///
+/// `triangles[t]` are indices into `positions`, counter-clockwise seen from
+/// outside, never of zero area; `faces[t]` is the face `t` came from;
+/// `order` lists triangle indices by BVH item position.
+pub(crate) struct Prepared<'s> {
+    pub solid: &'s Solid,
+    pub side: Operand,
+    pub positions: Vec<DVec3>,
+    pub triangles: Vec<[u32; 3]>,
+    pub faces: Vec<FaceId>,
+    pub bounds: Vec<Aabb>,
+    pub bvh: Bvh,
+    pub order: Vec<u32>,
+    pub accel: Accel,
+}
+
+impl<'s> Prepared<'s> {
+    /// Triangulates every face of `solid` and indexes the triangles.
+    pub fn new(solid: &'s Solid, side: Operand) -> Result<Prepared<'s>, BooleanError> {
+        let mut index: HashMap<VertexId, u32> = HashMap::with_capacity(solid.vertex_count());
+        let mut positions = Vec::with_capacity(solid.vertex_count());
+        for (id, vertex) in solid.vertices() {
+            index.insert(id, positions.len() as u32);
+            positions.push(vertex.position);
+        }
+        let mut triangles = Vec::new();
+        let mut faces = Vec::new();
+        for (face, _) in solid.faces() {
+            let pieces = solid
+                .try_triangulate_face(face)
+                .map_err(|source| BooleanError::Face {
+                    side,
+                    face,
+                    reason: source.to_string(),
+                })?;
+            for t in pieces {
+                triangles.push(t.map(|v| index[&v]));
+                faces.push(face);
+            }
+        }
+        let bounds: Vec<Aabb> = triangles
+            .iter()
+            .map(|t| Aabb::from_points(t.iter().map(|&i| positions[i as usize])))
+            .collect();
+        let (bvh, order) = Bvh::build(&bounds);
+        Ok(Prepared {
+            solid,
+            side,
+            positions,
+            triangles,
+            faces,
+            bounds,
+            bvh,
+            order,
+            accel: Accel::new(solid),
+        })
+    }
+
+    /// The corners of triangle `t`.
+    #[must_use]
+    pub fn corners(&self, t: u32) -> [DVec3; 3] {
+        self.triangles[t as usize].map(|i| self.positions[i as usize])
+    }
+
+    /// Calls `visit(t)` for every triangle whose box overlaps `query`.
+    pub fn triangles_overlapping(&self, query: &Aabb, visit: impl FnMut(u32)) {
+        let mut visit = visit;
+        self.bvh.items_overlapping(
+            query,
+            |p| self.bounds[self.order[p] as usize],
+            |p| visit(self.order[p]),
+        );
+    }
+}

@@ -1,0 +1,246 @@
+//! Exact signs on implicit points: each predicate is written once over
+//! [`Arithmetic`], evaluated first on intervals and, when the interval
+//! contains zero, again in exact dyadic arithmetic.
+
+use std::cmp::Ordering;
+
+use glam::DVec3;
+
+use crate::geom::dyadic::Dyadic;
+use crate::geom::{Sign, orient2d, orient3d};
+
+use super::arithmetic::Arithmetic;
+use super::interval::Interval;
+use super::point::{HasHomogeneous, Homogeneous, ImplicitPoint, cross, dot, kept_axes};
+
+/// The product of two signs.
+#[must_use]
+pub(crate) fn times(a: Sign, b: Sign) -> Sign {
+    match (a, b) {
+        (Sign::Zero, _) | (_, Sign::Zero) => Sign::Zero,
+        (x, y) if x == y => Sign::Positive,
+        _ => Sign::Negative,
+    }
+}
+
+/// The sign of `value · w` for homogeneous `w`: the sign of a quantity
+/// computed on `X, Y, Z` and scaled by `w`.
+fn unscaled<T: Arithmetic>(value: &T, w: &T) -> Option<Sign> {
+    Some(times(value.sign()?, w.sign()?))
+}
+
+fn decide(filter: impl FnOnce() -> Option<Sign>, exact: impl FnOnce() -> Option<Sign>) -> Sign {
+    if let Some(sign) = filter() {
+        return sign;
+    }
+    // Exact arithmetic always knows the sign.
+    exact().unwrap_or(Sign::Zero)
+}
+
+fn side_in<T: Arithmetic>(plane: [DVec3; 3], p: &Homogeneous<T>) -> Option<Sign> {
+    let [a, b, c] = plane.map(|v| [T::of(v.x), T::of(v.y), T::of(v.z)]);
+    let sub = |u: &[T; 3], v: &[T; 3]| [u[0].minus(&v[0]), u[1].minus(&v[1]), u[2].minus(&v[2])];
+    let normal = cross(&sub(&b, &a), &sub(&c, &a));
+    // n · (P − a·w), then divided by the sign of w.
+    let offset = [
+        p.xyz[0].minus(&a[0].times(&p.w)),
+        p.xyz[1].minus(&a[1].times(&p.w)),
+        p.xyz[2].minus(&a[2].times(&p.w)),
+    ];
+    unscaled(&dot(&normal, &offset), &p.w)
+}
+
+/// The side of the plane through `plane` (counter-clockwise seen from its
+/// positive side) on which `p` lies: `Positive` on the side the normal
+/// `(b − a) × (c − a)` points to, as [`orient3d`]`(a, b, c, p)`.
+#[must_use]
+pub(crate) fn side_of_plane(plane: [DVec3; 3], p: &impl HasHomogeneous) -> Sign {
+    decide(
+        || side_in(plane, &p.filter()),
+        || side_in::<Dyadic>(plane, &p.homogeneous()),
+    )
+}
+
+/// [`side_of_plane`] for an [`ImplicitPoint`], taking [`orient3d`] when the
+/// point is explicit.
+#[must_use]
+pub fn point_side_of_plane(plane: [DVec3; 3], p: &ImplicitPoint) -> Sign {
+    match p {
+        ImplicitPoint::Explicit(v) => orient3d(plane[0], plane[1], plane[2], *v),
+        _ => side_of_plane(plane, p),
+    }
+}
+
+fn orient2d_in<T: Arithmetic>([a, b, c]: [Homogeneous<T>; 3], axis: u8) -> Option<Sign> {
+    let (u, v) = kept_axes(axis);
+    // det [[au, av, aw], [bu, bv, bw], [cu, cv, cw]]
+    let minor = |p: &Homogeneous<T>, q: &Homogeneous<T>| {
+        [
+            p.xyz[v].times(&q.w).minus(&p.w.times(&q.xyz[v])),
+            p.w.times(&q.xyz[u]).minus(&p.xyz[u].times(&q.w)),
+            p.xyz[u].times(&q.xyz[v]).minus(&p.xyz[v].times(&q.xyz[u])),
+        ]
+    };
+    let m = minor(&b, &c);
+    let det = a.xyz[u]
+        .times(&m[0])
+        .plus(&a.xyz[v].times(&m[1]))
+        .plus(&a.w.times(&m[2]));
+    let weight = a.w.times(&b.w).times(&c.w);
+    unscaled(&det, &weight)
+}
+
+/// The orientation of `a, b, c` in the projection that drops coordinate
+/// `axis` (the kept coordinates in cyclic order, see `kept_axes`):
+/// `Positive` when counter-clockwise.
+#[must_use]
+pub(crate) fn orient2d_projected(
+    a: &impl HasHomogeneous,
+    b: &impl HasHomogeneous,
+    c: &impl HasHomogeneous,
+    axis: u8,
+) -> Sign {
+    decide(
+        || orient2d_in([a.filter(), b.filter(), c.filter()], axis),
+        || orient2d_in::<Dyadic>([a.homogeneous(), b.homogeneous(), c.homogeneous()], axis),
+    )
+}
+
+/// [`orient2d_projected`] on implicit points, by [`orient2d`] when all
+/// three are explicit.
+#[must_use]
+pub fn orient2d_points(a: &ImplicitPoint, b: &ImplicitPoint, c: &ImplicitPoint, axis: u8) -> Sign {
+    if let (Some(a), Some(b), Some(c)) = (a.explicit(), b.explicit(), c.explicit()) {
+        let (u, v) = kept_axes(axis);
+        let flat = |p: DVec3| glam::DVec2::new(p[u], p[v]);
+        return orient2d(flat(a), flat(b), flat(c));
+    }
+    orient2d_projected(a, b, c, axis)
+}
+
+fn compare_in<T: Arithmetic>(a: &Homogeneous<T>, b: &Homogeneous<T>, axis: usize) -> Option<Sign> {
+    let difference = a.xyz[axis].times(&b.w).minus(&b.xyz[axis].times(&a.w));
+    unscaled(&difference, &a.w.times(&b.w))
+}
+
+/// The exact order of the coordinates `axis` of `a` and `b`.
+#[must_use]
+pub(crate) fn compare_axis(
+    a: &impl HasHomogeneous,
+    b: &impl HasHomogeneous,
+    axis: usize,
+) -> Ordering {
+    let sign = decide(
+        || compare_in(&a.filter(), &b.filter(), axis),
+        || compare_in::<Dyadic>(&a.homogeneous(), &b.homogeneous(), axis),
+    );
+    match sign {
+        Sign::Negative => Ordering::Less,
+        Sign::Zero => Ordering::Equal,
+        Sign::Positive => Ordering::Greater,
+    }
+}
+
+/// The exact lexicographic order (`x`, then `y`, then `z`) of two points:
+/// `Equal` exactly when they are the same point.
+#[must_use]
+pub fn compare_points(a: &ImplicitPoint, b: &ImplicitPoint) -> Ordering {
+    if let (Some(a), Some(b)) = (a.explicit(), b.explicit()) {
+        return a
+            .x
+            .total_cmp(&b.x)
+            .then(a.y.total_cmp(&b.y))
+            .then(a.z.total_cmp(&b.z));
+    }
+    (0..3)
+        .map(|axis| compare_axis(a, b, axis))
+        .find(|o| o.is_ne())
+        .unwrap_or(Ordering::Equal)
+}
+
+/// The point rounded to `f64` coordinates (within about one unit in the
+/// last place of each).
+#[must_use]
+pub fn rounded(p: &ImplicitPoint) -> DVec3 {
+    if let Some(v) = p.explicit() {
+        return v;
+    }
+    let filter = p.filter();
+    let tight = |i: &Interval| {
+        let m = i.mid();
+        m.is_finite() && m != 0.0 && (i.hi - i.lo) <= m.abs() * f64::EPSILON
+    };
+    if filter
+        .xyz
+        .iter()
+        .all(|c| tight(c) || (c.lo == 0.0 && c.hi == 0.0))
+        && tight(&filter.w)
+    {
+        let w = filter.w.mid();
+        return DVec3::new(
+            filter.xyz[0].mid() / w,
+            filter.xyz[1].mid() / w,
+            filter.xyz[2].mid() / w,
+        );
+    }
+    let exact = p.homogeneous::<Dyadic>();
+    DVec3::new(
+        exact.xyz[0].quotient_to_f64(&exact.w),
+        exact.xyz[1].quotient_to_f64(&exact.w),
+        exact.xyz[2].quotient_to_f64(&exact.w),
+    )
+}
+
+/// Where the ray `p + t·(1, 0, 0)`, `t > 0`, stands against a triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum XRayCrossing {
+    /// The ray crosses the triangle (once).
+    Crosses,
+    /// The ray misses it.
+    Misses,
+    /// `p` lies on the triangle.
+    Contains,
+}
+
+/// Whether the `+x` ray from `p` crosses the triangle `tri`, exactly, with
+/// ties broken by Simulation of Simplicity: `p`'s `(y, z)` moved
+/// symbolically to `(y + ε, z + ε²)`, so a ray through an edge or vertex
+/// crosses exactly one of the triangles around it and a closed surface is
+/// crossed an odd number of times exactly when `p` is inside. Triangles
+/// parallel to the ray (zero area in the `yz` projection) are never crossed.
+#[must_use]
+pub(crate) fn x_ray_crossing<P: HasHomogeneous>(p: &P, tri: [DVec3; 3]) -> XRayCrossing {
+    let yz = |v: DVec3| glam::DVec2::new(v.y, v.z);
+    let facing = orient2d(yz(tri[0]), yz(tri[1]), yz(tri[2]));
+    if facing == Sign::Zero {
+        return XRayCrossing::Misses;
+    }
+    // The projected triangle counter-clockwise.
+    let [a, b, c] = if facing == Sign::Positive {
+        tri
+    } else {
+        [tri[0], tri[2], tri[1]]
+    };
+    let point = |v: DVec3| ImplicitPoint::Explicit(v);
+    for (s, e) in [(a, b), (b, c), (c, a)] {
+        let exact = orient2d_projected(&point(s), &point(e), p, 0);
+        let sign = if exact != Sign::Zero {
+            exact
+        } else if s.z != e.z {
+            // The perturbation's ε term: −(e.z − s.z).
+            Sign::of(s.z - e.z)
+        } else {
+            Sign::of(e.y - s.y)
+        };
+        if sign != Sign::Positive {
+            return XRayCrossing::Misses;
+        }
+    }
+    // Inside the projection: in front when p is behind the plane as seen
+    // along +x, i.e. the plane side of p is opposite to the normal's x.
+    match side_of_plane(tri, p) {
+        Sign::Zero => XRayCrossing::Contains,
+        side if side != facing => XRayCrossing::Crosses,
+        _ => XRayCrossing::Misses,
+    }
+}
