@@ -93,3 +93,54 @@ fn scene_errors_name_the_json_path() {
     assert_eq!(code, 2);
     assert!(err.contains("root.difference[1].sphere.radius"), "{err}");
 }
+
+/// `wingedge csg` evaluates the drilled cube into a solid that `validate`
+/// accepts, whose volume is the ray-integrated volume within the error of
+/// inscribing the cylinders (the result holds the true solid and loses at
+/// most the ring between each cylinder and its inscribed prism).
+#[test]
+fn csg_writes_a_valid_solid_of_the_right_volume() {
+    let dir = TempDir::new("csg-drilled");
+    let out = dir.arg("drilled.obj");
+    let (code, text, err) = wingedge(&["csg", DRILLED, "-o", &out, "--json"], "");
+    assert_eq!(code, 0, "{err}");
+    let report: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    assert_eq!(report["validity"], "valid_solid");
+    assert_eq!(report["genus"], 5);
+    assert_eq!(report["booleans"], 3);
+    let (code, text, err) = wingedge(&["validate", &out], "");
+    assert_eq!(code, 0, "{text}{err}");
+    let (code, text, err) = wingedge(&["volume", &out], "");
+    assert_eq!(code, 0, "{err}");
+    let evaluated: f64 = text.split_whitespace().next().unwrap().parse().unwrap();
+    let (_, text, _) = wingedge(&["volume", DRILLED], "");
+    let integrated: f64 = text.split_whitespace().next().unwrap().parse().unwrap();
+    // Three cylinders of volume π/2 each, radius error 1e-3: at most
+    // 2e-3 of their volume comes back, plus the integration's own error.
+    assert!(
+        evaluated >= integrated - 1e-3 && evaluated <= integrated + 2e-3 * 3.0 * 1.6 + 1e-3,
+        "evaluated {evaluated}, integrated {integrated}"
+    );
+    // A coarser tolerance gives fewer faces and is said in the text.
+    let (code, text, err) = wingedge(&["csg", DRILLED, "-o", &out, "--tolerance", "0.05"], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(text.contains("chord tolerance 0.05"), "{text}");
+}
+
+/// Bad input is refused with exit 2 and a located message; a result that
+/// cannot be a valid solid gets exit 1 and the located defect.
+#[test]
+fn csg_refuses_what_it_cannot_evaluate() {
+    let dir = TempDir::new("csg-bad");
+    let out = dir.arg("out.obj");
+    let (code, _, err) = wingedge(&["csg", "fixtures/scenes/nope.json", "-o", &out], "");
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = wingedge(&["csg", DRILLED, "-o", &out, "--tolerance", "0"], "");
+    assert_eq!(code, 2);
+    assert!(err.contains("tolerance"), "{err}");
+    // A sphere touching a plate at one point: the regularized union is
+    // pinched there, not a 2-manifold; the touching faces are named.
+    let (code, _, err) = wingedge(&["csg", "fixtures/scenes/many_leaves.json", "-o", &out], "");
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("self_intersection: face"), "{err}");
+}

@@ -192,9 +192,9 @@ pub(crate) fn build_and_prove(
     sources: &[PieceSource],
 ) -> Result<(Solid, Vec<FaceOrigin>, Report), BooleanError> {
     if soup.polygons.is_empty() {
-        let report = validate_soup(soup, None, &Options::default())
-            .map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
-        return Ok((Solid::default(), Vec::new(), report));
+        let solid = Solid::default();
+        let report = prove(&solid)?;
+        return Ok((solid, Vec::new(), report));
     }
     let mut solid =
         Solid::try_from_soup(soup).map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
@@ -215,10 +215,20 @@ pub(crate) fn build_and_prove(
         attributes.source_index = Some(index);
         solid.set_face_attributes(f, attributes);
     }
-    let proof = triangulated(&solid)?;
+    let report = prove(&solid)?;
+    Ok((solid, origins, report))
+}
+
+/// Validates `solid`: every rule on the exact triangulations of its faces,
+/// and its rings.
+pub(crate) fn prove(solid: &Solid) -> Result<Report, BooleanError> {
+    let proof = triangulated(solid)?;
     let report = validate_soup(&proof, None, &Options::default())
         .map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
-    let rings = check_rings(&solid);
+    if solid.face_count() == 0 {
+        return Ok(report);
+    }
+    let rings = check_rings(solid);
     if report.validity != Validity::ValidSolid || !rings.is_empty() {
         let mut located = summary(&report);
         for r in rings.iter().take(5) {
@@ -230,7 +240,7 @@ pub(crate) fn build_and_prove(
             report: located,
         });
     }
-    Ok((solid, origins, report))
+    Ok(report)
 }
 
 /// The solid as a soup of the exact triangulations of its faces (rings

@@ -40,7 +40,7 @@ use rayon::prelude::*;
 
 use crate::geom::implicit::ImplicitPoint;
 use crate::mesh::Solid;
-use crate::validate::{Options, Report, Validity, validate_soup};
+use crate::validate::Report;
 
 pub use assemble::FaceOrigin;
 pub use error::BooleanError;
@@ -183,6 +183,9 @@ pub fn boolean(
         check_operand(b, Operand::Second)?;
     }
     stats.check_seconds = clock.elapsed().as_secs_f64();
+    if a.face_count() == 0 || b.face_count() == 0 {
+        return with_empty_operand(a, b, operation, stats);
+    }
 
     let clock = Instant::now();
     let (first, second) = rayon::join(
@@ -306,6 +309,45 @@ pub fn boolean(
 /// An operand's pieces and the edges of them that lie on segments.
 type Pieces = (Vec<Piece>, Vec<(u32, u32)>);
 
+/// A boolean with an empty operand: one operand or nothing, as it is.
+fn with_empty_operand(
+    a: &Solid,
+    b: &Solid,
+    operation: Operation,
+    stats: BooleanStats,
+) -> Result<Boolean, BooleanError> {
+    let chosen = match operation {
+        Operation::Union if a.face_count() == 0 => Some((b, Operand::Second)),
+        Operation::Union | Operation::Difference if b.face_count() == 0 => {
+            Some((a, Operand::First))
+        }
+        _ => None,
+    };
+    let Some((source, side)) = chosen else {
+        return Ok(Boolean {
+            report: prove(&Solid::default())?,
+            solid: Solid::default(),
+            origins: Vec::new(),
+            stats,
+        });
+    };
+    let mut solid = source.clone();
+    let faces: Vec<_> = solid.faces().map(|(f, _)| f).collect();
+    let mut origins = Vec::with_capacity(faces.len());
+    for f in faces {
+        origins.push(FaceOrigin { side, face: f });
+        let mut attributes = solid.face(f).attributes.clone();
+        attributes.source_index = Some(origins.len() - 1);
+        solid.set_face_attributes(f, attributes);
+    }
+    Ok(Boolean {
+        report: prove(&solid)?,
+        solid,
+        origins,
+        stats,
+    })
+}
+
 /// The points and segments found on one triangle (raw point indices).
 #[derive(Clone, Debug, Default)]
 struct Cuts {
@@ -315,36 +357,25 @@ struct Cuts {
 
 /// Refuses an operand that is not a valid closed solid.
 fn check_operand(solid: &Solid, side: Operand) -> Result<(), BooleanError> {
-    let refuse = |validity: String, report: String| BooleanError::InvalidOperand {
-        side,
-        validity,
-        report,
-    };
-    if solid.ring_count() > 0 {
-        // A soup cannot hold rings: check closure and the rings themselves.
-        let rings = crate::validate::check_rings(solid);
-        if !solid.is_closed() || !rings.is_empty() {
-            return Err(refuse(
-                "not a closed solid with valid rings".into(),
-                rings
-                    .iter()
-                    .take(5)
-                    .map(|r| r.message.clone())
-                    .collect::<Vec<_>>()
-                    .join("; "),
-            ));
-        }
-        return Ok(());
-    }
-    let report = validate_soup(&solid.to_soup(), None, &Options::default())
-        .map_err(|e| refuse("unreadable".into(), e.to_string()))?;
-    if report.validity != Validity::ValidSolid {
-        return Err(refuse(
-            report.validity.describe().to_string(),
-            assemble::summary(&report),
-        ));
-    }
-    Ok(())
+    prove(solid).map(|_| ()).map_err(|e| match e {
+        BooleanError::InvalidResult { validity, report } => BooleanError::InvalidOperand {
+            side,
+            validity,
+            report,
+        },
+        other => other,
+    })
+}
+
+/// Validates `solid` with every rule (the exact self-intersection check
+/// included) on the exact triangulations of its faces, and its rings by
+/// their own checks; an empty solid (no faces) is valid.
+///
+/// # Errors
+///
+/// [`BooleanError::InvalidResult`] with the located defects.
+pub fn prove(solid: &Solid) -> Result<Report, BooleanError> {
+    assemble::prove(solid)
 }
 
 /// Every pair of triangles that meet, with its contact, in an order fixed

@@ -186,6 +186,15 @@ impl Primitive for AxisBox {
     fn kind(&self) -> &'static str {
         "box"
     }
+
+    fn tessellate(
+        &self,
+        _tolerance: f64,
+        _clip: &Aabb,
+    ) -> Result<crate::mesh::Solid, super::TessellateError> {
+        crate::mesh::builders::cuboid(self.min(), self.max())
+            .map_err(|e| super::TessellateError::Build(e.to_string()))
+    }
 }
 
 #[cfg(test)]

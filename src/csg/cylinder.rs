@@ -192,6 +192,14 @@ impl Primitive for Cylinder {
     fn kind(&self) -> &'static str {
         "cylinder"
     }
+
+    fn tessellate(
+        &self,
+        tolerance: f64,
+        _clip: &Aabb,
+    ) -> Result<crate::mesh::Solid, super::TessellateError> {
+        super::tessellate::cylinder(self.base, self.axis, self.radius, tolerance)
+    }
 }
 
 #[cfg(test)]

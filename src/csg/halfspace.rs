@@ -153,6 +153,14 @@ impl Primitive for HalfSpace {
     fn kind(&self) -> &'static str {
         "halfspace"
     }
+
+    fn tessellate(
+        &self,
+        _tolerance: f64,
+        clip: &Aabb,
+    ) -> Result<crate::mesh::Solid, super::TessellateError> {
+        super::tessellate::half_space(self.point(), self.normal(), clip)
+    }
 }
 
 #[cfg(test)]

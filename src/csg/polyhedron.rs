@@ -198,4 +198,12 @@ impl Primitive for Polyhedron {
     fn kind(&self) -> &'static str {
         "mesh"
     }
+
+    fn tessellate(
+        &self,
+        _tolerance: f64,
+        _clip: &Aabb,
+    ) -> Result<crate::mesh::Solid, super::TessellateError> {
+        Ok(self.solid().clone())
+    }
 }

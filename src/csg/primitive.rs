@@ -5,7 +5,7 @@ use std::fmt::Debug;
 
 use glam::DVec3;
 
-use super::{Containment, Stats};
+use super::{Containment, Stats, TessellateError};
 use crate::geom::{Aabb, Ray, Sign};
 
 /// Which surface of a primitive a crossing lies on: a face index for a box
@@ -103,6 +103,23 @@ pub trait Primitive: Debug + Send + Sync {
 
     /// A short name of the kind of primitive (`box`, `sphere`, …).
     fn kind(&self) -> &'static str;
+
+    /// The solid as a polyhedron, for boundary evaluation: exact for boxes
+    /// and polyhedra, inscribed within `tolerance` (a fraction of the
+    /// radius) for curved solids, clipped to hold `clip` for unbounded ones.
+    ///
+    /// # Errors
+    ///
+    /// [`TessellateError::Unsupported`] for kinds without a polyhedral
+    /// boundary (the default), and the tessellation's own errors.
+    fn tessellate(
+        &self,
+        tolerance: f64,
+        clip: &Aabb,
+    ) -> Result<crate::mesh::Solid, TessellateError> {
+        let _ = (tolerance, clip);
+        Err(TessellateError::Unsupported { kind: self.kind() })
+    }
 }
 
 /// The side of a flat face's plane a ray lying exactly in that plane is

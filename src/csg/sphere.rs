@@ -120,6 +120,14 @@ impl Primitive for Sphere {
     fn kind(&self) -> &'static str {
         "sphere"
     }
+
+    fn tessellate(
+        &self,
+        tolerance: f64,
+        _clip: &Aabb,
+    ) -> Result<crate::mesh::Solid, super::TessellateError> {
+        super::tessellate::sphere(self.center, self.radius, tolerance)
+    }
 }
 
 #[cfg(test)]

@@ -142,6 +142,25 @@ impl Primitive for Transformed {
     fn kind(&self) -> &'static str {
         self.child.kind()
     }
+
+    fn tessellate(
+        &self,
+        tolerance: f64,
+        clip: &Aabb,
+    ) -> Result<crate::mesh::Solid, super::TessellateError> {
+        // The clip box is in world coordinates; the child's is its image
+        // under the inverse map (the box of the mapped corners).
+        let local = Aabb::from_points((0..8).map(|i| {
+            let pick = |bit: usize, a: f64, b: f64| if i & bit == 0 { a } else { b };
+            self.to_local.transform_point3(glam::DVec3::new(
+                pick(1, clip.min.x, clip.max.x),
+                pick(2, clip.min.y, clip.max.y),
+                pick(4, clip.min.z, clip.max.z),
+            ))
+        }));
+        let child = self.child.tessellate(tolerance, &local)?;
+        super::tessellate::mapped(&child, self.to_world)
+    }
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod cells;
+mod csg;
 mod info;
 mod input;
 mod mesh;
@@ -154,6 +155,25 @@ enum Command {
         #[arg(long)]
         stats: bool,
     },
+    /// Evaluate a scene's CSG tree by exact booleans into one solid and
+    /// write it as OBJ, with its counts, genus, volume and the validator's
+    /// verdict. Exit code 0 for a valid solid, 1 when a boolean's result
+    /// could not be made valid (located, nothing written), 2 for a scene
+    /// that cannot be read or evaluated.
+    Csg {
+        /// The scene (.json).
+        scene: PathBuf,
+        /// The OBJ to write.
+        #[arg(short = 'o', long = "output", value_name = "OUT.obj")]
+        output: PathBuf,
+        /// Chord tolerance of spheres and cylinders, a fraction of their
+        /// radius (default 1e-3).
+        #[arg(long, value_name = "T")]
+        tolerance: Option<f64>,
+        /// Print one JSON object instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Render a scene to a PNG: Lambert shading with the scene's light,
     /// shadows only if the scene asks.
     Render {
@@ -221,6 +241,12 @@ fn main() -> ExitCode {
             midpoints,
             stats,
         } => mesh::run(&field, &output, resolution, midpoints, stats),
+        Command::Csg {
+            scene,
+            output,
+            tolerance,
+            json,
+        } => csg::run(&scene, &output, tolerance, json),
         Command::Render {
             scene,
             output,
