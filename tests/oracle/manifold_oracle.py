@@ -248,6 +248,8 @@ def csg_cases(rng, count, out_dir):
             "volume": float(result.volume()),
             "status": str(result.status()).split(".")[-1],
             "empty": bool(result.is_empty()),
+            "genus": int(result.genus()),
+            "shells": len(result.decompose()),
         })
     return cases
 
@@ -256,7 +258,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("out_dir")
     parser.add_argument("--rays", type=int, default=10000)
-    parser.add_argument("--csg-cases", type=int, default=4)
+    parser.add_argument("--csg-cases", type=int, default=8)
     parser.add_argument("--seed", type=int, default=20261121)
     parser.add_argument("--fixtures", help="a folder of closed OBJ fixtures to judge too")
     parser.add_argument("--nonce", default="", help="written back in oracle.json, so a caller can tell this run's answers")
