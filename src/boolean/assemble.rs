@@ -48,8 +48,8 @@ pub(crate) fn soup_of(
     for piece in pieces {
         for &c in &piece.corners {
             index.entry(c).or_insert_with(|| {
-                let point = &table.get(c).point;
-                positions.push(rounded(point));
+                let point = table.get(c).definition();
+                positions.push(rounded(&point));
                 constructed.push(point.explicit().is_none());
                 positions.len() - 1
             });
@@ -182,6 +182,10 @@ fn snap(positions: &[DVec3], constructed: &[bool]) -> Vec<usize> {
 /// last place.
 const SNAP: f64 = 1.0 / (1u64 << 48) as f64;
 
+/// A built result: the solid, its faces' origins, the validator's report
+/// and the seconds the proof took.
+pub(crate) type Built = (Solid, Vec<FaceOrigin>, Report, f64);
+
 /// Builds the solid of `soup`, merges coplanar neighbours, and validates
 /// the result (every rule, the exact self-intersection check included, on
 /// the faces' exact triangulations; rings by their own checks). Returns
@@ -190,11 +194,11 @@ const SNAP: f64 = 1.0 / (1u64 << 48) as f64;
 pub(crate) fn build_and_prove(
     soup: &PolygonSoup,
     sources: &[PieceSource],
-) -> Result<(Solid, Vec<FaceOrigin>, Report), BooleanError> {
+) -> Result<Built, BooleanError> {
     if soup.polygons.is_empty() {
         let solid = Solid::default();
         let report = prove(&solid)?;
-        return Ok((solid, Vec::new(), report));
+        return Ok((solid, Vec::new(), report, 0.0));
     }
     let mut solid =
         Solid::try_from_soup(soup).map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
@@ -215,8 +219,10 @@ pub(crate) fn build_and_prove(
         attributes.source_index = Some(index);
         solid.set_face_attributes(f, attributes);
     }
+    let clock = std::time::Instant::now();
     let report = prove(&solid)?;
-    Ok((solid, origins, report))
+    let proof_seconds = clock.elapsed().as_secs_f64();
+    Ok((solid, origins, report, proof_seconds))
 }
 
 /// Validates `solid`: every rule on the exact triangulations of its faces,

@@ -6,7 +6,7 @@
 //! coplanar with it). So one decision per patch suffices: a piece inside a
 //! coplanar triangle of the other operand is *on* it (with the same or the
 //! opposite orientation); otherwise the first patch corner off the other
-//! surface is classified by the exact point classifier; a patch with no
+//! surface is classified by an exact `+x` ray from it; a patch with no
 //! such corner (every corner constructed or on the other surface) casts an
 //! exact `+x` ray from a piece's centroid, an implicit point, against the
 //! other operand's triangles.
@@ -20,11 +20,10 @@ use crate::geom::implicit::{
     Centroid, HasHomogeneous, ImplicitPoint, XRayCrossing, orient2d_projected, x_ray_crossing,
 };
 use crate::geom::{Aabb, Sign};
-use crate::query::Containment;
 
 use super::BooleanError;
 use super::operand::Prepared;
-use super::points::{CachedPoint, PointTable};
+use super::points::{PointTable, PointView};
 
 /// Where a patch lies against the other operand.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -125,10 +124,10 @@ fn label_patch(
             let Some(p) = table.explicit(c) else {
                 continue;
             };
-            match other.accel.classify(p) {
-                Ok(Containment::Inside) => return Ok(Label::Inside),
-                Ok(Containment::Outside) => return Ok(Label::Outside),
-                _ => {}
+            match ray_parity(&ImplicitPoint::Explicit(p), other) {
+                Some(true) => return Ok(Label::Inside),
+                Some(false) => return Ok(Label::Outside),
+                None => {}
             }
         }
     }
@@ -147,8 +146,8 @@ fn label_patch(
 }
 
 /// Whether `p` (in the plane of `tri`) is strictly inside `tri`.
-fn strictly_inside(p: &Centroid<CachedPoint>, tri: [DVec3; 3]) -> bool {
-    let corners = tri.map(|v| CachedPoint::new(ImplicitPoint::Explicit(v)));
+fn strictly_inside(p: &Centroid<PointView>, tri: [DVec3; 3]) -> bool {
+    let corners = tri.map(ImplicitPoint::Explicit);
     let mut axis_facing = None;
     for axis in 0..3u8 {
         let s = orient2d_projected(&corners[0], &corners[1], &corners[2], axis);
@@ -165,7 +164,7 @@ fn strictly_inside(p: &Centroid<CachedPoint>, tri: [DVec3; 3]) -> bool {
 
 /// The parity of the `+x` ray from `p` through `other`'s triangles
 /// (`true`: inside), or `None` when `p` lies on one.
-fn ray_parity(p: &Centroid<CachedPoint>, other: &Prepared) -> Option<bool> {
+fn ray_parity(p: &impl HasHomogeneous, other: &Prepared) -> Option<bool> {
     let filter = p.filter();
     let bound = |i: usize| -> (f64, f64) {
         let (x, w) = (filter.xyz[i], filter.w);

@@ -41,6 +41,10 @@ pub(crate) struct Contact {
     pub second_cuts: SmallVec<[(u8, u8); 3]>,
     /// For a coplanar pair: whether the two normals point the same way.
     pub coplanar_same: Option<bool>,
+    /// Every corner found on the other triangle, also those equal to
+    /// another point of `points` (a corner of each triangle at one
+    /// position): all of them must be merged into one point.
+    pub touched: SmallVec<[u32; 4]>,
 }
 
 /// A triangle of one operand with the global indices of its corners.
@@ -76,12 +80,14 @@ pub(crate) fn contact(a: &Tri, b: &Tri) -> Option<Contact> {
     let mut found: SmallVec<[(ImplicitPoint, PointRef); 8]> = SmallVec::new();
     edges_through(a, sa, b, &mut found);
     edges_through(b, sb, a, &mut found);
+    let touched = vertices_of(found.iter().map(|f| &f.1));
     let points = distinct(found);
     if points.is_empty() {
         return None;
     }
     let mut contact = Contact {
         points: points.iter().map(|(_, r)| *r).collect(),
+        touched,
         ..Contact::default()
     };
     if points.len() >= 2 {
@@ -92,6 +98,15 @@ pub(crate) fn contact(a: &Tri, b: &Tri) -> Option<Contact> {
         contact.second_cuts.push((0, last));
     }
     Some(contact)
+}
+
+/// The vertex indices among `refs`.
+fn vertices_of<'r>(refs: impl Iterator<Item = &'r PointRef>) -> SmallVec<[u32; 4]> {
+    refs.filter_map(|r| match r {
+        PointRef::Vertex(i) => Some(*i),
+        PointRef::New(_) => None,
+    })
+    .collect()
 }
 
 /// All three signs strictly equal: the triangle is off the plane.
@@ -149,7 +164,8 @@ fn edges_through(
                 p,
                 q,
                 plane: other.corners,
-            };
+            }
+            .simplified();
             found.push((point, PointRef::New(point)));
         }
     }
@@ -239,7 +255,8 @@ fn coplanar(a: &Tri, b: &Tri) -> Option<Contact> {
                     r,
                     s,
                     drop_axis: axis,
-                };
+                }
+                .simplified();
                 found.push((point, PointRef::New(point), i as u8));
                 found.push((point, PointRef::New(point), 3 + k as u8));
             }
@@ -248,6 +265,7 @@ fn coplanar(a: &Tri, b: &Tri) -> Option<Contact> {
     if found.is_empty() {
         return None;
     }
+    let touched = vertices_of(found.iter().map(|f| &f.1));
     let mut all: SmallVec<[(ImplicitPoint, PointRef); 8]> =
         found.iter().map(|(p, r, _)| (*p, *r)).collect();
     all = distinct(all);
@@ -259,6 +277,7 @@ fn coplanar(a: &Tri, b: &Tri) -> Option<Contact> {
     let mut contact = Contact {
         points: all.iter().map(|(_, r)| *r).collect(),
         coplanar_same: Some(a_facing == b_facing),
+        touched,
         ..Contact::default()
     };
     // Each edge's points in order along it; the extremes bound its piece

@@ -77,8 +77,10 @@ pub struct BooleanStats {
     pub split_seconds: f64,
     /// Patches and membership.
     pub classify_seconds: f64,
-    /// Rounding, building and validating the result.
+    /// Rounding, snapping, building the result and merging its faces.
     pub output_seconds: f64,
+    /// Proving the result valid with the validator.
+    pub proof_seconds: f64,
     /// Pairs of triangles that meet.
     pub contacts: usize,
     /// Points made by the intersection (before merging equal ones).
@@ -202,14 +204,17 @@ pub fn boolean(
     stats.intersect_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    let mut raw: Vec<ImplicitPoint> = first
+    let vertices: Vec<glam::DVec3> = first
         .positions
         .iter()
         .chain(&second.positions)
-        .map(|&p| ImplicitPoint::Explicit(p))
+        .copied()
         .collect();
+    let base = vertices.len();
+    let mut made: Vec<ImplicitPoint> = Vec::new();
     let mut cuts: [HashMap<u32, Cuts>; 2] = [HashMap::new(), HashMap::new()];
     let mut partners: [HashMap<u32, Vec<Partner>>; 2] = [HashMap::new(), HashMap::new()];
+    let mut candidates: Vec<u32> = Vec::new();
     for (ta, tb, contact) in &contacts {
         let ids: Vec<u32> = contact
             .points
@@ -217,11 +222,13 @@ pub fn boolean(
             .map(|r| match r {
                 PointRef::Vertex(i) => *i,
                 PointRef::New(p) => {
-                    raw.push(*p);
-                    (raw.len() - 1) as u32
+                    made.push(*p);
+                    (base + made.len() - 1) as u32
                 }
             })
             .collect();
+        candidates.extend(&ids);
+        candidates.extend(&contact.touched);
         for (side, t, segments) in [
             (0, *ta, &contact.first_cuts),
             (1, *tb, &contact.second_cuts),
@@ -239,8 +246,8 @@ pub fn boolean(
             partners[1].entry(*tb).or_default().push((*ta, same));
         }
     }
-    stats.new_points = raw.len() - (first.positions.len() + second.positions.len());
-    let table = PointTable::new(raw);
+    stats.new_points = made.len();
+    let table = PointTable::new(vertices, made, candidates);
     stats.points_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
@@ -296,8 +303,9 @@ pub fn boolean(
         }
     }
     let (soup, sources) = assemble::soup_of(&table, &kept, [&first, &second]);
-    let (solid, origins, report) = assemble::build_and_prove(&soup, &sources)?;
-    stats.output_seconds = clock.elapsed().as_secs_f64();
+    let (solid, origins, report, proof_seconds) = assemble::build_and_prove(&soup, &sources)?;
+    stats.proof_seconds = proof_seconds;
+    stats.output_seconds = clock.elapsed().as_secs_f64() - proof_seconds;
     Ok(Boolean {
         solid,
         origins,

@@ -1,6 +1,6 @@
 //! Stage 0: an operand as the boolean sees it — the solid's faces
 //! triangulated (exactly, rings included), each triangle remembering its
-//! face, with a BVH over the triangles and the exact point classifier.
+//! face, with a BVH over the triangles.
 
 use std::collections::HashMap;
 
@@ -8,7 +8,6 @@ use glam::DVec3;
 
 use crate::geom::Aabb;
 use crate::mesh::{FaceId, Solid, VertexId};
-use crate::query::Accel;
 use crate::spatial::Bvh;
 
 use super::BooleanError;
@@ -38,7 +37,6 @@ pub(crate) struct Prepared<'s> {
     pub bounds: Vec<Aabb>,
     pub bvh: Bvh,
     pub order: Vec<u32>,
-    pub accel: Accel,
 }
 
 impl<'s> Prepared<'s> {
@@ -79,7 +77,6 @@ impl<'s> Prepared<'s> {
             bounds,
             bvh,
             order,
-            accel: Accel::new(solid),
         })
     }
 

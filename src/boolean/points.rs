@@ -13,8 +13,8 @@ use crate::geom::implicit::{
     Arithmetic, HasHomogeneous, Homogeneous, ImplicitPoint, Interval, compare_axis, compare_points,
 };
 
-/// A point with its interval coordinates kept (the filter of every
-/// predicate on it).
+/// A constructed point with its interval coordinates kept (the filter of
+/// every predicate on it).
 #[derive(Clone, Debug)]
 pub(crate) struct CachedPoint {
     pub point: ImplicitPoint,
@@ -30,17 +30,41 @@ impl CachedPoint {
     }
 }
 
-impl HasHomogeneous for CachedPoint {
-    fn homogeneous<T: Arithmetic>(&self) -> Homogeneous<T> {
-        self.point.homogeneous()
-    }
+/// A point of the table: an input vertex or a constructed point.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum PointView<'t> {
+    /// An operand vertex.
+    Vertex(DVec3),
+    /// A point the intersection made.
+    Made(&'t CachedPoint),
+}
 
-    fn filter(&self) -> Homogeneous<Interval> {
-        self.filter.clone()
+impl PointView<'_> {
+    /// The point's definition.
+    #[must_use]
+    pub fn definition(&self) -> ImplicitPoint {
+        match self {
+            PointView::Vertex(v) => ImplicitPoint::Explicit(*v),
+            PointView::Made(c) => c.point,
+        }
     }
 }
 
-/// All points of a boolean by raw index, and the canonical index of each.
+impl HasHomogeneous for PointView<'_> {
+    fn homogeneous<T: Arithmetic>(&self) -> Homogeneous<T> {
+        self.definition().homogeneous()
+    }
+
+    fn filter(&self) -> Homogeneous<Interval> {
+        match self {
+            PointView::Vertex(v) => ImplicitPoint::Explicit(*v).homogeneous(),
+            PointView::Made(c) => c.filter.clone(),
+        }
+    }
+}
+
+/// All points of a boolean by raw index — first the operands' vertices,
+/// then the constructed points — and the canonical index of each.
 ///
 /// # Invariants
 ///
@@ -48,51 +72,70 @@ impl HasHomogeneous for CachedPoint {
 /// same position; `canonical[i]` is the smallest raw index of that
 /// position, so an operand vertex stays its own canonical point.
 pub(crate) struct PointTable {
-    pub points: Vec<CachedPoint>,
+    vertices: Vec<DVec3>,
+    made: Vec<CachedPoint>,
     pub canonical: Vec<u32>,
 }
 
 impl PointTable {
-    /// Indexes `points` and finds which are the same position.
-    pub fn new(points: Vec<ImplicitPoint>) -> PointTable {
-        let points: Vec<CachedPoint> = points.into_par_iter().map(CachedPoint::new).collect();
-        let mut by_position: Vec<u32> = (0..points.len() as u32).collect();
-        by_position.par_sort_by(|&i, &j| {
-            exact_order(&points[i as usize], &points[j as usize]).then(i.cmp(&j))
-        });
-        let mut canonical = vec![0u32; points.len()];
+    /// Indexes the points and finds which of `candidates` are the same
+    /// position; every other point is its own (the caller guarantees that
+    /// only candidates can coincide: every point the intersection found or
+    /// touched).
+    pub fn new(
+        vertices: Vec<DVec3>,
+        made: Vec<ImplicitPoint>,
+        mut candidates: Vec<u32>,
+    ) -> PointTable {
+        let made: Vec<CachedPoint> = made.into_par_iter().map(CachedPoint::new).collect();
+        let count = vertices.len() + made.len();
+        let mut table = PointTable {
+            vertices,
+            made,
+            canonical: (0..count as u32).collect(),
+        };
+        candidates.sort_unstable();
+        candidates.dedup();
+        let mut by_position = candidates;
+        by_position.par_sort_by(|&i, &j| exact_order(&table.get(i), &table.get(j)).then(i.cmp(&j)));
         let mut run_start = 0;
         for k in 0..by_position.len() {
             if k > 0
-                && exact_order(
-                    &points[by_position[k - 1] as usize],
-                    &points[by_position[k] as usize],
-                ) != Ordering::Equal
+                && exact_order(&table.get(by_position[k - 1]), &table.get(by_position[k]))
+                    != Ordering::Equal
             {
                 run_start = k;
             }
             // Runs are sorted by raw index, so the run's first is smallest.
-            canonical[by_position[k] as usize] = by_position[run_start];
+            table.canonical[by_position[k] as usize] = by_position[run_start];
         }
-        PointTable { points, canonical }
+        table
     }
 
     /// The point with raw index `i`.
     #[must_use]
-    pub fn get(&self, i: u32) -> &CachedPoint {
-        &self.points[i as usize]
+    pub fn get(&self, i: u32) -> PointView<'_> {
+        let i = i as usize;
+        match self.vertices.get(i) {
+            Some(&v) => PointView::Vertex(v),
+            None => PointView::Made(&self.made[i - self.vertices.len()]),
+        }
     }
 
     /// The explicit position of point `i`, if it has one.
     #[must_use]
     pub fn explicit(&self, i: u32) -> Option<DVec3> {
-        self.points[i as usize].point.explicit()
+        match self.get(i) {
+            PointView::Vertex(v) => Some(v),
+            PointView::Made(c) => c.point.explicit(),
+        }
     }
 }
 
-fn exact_order(a: &CachedPoint, b: &CachedPoint) -> Ordering {
-    if let (Some(_), Some(_)) = (a.point.explicit(), b.point.explicit()) {
-        return compare_points(&a.point, &b.point);
+fn exact_order(a: &PointView, b: &PointView) -> Ordering {
+    let (da, db) = (a.definition(), b.definition());
+    if let (Some(_), Some(_)) = (da.explicit(), db.explicit()) {
+        return compare_points(&da, &db);
     }
     (0..3)
         .map(|axis| compare_axis(a, b, axis))

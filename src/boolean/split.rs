@@ -87,7 +87,7 @@ impl Triangulation<'_> {
     /// winding.
     fn orient(&self, a: u32, b: u32, c: u32) -> Sign {
         let t = self.table;
-        let s = orient2d_projected(t.get(a), t.get(b), t.get(c), self.axis);
+        let s = orient2d_projected(&t.get(a), &t.get(b), &t.get(c), self.axis);
         times(s, self.facing)
     }
 
@@ -156,13 +156,13 @@ impl Triangulation<'_> {
         let t = self.table;
         let (a, b) = kept_axes(self.axis);
         [a, b].iter().any(|&axis| {
-            let (lo, hi) = match compare_axis(t.get(u), t.get(v), axis) {
+            let (lo, hi) = match compare_axis(&t.get(u), &t.get(v), axis) {
                 std::cmp::Ordering::Less => (u, v),
                 std::cmp::Ordering::Greater => (v, u),
                 std::cmp::Ordering::Equal => return false,
             };
-            compare_axis(t.get(lo), t.get(w), axis).is_lt()
-                && compare_axis(t.get(w), t.get(hi), axis).is_lt()
+            compare_axis(&t.get(lo), &t.get(w), axis).is_lt()
+                && compare_axis(&t.get(w), &t.get(hi), axis).is_lt()
         })
     }
 

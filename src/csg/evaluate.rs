@@ -193,6 +193,7 @@ fn add(total: &mut BooleanStats, one: &BooleanStats) {
     total.split_seconds += one.split_seconds;
     total.classify_seconds += one.classify_seconds;
     total.output_seconds += one.output_seconds;
+    total.proof_seconds += one.proof_seconds;
     total.contacts += one.contacts;
     total.new_points += one.new_points;
     total.cut_triangles += one.cut_triangles;

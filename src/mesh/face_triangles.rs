@@ -26,6 +26,24 @@ impl Solid {
         &self,
         face: FaceId,
     ) -> Result<Vec<[VertexId; 3]>, TriangulateError> {
+        // A triangle without rings is its own triangulation (when its
+        // corners are distinct and not collinear, which the general path
+        // checks).
+        if self.face(face).rings.is_empty() {
+            let mut corners = self.loop_vertices(self.face(face).outer);
+            if let (Some(a), Some(b), Some(c), None) = (
+                corners.next(),
+                corners.next(),
+                corners.next(),
+                corners.next(),
+            ) && a != b
+                && b != c
+                && c != a
+                && !crate::geom::collinear3d(self.position(a), self.position(b), self.position(c))
+            {
+                return Ok(vec![[a, b, c]]);
+            }
+        }
         let loops: Vec<Vec<VertexId>> = self
             .face_loops(face)
             .map(|l| self.loop_vertices(l).collect())

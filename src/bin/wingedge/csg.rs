@@ -59,6 +59,7 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
                 "split": s.split_seconds,
                 "classify": s.classify_seconds,
                 "output": s.output_seconds,
+                "proof": s.proof_seconds,
             },
         });
         out.write(format!("{value:#}\n"))?;
@@ -71,7 +72,7 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
              faces {}  rings {}  vertices {}  edges {}  shells {}  genus {genus}  volume {}\n  \
              {} (checked by the validator)\n  \
              {seconds:.3} s: tessellate {:.3}, prepare {:.3}, intersect {:.3}, points {:.3}, \
-             split {:.3}, classify {:.3}, output and proof {:.3}\n  wrote {}\n",
+             split {:.3}, classify {:.3}, output {:.3}, proof {:.3}\n  wrote {}\n",
             evaluated.booleans,
             options.tolerance,
             solid.face_count(),
@@ -88,6 +89,7 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
             s.split_seconds,
             s.classify_seconds,
             s.output_seconds,
+            s.proof_seconds,
             output.display(),
         ))?;
     }

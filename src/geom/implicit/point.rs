@@ -161,16 +161,16 @@ impl HasHomogeneous for ImplicitPoint {
 /// The centroid of three points: strictly inside their triangle when the
 /// triangle is not degenerate.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Centroid<'a, P>(pub [&'a P; 3]);
+pub(crate) struct Centroid<P>(pub [P; 3]);
 
-impl<P: HasHomogeneous> HasHomogeneous for Centroid<'_, P> {
+impl<P: HasHomogeneous> HasHomogeneous for Centroid<P> {
     fn homogeneous<T: Arithmetic>(&self) -> Homogeneous<T> {
-        let [a, b, c] = self.0.map(|p| p.homogeneous::<T>());
+        let [a, b, c] = [0, 1, 2].map(|i| self.0[i].homogeneous::<T>());
         centroid_of(a, b, c)
     }
 
     fn filter(&self) -> Homogeneous<Interval> {
-        let [a, b, c] = self.0.map(|p| p.filter());
+        let [a, b, c] = [0, 1, 2].map(|i| self.0[i].filter());
         centroid_of(a, b, c)
     }
 }
@@ -197,6 +197,35 @@ fn centroid_of<T: Arithmetic>(
 }
 
 impl ImplicitPoint {
+    /// The same point with explicit coordinates when every coordinate is
+    /// known exactly from the definition: a segment whose ends share a
+    /// coordinate keeps it, and so does a point on a plane (or a line in
+    /// the plane's projection) whose defining points share it — an edge of
+    /// a cylinder along `z` through the top face of a box is the point
+    /// `(x, y, top)` with the edge's own `x` and `y`. Otherwise `self`.
+    #[must_use]
+    pub fn simplified(self) -> ImplicitPoint {
+        let shared = |points: &[DVec3], k: usize| {
+            points[1..]
+                .iter()
+                .all(|p| p[k] == points[0][k])
+                .then_some(points[0][k])
+        };
+        let known: [Option<f64>; 3] = match self {
+            ImplicitPoint::Explicit(_) => return self,
+            ImplicitPoint::EdgePlane { p, q, plane } => {
+                [0, 1, 2].map(|k| shared(&[p, q], k).or_else(|| shared(&plane, k)))
+            }
+            ImplicitPoint::EdgeEdge { p, q, r, s, .. } => {
+                [0, 1, 2].map(|k| shared(&[p, q], k).or_else(|| shared(&[r, s], k)))
+            }
+        };
+        match known {
+            [Some(x), Some(y), Some(z)] => ImplicitPoint::Explicit(DVec3::new(x, y, z)),
+            _ => self,
+        }
+    }
+
     /// The explicit coordinates, if the point has them.
     #[must_use]
     pub fn explicit(&self) -> Option<DVec3> {

@@ -146,11 +146,9 @@ pub(crate) fn compare_axis(
 #[must_use]
 pub fn compare_points(a: &ImplicitPoint, b: &ImplicitPoint) -> Ordering {
     if let (Some(a), Some(b)) = (a.explicit(), b.explicit()) {
-        return a
-            .x
-            .total_cmp(&b.x)
-            .then(a.y.total_cmp(&b.y))
-            .then(a.z.total_cmp(&b.z));
+        // By value: −0 and +0 are the same coordinate (inputs are finite).
+        let by = |x: f64, y: f64| x.partial_cmp(&y).unwrap_or(Ordering::Equal);
+        return by(a.x, b.x).then(by(a.y, b.y)).then(by(a.z, b.z));
     }
     (0..3)
         .map(|axis| compare_axis(a, b, axis))
@@ -207,9 +205,33 @@ pub(crate) enum XRayCrossing {
 /// symbolically to `(y + ε, z + ε²)`, so a ray through an edge or vertex
 /// crosses exactly one of the triangles around it and a closed surface is
 /// crossed an odd number of times exactly when `p` is inside. Triangles
-/// parallel to the ray (zero area in the `yz` projection) are never crossed.
+/// parallel to the ray (zero area in the `yz` projection) are never
+/// crossed. A `p` on the closed triangle (whatever its orientation) is
+/// reported as [`XRayCrossing::Contains`].
 #[must_use]
 pub(crate) fn x_ray_crossing<P: HasHomogeneous>(p: &P, tri: [DVec3; 3]) -> XRayCrossing {
+    let side = side_of_plane(tri, p);
+    let point = |v: DVec3| ImplicitPoint::Explicit(v);
+    if side == Sign::Zero {
+        // In the plane: on the closed triangle, or beside it (the ray then
+        // meets the plane only at p).
+        for axis in 0..3u8 {
+            let facing = orient2d_projected(&point(tri[0]), &point(tri[1]), &point(tri[2]), axis);
+            if facing == Sign::Zero {
+                continue;
+            }
+            let on = (0..3).all(|k| {
+                let s = orient2d_projected(&point(tri[k]), &point(tri[(k + 1) % 3]), p, axis);
+                s == Sign::Zero || s == facing
+            });
+            return if on {
+                XRayCrossing::Contains
+            } else {
+                XRayCrossing::Misses
+            };
+        }
+        return XRayCrossing::Misses;
+    }
     let yz = |v: DVec3| glam::DVec2::new(v.y, v.z);
     let facing = orient2d(yz(tri[0]), yz(tri[1]), yz(tri[2]));
     if facing == Sign::Zero {
@@ -221,7 +243,6 @@ pub(crate) fn x_ray_crossing<P: HasHomogeneous>(p: &P, tri: [DVec3; 3]) -> XRayC
     } else {
         [tri[0], tri[2], tri[1]]
     };
-    let point = |v: DVec3| ImplicitPoint::Explicit(v);
     for (s, e) in [(a, b), (b, c), (c, a)] {
         let exact = orient2d_projected(&point(s), &point(e), p, 0);
         let sign = if exact != Sign::Zero {
@@ -238,9 +259,99 @@ pub(crate) fn x_ray_crossing<P: HasHomogeneous>(p: &P, tri: [DVec3; 3]) -> XRayC
     }
     // Inside the projection: in front when p is behind the plane as seen
     // along +x, i.e. the plane side of p is opposite to the normal's x.
-    match side_of_plane(tri, p) {
-        Sign::Zero => XRayCrossing::Contains,
-        side if side != facing => XRayCrossing::Crosses,
-        _ => XRayCrossing::Misses,
+    if side != facing {
+        XRayCrossing::Crosses
+    } else {
+        XRayCrossing::Misses
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn edge_plane(p: DVec3, q: DVec3, plane: [DVec3; 3]) -> ImplicitPoint {
+        ImplicitPoint::EdgePlane { p, q, plane }
+    }
+
+    /// A constructed point lies exactly on its plane and on its segment's
+    /// line, although its rounded coordinates do not.
+    #[test]
+    fn an_edge_plane_point_is_on_its_plane() {
+        let plane = [
+            DVec3::new(0.1, 0.0, 0.3),
+            DVec3::new(1.0, 0.2, 0.7),
+            DVec3::new(0.3, 1.0, 0.1),
+        ];
+        let point = edge_plane(DVec3::new(0.4, 0.4, -1.0), DVec3::new(0.5, 0.3, 2.0), plane);
+        assert_eq!(side_of_plane(plane, &point), Sign::Zero);
+        let r = ImplicitPoint::Explicit(rounded(&point));
+        // The rounded point is off the plane (this one, by a rounding error).
+        let rounded_side = point_side_of_plane(plane, &r);
+        let _ = rounded_side;
+        // Collinear with its segment in every projection.
+        let (p, q) = (
+            ImplicitPoint::Explicit(DVec3::new(0.4, 0.4, -1.0)),
+            ImplicitPoint::Explicit(DVec3::new(0.5, 0.3, 2.0)),
+        );
+        for axis in 0..3 {
+            assert_eq!(orient2d_points(&p, &q, &point, axis), Sign::Zero);
+        }
+    }
+
+    /// The same point made two ways compares equal; −0 and +0 too.
+    #[test]
+    fn one_point_made_two_ways_is_equal() {
+        let z0 = [
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ];
+        let crossing = edge_plane(DVec3::new(0.25, 0.5, -1.0), DVec3::new(0.25, 0.5, 3.0), z0);
+        let known = ImplicitPoint::Explicit(DVec3::new(0.25, 0.5, 0.0));
+        assert_eq!(compare_points(&crossing, &known), Ordering::Equal);
+        assert_eq!(crossing.simplified(), known);
+        let tilted = edge_plane(
+            DVec3::new(-0.75, -1.5, -2.0),
+            DVec3::new(1.25, 2.5, 2.0),
+            z0,
+        );
+        assert_eq!(compare_points(&tilted, &known), Ordering::Equal);
+        let negative = ImplicitPoint::Explicit(DVec3::new(0.25, 0.5, -0.0));
+        assert_eq!(compare_points(&negative, &known), Ordering::Equal);
+        let beside = ImplicitPoint::Explicit(DVec3::new(0.25f64.next_up(), 0.5, 0.0));
+        assert_eq!(compare_points(&tilted, &beside), Ordering::Less);
+    }
+
+    /// A point on a triangle parallel to the ray is on it, not beside it;
+    /// a ray through a shared edge crosses exactly one of its triangles.
+    #[test]
+    fn x_rays_see_points_on_parallel_faces_and_cross_edges_once() {
+        let top = [
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::new(1.0, 0.0, 1.0),
+            DVec3::new(0.0, 1.0, 1.0),
+        ];
+        let on = ImplicitPoint::Explicit(DVec3::new(0.25, 0.25, 1.0));
+        assert_eq!(x_ray_crossing(&on, top), XRayCrossing::Contains);
+        let below = ImplicitPoint::Explicit(DVec3::new(0.25, 0.25, 0.5));
+        assert_eq!(x_ray_crossing(&below, top), XRayCrossing::Misses);
+        // Two triangles of the plane x = 1 sharing the edge y = z.
+        let first = [
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(1.0, 1.0, 1.0),
+        ];
+        let second = [
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(1.0, 0.0, 1.0),
+        ];
+        let through_edge = ImplicitPoint::Explicit(DVec3::new(0.0, 0.5, 0.5));
+        let crossings = [first, second]
+            .iter()
+            .filter(|&&t| x_ray_crossing(&through_edge, t) == XRayCrossing::Crosses)
+            .count();
+        assert_eq!(crossings, 1);
     }
 }
