@@ -102,10 +102,11 @@ fn far_from_the_origin_and_tiny() {
         ];
         for (v, r) in volumes.iter().zip(reference) {
             let expected = r * scale.powi(3);
-            // Moving the input by 1e8 rounds each vertex by up to 7.5e-9
-            // (a unit in the last place there); scaling by a power of ten
-            // rounds by one part in 1e16.
-            let relative = if offset > 1.0 { 1e-6 } else { 1e-12 };
+            // Moving the input by `offset` rounds each vertex by half a unit
+            // in the last place of the offset, `offset / scale · ε / 2` of
+            // the object's size, which moves the volume by a few hundred
+            // times that at most; scaling alone rounds by one part in 1e16.
+            let relative = 1e-12 + 300.0 * f64::EPSILON * offset / scale;
             assert!(
                 (v - expected).abs() <= relative * expected,
                 "scale {scale} offset {offset}: {v} vs {expected}"
