@@ -9,10 +9,10 @@
 //! procedure; the segments of one boolean never cross each other, they
 //! meet only at their ends). Sub-triangles keep the triangle's winding.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 use crate::geom::Sign;
-use crate::geom::implicit::{compare_axis, kept_axes, orient2d_projected, times};
+use crate::geom::implicit::{HasHomogeneous, compare_axis, kept_axes, orient2d_projected, times};
 
 use super::points::PointTable;
 
@@ -31,13 +31,26 @@ pub(crate) struct Split {
     pub constrained: Vec<(u32, u32)>,
 }
 
+/// # Invariants
+///
+/// `edges` maps every directed edge `(t[k], t[k + 1])` of every triangle
+/// `t` to that triangle's index, and nothing else; `vertices` holds every
+/// corner once.
 struct Triangulation<'t> {
     table: &'t PointTable,
     axis: u8,
     facing: Sign,
     vertices: Vec<u32>,
+    present: HashSet<u32>,
     triangles: Vec<[u32; 3]>,
+    edges: HashMap<(u32, u32), usize>,
     constrained: HashSet<(u32, u32)>,
+    /// Where the last change happened: the walk to the next point starts
+    /// there.
+    last: usize,
+    /// The state of the walk's coin (a fixed-seed xorshift: the walk is
+    /// deterministic).
+    coin: u64,
 }
 
 /// Cuts the triangle with canonical corners `corners` (a non-degenerate
@@ -55,15 +68,31 @@ pub(crate) fn split_triangle(
         axis,
         facing: Sign::Positive,
         vertices: corners.to_vec(),
-        triangles: vec![corners],
+        present: corners.iter().copied().collect(),
+        triangles: Vec::new(),
+        edges: HashMap::new(),
         constrained: HashSet::new(),
+        last: 0,
+        coin: 0x9E37_79B9_7F4A_7C15,
     };
+    t.push(corners);
     t.facing = t.orient(corners[0], corners[1], corners[2]);
     if t.facing == Sign::Zero {
         return Err(SplitError(format!("triangle {corners:?} has zero area")));
     }
-    for &p in points {
-        if !t.vertices.contains(&p) {
+    // Nearby points one after another, so each walk is short.
+    let (u, v) = kept_axes(axis);
+    let mut order: Vec<(f64, f64, u32)> = points
+        .iter()
+        .map(|&p| {
+            let h = table.get(p).filter();
+            let w = h.w.mid();
+            (h.xyz[u].mid() / w, h.xyz[v].mid() / w, p)
+        })
+        .collect();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    for (_, _, p) in order {
+        if !t.present.contains(&p) {
             t.insert_point(p)?;
         }
     }
@@ -91,60 +120,122 @@ impl Triangulation<'_> {
         times(s, self.facing)
     }
 
-    fn insert_point(&mut self, p: u32) -> Result<(), SplitError> {
-        for ti in 0..self.triangles.len() {
+    /// Replaces triangle `ti` by `tri`, keeping the edge map.
+    fn set(&mut self, ti: usize, tri: [u32; 3]) {
+        let old = self.triangles[ti];
+        for k in 0..3 {
+            let edge = (old[k], old[(k + 1) % 3]);
+            // Another triangle may have taken the edge over already.
+            if self.edges.get(&edge) == Some(&ti) {
+                self.edges.remove(&edge);
+            }
+        }
+        self.triangles[ti] = tri;
+        for k in 0..3 {
+            self.edges.insert((tri[k], tri[(k + 1) % 3]), ti);
+        }
+        self.last = ti;
+    }
+
+    /// Adds triangle `tri`.
+    fn push(&mut self, tri: [u32; 3]) {
+        self.triangles.push(tri);
+        let ti = self.triangles.len() - 1;
+        for k in 0..3 {
+            self.edges.insert((tri[k], tri[(k + 1) % 3]), ti);
+        }
+    }
+
+    /// The triangle holding `p` (on its boundary included): a walk from
+    /// the last change towards `p`, crossing an edge that has `p` strictly
+    /// on its far side (chosen by a coin among two, so the walk cannot
+    /// cycle), and a scan of all triangles if the walk leaves the
+    /// triangle or runs long.
+    fn locate(&mut self, p: u32) -> Option<(usize, [Sign; 3])> {
+        let mut ti = self.last.min(self.triangles.len() - 1);
+        for _ in 0..4 * self.triangles.len() + 16 {
             let [a, b, c] = self.triangles[ti];
             let s = [
                 self.orient(b, c, p),
                 self.orient(c, a, p),
                 self.orient(a, b, p),
             ];
-            if s.contains(&Sign::Negative) {
-                continue;
+            let away: smallvec::SmallVec<[usize; 3]> =
+                (0..3).filter(|&k| s[k] == Sign::Negative).collect();
+            if away.is_empty() {
+                return Some((ti, s));
             }
-            let zeros: Vec<usize> = (0..3).filter(|&k| s[k] == Sign::Zero).collect();
-            self.vertices.push(p);
-            match zeros[..] {
-                [] => {
-                    self.triangles[ti] = [a, b, p];
-                    self.triangles.push([b, c, p]);
-                    self.triangles.push([c, a, p]);
-                }
-                [k] => {
-                    // On the edge opposite corner k.
-                    let t = self.triangles[ti];
-                    let (o, x, y) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
-                    self.triangles[ti] = [o, x, p];
-                    self.triangles.push([o, p, y]);
-                    if let Some((tj, m)) = self.across(y, x) {
-                        self.triangles[tj] = [m, y, p];
-                        self.triangles.push([m, p, x]);
-                    }
-                    if self.constrained.remove(&key(x, y)) {
-                        self.constrained.insert(key(x, p));
-                        self.constrained.insert(key(p, y));
-                    }
-                }
-                _ => {
-                    return Err(SplitError(format!(
-                        "point {p} coincides with a corner of a piece but has its own index"
-                    )));
-                }
+            self.coin ^= self.coin << 13;
+            self.coin ^= self.coin >> 7;
+            self.coin ^= self.coin << 17;
+            let k = away[(self.coin % away.len() as u64) as usize];
+            let t = self.triangles[ti];
+            // The edge opposite corner k, crossed to the other side.
+            let (x, y) = (t[(k + 1) % 3], t[(k + 2) % 3]);
+            match self.across(y, x) {
+                Some((next, _)) => ti = next,
+                None => break,
             }
-            return Ok(());
         }
-        Err(SplitError(format!(
-            "point {p} lies outside the triangle it cuts"
-        )))
+        (0..self.triangles.len()).find_map(|ti| {
+            let [a, b, c] = self.triangles[ti];
+            let s = [
+                self.orient(b, c, p),
+                self.orient(c, a, p),
+                self.orient(a, b, p),
+            ];
+            (!s.contains(&Sign::Negative)).then_some((ti, s))
+        })
+    }
+
+    fn insert_point(&mut self, p: u32) -> Result<(), SplitError> {
+        let Some((ti, s)) = self.locate(p) else {
+            return Err(SplitError(format!(
+                "point {p} lies outside the triangle it cuts"
+            )));
+        };
+        let [a, b, c] = self.triangles[ti];
+        let zeros: smallvec::SmallVec<[usize; 3]> =
+            (0..3).filter(|&k| s[k] == Sign::Zero).collect();
+        match zeros[..] {
+            [] => {
+                self.set(ti, [a, b, p]);
+                self.push([b, c, p]);
+                self.push([c, a, p]);
+            }
+            [k] => {
+                // On the edge opposite corner k.
+                let t = self.triangles[ti];
+                let (o, x, y) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                let neighbour = self.across(y, x);
+                self.set(ti, [o, x, p]);
+                self.push([o, p, y]);
+                if let Some((tj, m)) = neighbour {
+                    self.set(tj, [m, y, p]);
+                    self.push([m, p, x]);
+                }
+                if self.constrained.remove(&key(x, y)) {
+                    self.constrained.insert(key(x, p));
+                    self.constrained.insert(key(p, y));
+                }
+            }
+            _ => {
+                return Err(SplitError(format!(
+                    "point {p} coincides with a corner of a piece but has its own index"
+                )));
+            }
+        }
+        self.vertices.push(p);
+        self.present.insert(p);
+        Ok(())
     }
 
     /// The triangle holding the directed edge `from → to`, and its third
     /// corner.
     fn across(&self, from: u32, to: u32) -> Option<(usize, u32)> {
-        self.triangles.iter().enumerate().find_map(|(i, t)| {
-            (0..3)
-                .find_map(|k| (t[k] == from && t[(k + 1) % 3] == to).then_some((i, t[(k + 2) % 3])))
-        })
+        let &ti = self.edges.get(&(from, to))?;
+        let t = self.triangles[ti];
+        (0..3).find_map(|k| (t[k] == from).then_some((ti, t[(k + 2) % 3])))
     }
 
     fn has_edge(&self, u: u32, v: u32) -> bool {
@@ -221,8 +312,8 @@ impl Triangulation<'_> {
             // The quadrilateral x, b, y, a is convex when a b crosses x y;
             // then the diagonal can be flipped.
             if self.crosses(a, b, x, y) {
-                self.triangles[ti] = [x, b, a];
-                self.triangles[tj] = [b, y, a];
+                self.set(ti, [x, b, a]);
+                self.set(tj, [b, y, a]);
                 if self.crosses(u, v, a, b) {
                     queue.push_back((a, b));
                 }
