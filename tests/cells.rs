@@ -167,3 +167,72 @@ fn bad_requests_are_refused() {
         Err(CellsError::OutOfRange { .. })
     ));
 }
+
+fn scene(name: &str) -> wingedge::scene::Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/scenes")
+        .join(name);
+    wingedge::scene::Scene::from_file(&path).unwrap()
+}
+
+/// Every `In` or `Out` leaf's centre classifies the same way against the
+/// tree.
+fn assert_centres_agree(csg: &wingedge::csg::Csg, tree: &Octree, what: &str) {
+    use wingedge::csg::{Containment, Stats};
+    let mut stats = Stats::default();
+    for c in tree.leaves() {
+        let b = tree.cell_box(c.depth, c.x, c.y, c.z);
+        let got = csg.classify_point(b.center(), &mut stats);
+        match c.label {
+            Label::In => assert_eq!(got, Containment::Inside, "{what}: {c:?}"),
+            Label::Out => assert_eq!(got, Containment::Outside, "{what}: {c:?}"),
+            Label::On => {}
+        }
+    }
+}
+
+#[test]
+fn cells_of_the_drilled_cube_hold_its_closed_form_volume() {
+    // 8 minus three orthogonal cylinders of radius ½ through the cube:
+    // 3 · (π/2) − 3 · (2/3) (bicylinders, 16 r³/3) + (2 − √2) (the
+    // tricylinder, 8 (2 − √2) r³).
+    let exact = 8.0 - 1.5 * std::f64::consts::PI + 2f64.sqrt();
+    let drilled = scene("drilled_cube.json");
+    let mut width = f64::INFINITY;
+    for depth in 2..=7 {
+        let tree = Octree::classify_csg(&drilled.csg, depth).unwrap();
+        assert_holds(&tree, exact, &format!("drilled cube, depth {depth}"));
+        let (low, high) = tree.volume_bounds();
+        assert!(high - low < width, "depth {depth}: {low} {high}");
+        width = high - low;
+        if depth <= 5 {
+            assert_centres_agree(&drilled.csg, &tree, "drilled cube");
+        }
+    }
+    assert!(width / exact < 0.25, "{width}");
+}
+
+#[test]
+fn cells_of_scenes_hold_their_volumes_and_agree_with_classify() {
+    // The many-leaves plate: boxes and spheres that only touch the plate
+    // and each other, so the union's volume is the sum of the leaves'.
+    let many = scene("many_leaves.json");
+    let sum: f64 = many
+        .csg
+        .leaves()
+        .iter()
+        .map(|l| l.primitive.exact_volume().unwrap())
+        .sum();
+    for depth in [3, 5, 6] {
+        let tree = Octree::classify_csg(&many.csg, depth).unwrap();
+        assert_holds(&tree, sum, &format!("many leaves, depth {depth}"));
+    }
+    assert_centres_agree(&many.csg, &Octree::classify_csg(&many.csg, 5).unwrap(), "many");
+    for name in ["platonic.json", "mesh_cut.json", "turned_part.json"] {
+        let s = scene(name);
+        let tree = Octree::classify_csg(&s.csg, 4).unwrap();
+        assert_centres_agree(&s.csg, &tree, name);
+        let (low, high) = tree.volume_bounds();
+        assert!(0.0 <= low && low < high, "{name}: [{low}, {high}]");
+    }
+}

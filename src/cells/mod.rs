@@ -6,10 +6,10 @@
 //! the cells the boundary meets and labels the others by propagation;
 //! `npy` writes the dense voxel array numpy reads.
 
-mod box_triangle;
 mod npy;
 mod octree;
+mod target;
 
-pub use box_triangle::box_meets_triangle;
+pub use crate::geom::box_meets_triangle;
 pub use npy::write_npy;
 pub use octree::{Cell, CellsError, Label, LevelCounts, MAX_DENSE_DEPTH, MAX_DEPTH, Octree};

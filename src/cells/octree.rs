@@ -35,12 +35,12 @@ use std::collections::HashMap;
 use glam::DVec3;
 use thiserror::Error;
 
-use super::box_triangle::box_meets_triangle;
+use super::target::{CellTarget, CsgTarget, Judgement, SolidTarget};
+use crate::csg::Csg;
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Readable};
 use crate::mesh::{FaceId, Solid};
-use crate::query::{Accel, Containment};
-use crate::spatial::Bvh;
+use crate::query::{Accel, BoundaryTiles, TileError};
 
 /// The deepest octree [`Octree::classify`] builds: `2^16` cells along a
 /// side, far past what memory holds for a surface of any size.
@@ -114,6 +114,22 @@ pub enum CellsError {
         /// Why.
         message: String,
     },
+    /// A leaf of a CSG tree whose faces cannot be tiled exactly.
+    #[error("leaf {leaf}: {source}")]
+    Leaf {
+        /// The leaf's label (a scene's JSON path).
+        leaf: String,
+        /// Why.
+        source: TileError,
+    },
+    /// A CSG tree whose solid is unbounded (a half-space not cut down to a
+    /// bounded piece).
+    #[error("the solid is unbounded (its bounds reach infinity): nothing to lay cells over")]
+    Unbounded,
+    /// A CSG tree whose bounds hold nothing (an intersection of disjoint
+    /// boxes).
+    #[error("the solid is empty (its bounds hold nothing)")]
+    EmptyBounds,
     /// The solid's box is too large for cell corners to be exact.
     #[error("the solid's box (size {}) is too large or too far out for exact cell corners", Readable(*.size))]
     OutOfRange {
@@ -136,51 +152,6 @@ pub struct Octree {
     leaves: Vec<Cell>,
     counts: Vec<LevelCounts>,
     regions: usize,
-}
-
-/// The exact triangles of a solid's faces and the BVH over their boxes.
-struct Surface {
-    triangles: Vec<[DVec3; 3]>,
-    boxes: Vec<Aabb>,
-    bvh: Bvh,
-}
-
-impl Surface {
-    fn new(solid: &Solid) -> Result<Surface, CellsError> {
-        let mut triangles = Vec::new();
-        for (face, _) in solid.faces() {
-            let tiles = solid
-                .try_triangulate_face(face)
-                .map_err(|e| CellsError::Face {
-                    face,
-                    message: e.to_string(),
-                })?;
-            triangles.extend(tiles.iter().map(|t| t.map(|v| solid.position(v))));
-        }
-        let boxes: Vec<Aabb> = triangles
-            .iter()
-            .map(|t| Aabb::from_points(t.iter().copied()))
-            .collect();
-        let (bvh, order) = Bvh::build(&boxes);
-        let triangles: Vec<[DVec3; 3]> = order.iter().map(|&i| triangles[i as usize]).collect();
-        let boxes = order.iter().map(|&i| boxes[i as usize]).collect();
-        Ok(Surface {
-            triangles,
-            boxes,
-            bvh,
-        })
-    }
-
-    /// Whether the boundary meets the closed box.
-    fn meets(&self, cell: &Aabb) -> bool {
-        let mut met = false;
-        self.bvh.items_overlapping(
-            cell,
-            |p| self.boxes[p],
-            |p| met = met || box_meets_triangle(cell, &self.triangles[p]),
-        );
-        met
-    }
 }
 
 impl Octree {
@@ -211,7 +182,59 @@ impl Octree {
             return Err(CellsError::NotClosed(open));
         }
         let (origin, side) = root_cube(&solid.bounding_box(), depth)?;
-        let surface = Surface::new(solid)?;
+        let tiles = BoundaryTiles::try_new(solid).map_err(|e| CellsError::Face {
+            face: e.face,
+            message: e.source.to_string(),
+        })?;
+        Ok(Octree::build(
+            &SolidTarget { accel, tiles },
+            origin,
+            side,
+            depth,
+        ))
+    }
+
+    /// Labels the cells of an octree of depth `depth` over the solid of a
+    /// CSG tree (see [`Csg::cell_verdict`]).
+    ///
+    /// A cell is `On` when the boundary of a leaf whose side could change
+    /// the tree's answer may meet it: exactly when it meets for flat leaves
+    /// (half-spaces, boxes, polyhedra), conservatively for spheres,
+    /// cylinders and transformed leaves, so `On` cells hold the whole
+    /// boundary of the result and perhaps a little more. A cell inside or
+    /// outside every leaf that matters gets the tree's label at once, and
+    /// what a cell learns of a leaf holds for its sub-cells.
+    ///
+    /// # Errors
+    ///
+    /// [`CellsError::TooDeep`], [`CellsError::Leaf`] for a polyhedral leaf
+    /// whose faces cannot be tiled, [`CellsError::Unbounded`],
+    /// [`CellsError::EmptyBounds`], [`CellsError::OutOfRange`].
+    pub fn classify_csg(csg: &Csg, depth: u32) -> Result<Octree, CellsError> {
+        if depth > MAX_DEPTH {
+            return Err(CellsError::TooDeep {
+                depth,
+                limit: MAX_DEPTH,
+            });
+        }
+        csg.prepare_cells()
+            .map_err(|(leaf, source)| CellsError::Leaf { leaf, source })?;
+        let bounds = csg.bounds();
+        if bounds.is_empty() {
+            return Err(CellsError::EmptyBounds);
+        }
+        if !(bounds.min.is_finite() && bounds.max.is_finite()) {
+            return Err(CellsError::Unbounded);
+        }
+        // Every primitive's bounds hold it (rounded ones are rounded
+        // outward), so the root cube holds the solid.
+        let (origin, side) = root_cube(&bounds, depth)?;
+        Ok(Octree::build(&CsgTarget { csg }, origin, side, depth))
+    }
+
+    /// Refines the cells the target's boundary may meet, labels the rest,
+    /// and counts.
+    fn build<T: CellTarget>(target: &T, origin: DVec3, side: f64, depth: u32) -> Octree {
         let mut tree = Octree {
             origin,
             side,
@@ -220,40 +243,43 @@ impl Octree {
             counts: vec![LevelCounts::default(); depth as usize + 1],
             regions: 0,
         };
-        // Refine what the boundary meets.
-        let mut stack = vec![(0u32, 0u32, 0u32, 0u32)];
-        let mut undecided = Vec::new();
-        while let Some((d, x, y, z)) = stack.pop() {
+        let mut stack = vec![(0u32, 0u32, 0u32, 0u32, target.root_known())];
+        let mut free = Vec::new();
+        while let Some((d, x, y, z, mut known)) = stack.pop() {
             let cell = tree.cell_box(d, x, y, z);
-            if !surface.meets(&cell) {
-                undecided.push(tree.leaves.len());
-                tree.leaves.push(Cell {
-                    depth: d,
-                    x,
-                    y,
-                    z,
-                    label: Label::Out,
-                });
-            } else if d == depth {
-                tree.leaves.push(Cell {
-                    depth: d,
-                    x,
-                    y,
-                    z,
-                    label: Label::On,
-                });
-            } else {
-                for k in 0..8 {
-                    stack.push((
-                        d + 1,
-                        2 * x + (k & 1),
-                        2 * y + (k >> 1 & 1),
-                        2 * z + (k >> 2),
-                    ));
+            let label = match target.judge(&cell, &mut known) {
+                Judgement::In => Label::In,
+                Judgement::Out => Label::Out,
+                Judgement::Free => {
+                    free.push(tree.leaves.len());
+                    // Replaced by the region's label.
+                    Label::Out
                 }
-            }
+                Judgement::Meets if d == depth => Label::On,
+                Judgement::Meets => {
+                    for k in 0..8 {
+                        stack.push((
+                            d + 1,
+                            2 * x + (k & 1),
+                            2 * y + (k >> 1 & 1),
+                            2 * z + (k >> 2),
+                            known.clone(),
+                        ));
+                    }
+                    continue;
+                }
+            };
+            tree.leaves.push(Cell {
+                depth: d,
+                x,
+                y,
+                z,
+                label,
+            });
         }
-        tree.label_regions(&undecided, &accel);
+        if !free.is_empty() {
+            tree.label_regions(&free, target);
+        }
         for c in &tree.leaves {
             let counts = &mut tree.counts[c.depth as usize];
             match c.label {
@@ -262,12 +288,12 @@ impl Octree {
                 Label::On => counts.on += 1,
             }
         }
-        Ok(tree)
+        tree
     }
 
     /// Joins face-adjacent undecided leaves and labels each region by one
     /// exact point classification.
-    fn label_regions(&mut self, undecided: &[usize], accel: &Accel) {
+    fn label_regions<T: CellTarget>(&mut self, undecided: &[usize], target: &T) {
         let index: HashMap<(u32, u32, u32, u32), usize> = self
             .leaves
             .iter()
@@ -309,13 +335,7 @@ impl Octree {
                 let c = self.leaves[root];
                 let b = self.cell_box(c.depth, c.x, c.y, c.z);
                 let centre = (b.min + (b.max - b.min) * 0.5).clamp(b.min, b.max);
-                match accel.classify(centre) {
-                    Ok(Containment::Inside) => Label::In,
-                    Ok(Containment::Outside) => Label::Out,
-                    // The closed cell meets no boundary: neither can happen;
-                    // `On` would still be a safe (conservative) answer.
-                    Ok(Containment::OnBoundary) | Err(_) => Label::On,
-                }
+                target.classify(centre)
             });
             self.leaves[i].label = label;
         }
