@@ -236,3 +236,72 @@ fn cells_of_scenes_hold_their_volumes_and_agree_with_classify() {
         assert!(0.0 <= low && low < high, "{name}: [{low}, {high}]");
     }
 }
+
+/// The In shell validates as a solid whose volume is `V_in` exactly.
+fn assert_valid_shell(tree: &Octree, what: &str) -> wingedge::cells::InShell {
+    use wingedge::validate::{Options, Validity, validate_soup};
+    let shell = tree.in_shell().unwrap();
+    let report = validate_soup(&shell.soup, None, &Options::default()).unwrap();
+    assert_eq!(
+        report.validity,
+        Validity::ValidSolid,
+        "{what}: {:#?}",
+        &report.violations[..report.violations.len().min(5)]
+    );
+    let solid = Solid::try_from_soup(&shell.soup).unwrap();
+    assert_eq!(solid.volume(), tree.volume_bounds().0, "{what}");
+    shell
+}
+
+/// A tree over `[0, 8]³` (unit cells at depth 3) of the box cut by the
+/// given half-spaces.
+fn cut_box(halfspaces: &[(DVec3, DVec3)]) -> wingedge::csg::Csg {
+    use wingedge::csg::{AxisBox, Csg, CsgExpr, HalfSpace};
+    let mut parts = vec![CsgExpr::leaf(
+        AxisBox::try_new(DVec3::ZERO, DVec3::splat(8.0)).unwrap(),
+    )];
+    for &(point, normal) in halfspaces {
+        parts.push(CsgExpr::leaf(HalfSpace::try_new(point, normal).unwrap()));
+    }
+    Csg::try_new(CsgExpr::Intersection(parts)).unwrap()
+}
+
+#[test]
+fn the_in_shell_is_a_valid_solid_of_volume_v_in() {
+    let tree = Octree::classify(&fixture("torus_genus1.obj"), 5).unwrap();
+    let shell = assert_valid_shell(&tree, "torus");
+    assert!(shell.soup.polygons.len() > 100);
+    let tree = Octree::classify_csg(&scene("drilled_cube.json").csg, 5).unwrap();
+    assert_valid_shell(&tree, "drilled cube");
+    let tree = Octree::classify(&fixture("hollow_ball.obj"), 5).unwrap();
+    assert_valid_shell(&tree, "hollow ball");
+}
+
+#[test]
+fn in_cells_touching_along_an_edge_or_at_a_corner_give_a_valid_solid() {
+    // The slab ½ < y − x < 3½ holds whole unit cells only where
+    // y − x = 2: a staircase of cells touching along edges parallel to z.
+    let slab = cut_box(&[
+        (DVec3::new(0.0, 3.5, 0.0), DVec3::new(-1.0, 1.0, 0.0)),
+        (DVec3::new(0.0, 0.5, 0.0), DVec3::new(1.0, -1.0, 0.0)),
+    ]);
+    let tree = Octree::classify_csg(&slab, 3).unwrap();
+    let inside: Vec<_> = tree.leaves().iter().filter(|c| c.label == Label::In).collect();
+    assert!(!inside.is_empty());
+    assert!(inside.iter().all(|c| c.y == c.x + 2), "{inside:?}");
+    let shell = assert_valid_shell(&tree, "edge contacts");
+    assert!(shell.filled > 0 && shell.cavities > 0);
+    // Two such slabs: cells (i, i + 2, i + 2), touching only at corners.
+    let tube = cut_box(&[
+        (DVec3::new(0.0, 3.5, 0.0), DVec3::new(-1.0, 1.0, 0.0)),
+        (DVec3::new(0.0, 0.5, 0.0), DVec3::new(1.0, -1.0, 0.0)),
+        (DVec3::new(0.0, 0.0, 3.5), DVec3::new(-1.0, 0.0, 1.0)),
+        (DVec3::new(0.0, 0.0, 0.5), DVec3::new(1.0, 0.0, -1.0)),
+    ]);
+    let tree = Octree::classify_csg(&tube, 3).unwrap();
+    let inside: Vec<_> = tree.leaves().iter().filter(|c| c.label == Label::In).collect();
+    assert!(inside.len() >= 2, "{inside:?}");
+    assert!(inside.iter().all(|c| c.y == c.x + 2 && c.z == c.x + 2), "{inside:?}");
+    let shell = assert_valid_shell(&tree, "corner contacts");
+    assert!(shell.filled > 0 && shell.cavities > 0);
+}

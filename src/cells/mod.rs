@@ -6,10 +6,12 @@
 //! the cells the boundary meets and labels the others by propagation;
 //! `npy` writes the dense voxel array numpy reads.
 
+mod in_shell;
 mod npy;
 mod octree;
 mod target;
 
 pub use crate::geom::box_meets_triangle;
+pub use in_shell::{InShell, SUBDIVISION};
 pub use npy::write_npy;
 pub use octree::{Cell, CellsError, Label, LevelCounts, MAX_DENSE_DEPTH, MAX_DEPTH, Octree};

@@ -130,6 +130,13 @@ pub enum CellsError {
     /// boxes).
     #[error("the solid is empty (its bounds hold nothing)")]
     EmptyBounds,
+    /// The `In` cells' outer faces could not be made manifold within the
+    /// repair's bounds (see [`Octree::in_shell`]).
+    #[error("the In cells' faces cannot be made a manifold solid: {message}")]
+    Repair {
+        /// Why.
+        message: String,
+    },
     /// The solid's box is too large for cell corners to be exact.
     #[error("the solid's box (size {}) is too large or too far out for exact cell corners", Readable(*.size))]
     OutOfRange {
