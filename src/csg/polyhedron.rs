@@ -205,7 +205,7 @@ impl Primitive for Polyhedron {
     /// cannot be tiled, reported by `prepare_cells`) every cell in the box
     /// is `Meets`.
     fn cell_relation(&self, cell: &Aabb) -> CellRelation {
-        let b = self.solid.bounding_box();
+        let b = self.accel.bounds();
         if cell.max.cmplt(b.min).any() || cell.min.cmpgt(b.max).any() {
             return CellRelation::Outside;
         }
