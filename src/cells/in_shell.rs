@@ -115,35 +115,43 @@ impl SubGrid<'_> {
         std::array::from_fn(|o| self.full(octant(p, o)))
     }
 
-    /// A sub-cell to fill that removes a critical configuration at `p`, if
-    /// there is one.
+    /// The sub-cells to fill that remove a critical configuration at `p`,
+    /// if there is one.
     fn repair_at(&self, p: Lattice) -> Option<Vec<Lattice>> {
-        let full = self.octants(p);
-        // An edge from p along ±axis: its four sub-cells.
-        for axis in 0..3 {
-            for side in 0..2 {
-                let (b, c) = ((axis + 1) % 3, (axis + 2) % 3);
-                let o = |i: usize, j: usize| (side << axis) | (i << b) | (j << c);
-                let (o00, o01, o10, o11) = (o(0, 0), o(0, 1), o(1, 0), o(1, 1));
-                if full[o00] == full[o11] && full[o01] == full[o10] && full[o00] != full[o01] {
-                    let empty = if full[o00] { o01 } else { o00 };
-                    return Some(vec![octant(p, empty)]);
-                }
-            }
-        }
-        let count = full.iter().filter(|&&f| f).count();
-        for o in 0..8 {
-            let opposite = 7 - o;
-            if count == 2 && full[o] && full[opposite] {
-                // Join them by faces: o → o^1 → o^3 → opposite.
-                return Some(vec![octant(p, o ^ 1), octant(p, o ^ 3)]);
-            }
-            if count == 6 && !full[o] && !full[opposite] {
-                return Some(vec![octant(p, o)]);
-            }
-        }
-        None
+        let fill = critical(self.octants(p))?;
+        Some(fill.into_iter().map(|o| octant(p, o)).collect())
     }
+}
+
+/// The octants to fill that remove a critical configuration among the
+/// eight cubes around a point (`full[o]`, octant `o` as in [`octant`]), if
+/// there is one: a diagonal pair around one of the six edges from the
+/// point, or two opposite corners alone (full or empty).
+fn critical(full: [bool; 8]) -> Option<Vec<usize>> {
+    // An edge from the point along ±axis: its four cubes.
+    for axis in 0..3 {
+        for side in 0..2 {
+            let (b, c) = ((axis + 1) % 3, (axis + 2) % 3);
+            let o = |i: usize, j: usize| (side << axis) | (i << b) | (j << c);
+            let (o00, o01, o10, o11) = (o(0, 0), o(0, 1), o(1, 0), o(1, 1));
+            if full[o00] == full[o11] && full[o01] == full[o10] && full[o00] != full[o01] {
+                let empty = if full[o00] { o01 } else { o00 };
+                return Some(vec![empty]);
+            }
+        }
+    }
+    let count = full.iter().filter(|&&f| f).count();
+    for o in 0..8 {
+        let opposite = 7 - o;
+        if count == 2 && full[o] && full[opposite] {
+            // Join them by faces: o → o^1 → o^3 → opposite.
+            return Some(vec![o ^ 1, o ^ 3]);
+        }
+        if count == 6 && !full[o] && !full[opposite] {
+            return Some(vec![o]);
+        }
+    }
+    None
 }
 
 /// The sub-cell in octant `o` of lattice point `p`.
@@ -207,7 +215,10 @@ impl Octree {
         let mut seen: HashSet<Lattice> = HashSet::new();
         for &c in on {
             for p in corners(c) {
-                if seen.insert(p) {
+                let at_cells: [bool; 8] = std::array::from_fn(|o| {
+                    grid.label(octant(p.map(|v| v / SUBDIVISION), o)) == Label::In
+                });
+                if critical(at_cells).is_some() && seen.insert(p) {
                     work.push(p);
                     for axis in 0..3 {
                         for step in 1..SUBDIVISION {
