@@ -227,7 +227,11 @@ fn cells_of_scenes_hold_their_volumes_and_agree_with_classify() {
         let tree = Octree::classify_csg(&many.csg, depth).unwrap();
         assert_holds(&tree, sum, &format!("many leaves, depth {depth}"));
     }
-    assert_centres_agree(&many.csg, &Octree::classify_csg(&many.csg, 5).unwrap(), "many");
+    assert_centres_agree(
+        &many.csg,
+        &Octree::classify_csg(&many.csg, 5).unwrap(),
+        "many",
+    );
     for name in ["platonic.json", "mesh_cut.json", "turned_part.json"] {
         let s = scene(name);
         let tree = Octree::classify_csg(&s.csg, 4).unwrap();
@@ -286,7 +290,11 @@ fn in_cells_touching_along_an_edge_or_at_a_corner_give_a_valid_solid() {
         (DVec3::new(0.0, 0.5, 0.0), DVec3::new(1.0, -1.0, 0.0)),
     ]);
     let tree = Octree::classify_csg(&slab, 3).unwrap();
-    let inside: Vec<_> = tree.leaves().iter().filter(|c| c.label == Label::In).collect();
+    let inside: Vec<_> = tree
+        .leaves()
+        .iter()
+        .filter(|c| c.label == Label::In)
+        .collect();
     assert!(!inside.is_empty());
     assert!(inside.iter().all(|c| c.y == c.x + 2), "{inside:?}");
     let shell = assert_valid_shell(&tree, "edge contacts");
@@ -299,9 +307,16 @@ fn in_cells_touching_along_an_edge_or_at_a_corner_give_a_valid_solid() {
         (DVec3::new(0.0, 0.0, 0.5), DVec3::new(1.0, 0.0, -1.0)),
     ]);
     let tree = Octree::classify_csg(&tube, 3).unwrap();
-    let inside: Vec<_> = tree.leaves().iter().filter(|c| c.label == Label::In).collect();
+    let inside: Vec<_> = tree
+        .leaves()
+        .iter()
+        .filter(|c| c.label == Label::In)
+        .collect();
     assert!(inside.len() >= 2, "{inside:?}");
-    assert!(inside.iter().all(|c| c.y == c.x + 2 && c.z == c.x + 2), "{inside:?}");
+    assert!(
+        inside.iter().all(|c| c.y == c.x + 2 && c.z == c.x + 2),
+        "{inside:?}"
+    );
     let shell = assert_valid_shell(&tree, "corner contacts");
     assert!(shell.filled > 0 && shell.cavities > 0);
 }

@@ -75,10 +75,16 @@ fn bad_requests_name_what_is_wrong() {
     .unwrap();
     let (code, _, err) = wingedge(&["cells", unbounded.to_str().unwrap()]);
     assert_eq!(code, 2);
-    assert!(err.contains("unbounded.json: the solid is unbounded"), "{err}");
+    assert!(
+        err.contains("unbounded.json: the solid is unbounded"),
+        "{err}"
+    );
     let bad = dir.path().join("bad.json");
-    std::fs::write(&bad, r#"{"root": {"sphere": {"center": [0, 0, 0], "radius": -1}}}"#)
-        .unwrap();
+    std::fs::write(
+        &bad,
+        r#"{"root": {"sphere": {"center": [0, 0, 0], "radius": -1}}}"#,
+    )
+    .unwrap();
     let (code, _, err) = wingedge(&["cells", bad.to_str().unwrap()]);
     assert_eq!(code, 2);
     assert!(err.contains("bad.json") && err.contains("radius"), "{err}");

@@ -42,7 +42,8 @@ use std::collections::{HashMap, HashSet};
 
 use glam::DVec3;
 
-use super::octree::{CellsError, Label, Octree};
+use super::label::Label;
+use super::octree::{CellsError, Octree};
 use crate::mesh::{Polygon, PolygonSoup};
 
 /// Sub-cells along a cell side in the repair grid.
@@ -389,8 +390,7 @@ impl Octree {
                     ring.push(index[&a]);
                     let steps = (0..3).map(|i| (b[i] - a[i]).abs()).sum::<i64>();
                     for t in 1..steps {
-                        let p: Lattice =
-                            std::array::from_fn(|i| a[i] + (b[i] - a[i]).signum() * t);
+                        let p: Lattice = std::array::from_fn(|i| a[i] + (b[i] - a[i]).signum() * t);
                         if let Some(&v) = index.get(&p) {
                             ring.push(v);
                         }

@@ -1,8 +1,9 @@
 //! The octree: cells the boundary meets are split down to the depth asked
-//! for; every other cell is `In` or `Out`, decided for a whole connected
-//! region by one point classification.
+//! for; every other cell is `In` or `Out`. Written once over a
+//! [`CellTarget`]: a solid (below) or a CSG tree
+//! ([`Octree::classify_csg`]).
 //!
-//! # How cells are labelled
+//! # How the cells of a solid are labelled
 //!
 //! 1. The root is the smallest cube of power-of-two side whose corner is a
 //!    multiple of the finest cell side and which holds the solid's box, so
@@ -12,7 +13,7 @@
 //!    cell: its faces, triangulated exactly (`Solid::try_triangulate_face`,
 //!    rings included), are
 //!    fetched by a box query on the shared BVH and tested by
-//!    [`box_meets_triangle`]. `On` cells above the finest depth are split;
+//!    [`box_meets_triangle`](crate::geom::box_meets_triangle). `On` cells above the finest depth are split;
 //!    cells the boundary does not meet are leaves.
 //! 3. Two leaves that share a face and are both not `On` lie in one region
 //!    without boundary, so they have the same label. Leaves are joined
@@ -21,6 +22,10 @@
 //!    side), and one point of each region — the centre of its first cell,
 //!    rounded, still inside that cell — is classified exactly. A region
 //!    costs one query, not one per cell.
+//!
+//! A CSG tree labels each cell itself ([`Csg::cell_verdict`]): `In` or
+//! `Out` when every leaf whose side matters is decided on the cell, else
+//! refined; what a cell learnt of a leaf is handed down to its sub-cells.
 //!
 //! # The volume interval
 //!
@@ -35,6 +40,7 @@ use std::collections::HashMap;
 use glam::DVec3;
 use thiserror::Error;
 
+use super::label::Label;
 use super::target::{CellTarget, CsgTarget, Judgement, SolidTarget};
 use crate::csg::Csg;
 use crate::disjoint_sets::DisjointSets;
@@ -49,17 +55,6 @@ pub const MAX_DEPTH: u32 = 16;
 /// The deepest octree whose dense array [`Octree::dense`] writes:
 /// `2^9 = 512` cells along a side, 128 MiB.
 pub const MAX_DENSE_DEPTH: u32 = 9;
-
-/// Where a cell is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Label {
-    /// Inside the solid: the boundary does not meet the closed cell.
-    In,
-    /// Outside the solid: the boundary does not meet the closed cell.
-    Out,
-    /// The boundary meets the closed cell (only at the finest depth).
-    On,
-}
 
 /// A leaf of the octree: cell `(x, y, z)` of the `2^depth` cells along each
 /// side at `depth`.

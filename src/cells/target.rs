@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::octree::Label;
+use super::label::Label;
 use crate::csg::{CellVerdict, Csg, LeafSides, Stats};
 use crate::geom::Aabb;
 use crate::query::{Accel, BoundaryTiles, Containment};

@@ -234,7 +234,10 @@ mod tests {
         assert_eq!(csg.cell_verdict(&cell, &mut sides), CellVerdict::Outside);
         let union = Csg::try_new(a.clone().union(b.clone())).unwrap();
         let mut sides = LeafSides::unknown(&union);
-        assert_eq!(union.cell_verdict(&cell, &mut sides), CellVerdict::Undecided);
+        assert_eq!(
+            union.cell_verdict(&cell, &mut sides),
+            CellVerdict::Undecided
+        );
         // Inside a, the cut b is far: a − b holds the box.
         let diff = Csg::try_new(a.difference(b)).unwrap();
         let mut sides = LeafSides::unknown(&diff);

@@ -3,9 +3,9 @@
 use glam::DVec3;
 use thiserror::Error;
 
+use super::cell_relation::{CELL_ROUNDING, CELL_UNDERFLOW, centre, corners};
 use super::primitive::push_convex_interval;
 use super::sphere::quadratic_roots;
-use super::cell_relation::{CELL_ROUNDING, CELL_UNDERFLOW, centre, corners};
 use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
 use crate::geom::{Aabb, Ray};
 
@@ -195,7 +195,7 @@ impl Primitive for Cylinder {
     }
 
     /// Conservative: `Inside` when every corner is inside beyond the
-    /// rounding bound ([`CELL_ROUNDING`]; the solid is convex); `Outside`
+    /// rounding bound (32 ε of the magnitudes; the solid is convex); `Outside`
     /// when every corner is beyond one cap plane, or when the cell lies
     /// beyond the side along the direction from the axis to the cell's
     /// centre (a separating axis); else `Meets`. Cells near an edge of

@@ -99,7 +99,8 @@ impl Polyhedron {
 
     /// The exact face tiles, built once.
     fn tiles(&self) -> &Result<BoundaryTiles, TileError> {
-        self.tiles.get_or_init(|| BoundaryTiles::try_new(&self.solid))
+        self.tiles
+            .get_or_init(|| BoundaryTiles::try_new(&self.solid))
     }
 
     fn face_normal(&self, face: FaceId) -> DVec3 {

@@ -118,7 +118,7 @@ impl Primitive for Sphere {
 
     /// Conservative: the squared distances from the centre to the nearest
     /// point of the cell and to its farthest corner, compared with `r²`
-    /// beyond their rounding bound ([`CELL_ROUNDING`]); a cell within that
+    /// beyond their rounding bound (32 ε of the magnitudes); a cell within that
     /// bound of the sphere is `Meets`.
     fn cell_relation(&self, cell: &Aabb) -> CellRelation {
         let c = self.center;

@@ -6,8 +6,8 @@ use glam::{DAffine3, DMat3, DVec3};
 use thiserror::Error;
 
 use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
-use crate::query::TileError;
 use crate::geom::{Aabb, Ray};
+use crate::query::TileError;
 
 /// Why a transform could not be applied.
 #[derive(Clone, Debug, Error, PartialEq)]
