@@ -249,7 +249,8 @@ fn assert_valid_shell(tree: &Octree, what: &str) -> wingedge::cells::InShell {
     assert_eq!(
         report.validity,
         Validity::ValidSolid,
-        "{what}: {:#?}",
+        "{what}: {:?} {:#?}",
+        report.not_built,
         &report.violations[..report.violations.len().min(5)]
     );
     let solid = Solid::try_from_soup(&shell.soup).unwrap();
@@ -319,4 +320,45 @@ fn in_cells_touching_along_an_edge_or_at_a_corner_give_a_valid_solid() {
     );
     let shell = assert_valid_shell(&tree, "corner contacts");
     assert!(shell.filled > 0 && shell.cavities > 0);
+}
+
+#[test]
+fn in_shells_of_random_cut_boxes_are_valid_solids() {
+    use wingedge::csg::{AxisBox, Csg, CsgExpr, HalfSpace, Sphere};
+    // A small deterministic generator (xorshift), so failures replay.
+    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut repaired, mut empty) = (0, 0);
+    for trial in 0..300 {
+        let mut parts = Vec::new();
+        for _ in 0..4 {
+            let a = DVec3::new(next(), next(), next()) * 6.0;
+            let b = a + DVec3::new(next(), next(), next()) * 4.0 + DVec3::splat(0.5);
+            let normal = DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
+            let piece = CsgExpr::leaf(AxisBox::try_new(a, b).unwrap()).intersection(
+                CsgExpr::leaf(HalfSpace::try_new((a + b) * 0.5, normal).unwrap()),
+            );
+            parts.push(piece);
+        }
+        parts.push(CsgExpr::leaf(
+            Sphere::try_new(DVec3::new(next(), next(), next()) * 8.0, 1.0 + next()).unwrap(),
+        ));
+        let csg = Csg::try_new(CsgExpr::Union(parts)).unwrap();
+        let tree = Octree::classify_csg(&csg, 4 + trial % 2).unwrap();
+        if tree.volume_bounds().0 == 0.0 {
+            // No In cell: no faces.
+            assert!(tree.in_shell().unwrap().soup.polygons.is_empty());
+            empty += 1;
+            continue;
+        }
+        let shell = assert_valid_shell(&tree, &format!("trial {trial}"));
+        repaired += shell.filled;
+    }
+    assert!(repaired > 0, "no trial needed a repair");
+    assert!(empty < 60, "{empty} trials without In cells");
 }
