@@ -340,9 +340,9 @@ fn in_shells_of_random_cut_boxes_are_valid_solids() {
             let a = DVec3::new(next(), next(), next()) * 6.0;
             let b = a + DVec3::new(next(), next(), next()) * 4.0 + DVec3::splat(0.5);
             let normal = DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
-            let piece = CsgExpr::leaf(AxisBox::try_new(a, b).unwrap()).intersection(
-                CsgExpr::leaf(HalfSpace::try_new((a + b) * 0.5, normal).unwrap()),
-            );
+            let piece = CsgExpr::leaf(AxisBox::try_new(a, b).unwrap()).intersection(CsgExpr::leaf(
+                HalfSpace::try_new((a + b) * 0.5, normal).unwrap(),
+            ));
             parts.push(piece);
         }
         parts.push(CsgExpr::leaf(
