@@ -214,12 +214,26 @@ impl Csg {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::csg::{AxisBox, CsgExpr, Sphere};
+    use crate::csg::{AxisBox, CsgExpr, Cylinder, HalfSpace, Sphere, Transformed};
 
     fn cube(min: f64, max: f64) -> Aabb {
         Aabb {
             min: DVec3::splat(min),
             max: DVec3::splat(max),
+        }
+    }
+
+    trait Shift {
+        fn translate(self, x: f64) -> Aabb;
+    }
+
+    impl Shift for Aabb {
+        fn translate(self, x: f64) -> Aabb {
+            let d = DVec3::new(x, 0.0, 0.0);
+            Aabb {
+                min: self.min + d,
+                max: self.max + d,
+            }
         }
     }
 
@@ -259,5 +273,66 @@ mod tests {
             max: DVec3::new(2.0, 0.5, 0.5),
         };
         assert_eq!(s.cell_relation(&touching), CellRelation::Meets);
+    }
+
+    #[test]
+    fn flat_primitives_answer_exactly() {
+        let h = HalfSpace::try_new(DVec3::splat(0.5), DVec3::new(1.0, 1.0, 0.0)).unwrap();
+        // x + y ≤ 1: the cell [0, ½]³ touches the plane at its corner.
+        assert_eq!(h.cell_relation(&cube(0.0, 0.5)), CellRelation::Meets);
+        assert_eq!(
+            h.cell_relation(&cube(0.0, 0.5f64.next_down())),
+            CellRelation::Inside
+        );
+        assert_eq!(
+            h.cell_relation(&cube(0.5f64.next_up(), 1.0)),
+            CellRelation::Outside
+        );
+        let b = AxisBox::try_new(DVec3::ZERO, DVec3::ONE).unwrap();
+        assert_eq!(b.cell_relation(&cube(0.25, 0.75)), CellRelation::Inside);
+        assert_eq!(b.cell_relation(&cube(0.5, 1.0)), CellRelation::Meets);
+        assert_eq!(b.cell_relation(&cube(1.0, 2.0)), CellRelation::Meets);
+        assert_eq!(
+            b.cell_relation(&cube(1f64.next_up(), 2.0)),
+            CellRelation::Outside
+        );
+    }
+
+    #[test]
+    fn a_cylinder_and_a_transformed_leaf_answer_conservatively() {
+        let c = Cylinder::try_new(DVec3::ZERO, DVec3::new(0.0, 0.0, 4.0), 1.0).unwrap();
+        let cell = |min: [f64; 3], max: [f64; 3]| Aabb {
+            min: DVec3::from(min),
+            max: DVec3::from(max),
+        };
+        assert_eq!(
+            c.cell_relation(&cell([-0.5, -0.5, 1.0], [0.5, 0.5, 2.0])),
+            CellRelation::Inside
+        );
+        // Beyond the side (a separating axis along x), beyond the top cap.
+        assert_eq!(
+            c.cell_relation(&cell([1.25, -0.25, 1.0], [1.75, 0.25, 2.0])),
+            CellRelation::Outside
+        );
+        assert_eq!(
+            c.cell_relation(&cell([-0.5, -0.5, 4.5], [0.5, 0.5, 5.0])),
+            CellRelation::Outside
+        );
+        assert_eq!(
+            c.cell_relation(&cell([0.5, -0.25, 1.0], [1.5, 0.25, 2.0])),
+            CellRelation::Meets
+        );
+        let moved: std::sync::Arc<dyn Primitive> =
+            std::sync::Arc::new(AxisBox::try_new(DVec3::ZERO, DVec3::ONE).unwrap());
+        let t = Transformed::try_new(
+            moved,
+            glam::DAffine3::from_translation(DVec3::new(10.0, 0.0, 0.0)),
+        )
+        .unwrap();
+        assert_eq!(
+            t.cell_relation(&cube(0.25, 0.75).translate(10.0)),
+            CellRelation::Inside
+        );
+        assert_eq!(t.cell_relation(&cube(0.25, 0.75)), CellRelation::Outside);
     }
 }
