@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use wingedge::cells::{CellsError, Label, MAX_DEPTH, Octree};
+use wingedge::csg::Stats;
 use wingedge::glam::DVec3;
 use wingedge::io::read_obj;
 use wingedge::mesh::{PolygonSoup, Solid, builders};
@@ -178,7 +179,7 @@ fn scene(name: &str) -> wingedge::scene::Scene {
 /// Every `In` or `Out` leaf's centre classifies the same way against the
 /// tree.
 fn assert_centres_agree(csg: &wingedge::csg::Csg, tree: &Octree, what: &str) {
-    use wingedge::csg::{Containment, Stats};
+    use wingedge::csg::Containment;
     let mut stats = Stats::default();
     for c in tree.leaves() {
         let b = tree.cell_box(c.depth, c.x, c.y, c.z);
@@ -200,7 +201,7 @@ fn cells_of_the_drilled_cube_hold_its_closed_form_volume() {
     let drilled = scene("drilled_cube.json");
     let mut width = f64::INFINITY;
     for depth in 2..=7 {
-        let tree = Octree::classify_csg(&drilled.csg, depth).unwrap();
+        let tree = Octree::classify_csg(&drilled.csg, depth, &mut Stats::default()).unwrap();
         assert_holds(&tree, exact, &format!("drilled cube, depth {depth}"));
         let (low, high) = tree.volume_bounds();
         assert!(high - low < width, "depth {depth}: {low} {high}");
@@ -224,14 +225,21 @@ fn cells_of_scenes_hold_their_volumes_and_agree_with_classify() {
         .map(|l| l.primitive.exact_volume().unwrap())
         .sum();
     for depth in [3, 5, 6] {
-        let tree = Octree::classify_csg(&many.csg, depth).unwrap();
+        let tree = Octree::classify_csg(&many.csg, depth, &mut Stats::default()).unwrap();
         assert_holds(&tree, sum, &format!("many leaves, depth {depth}"));
     }
-    assert_centres_agree(
-        &many.csg,
-        &Octree::classify_csg(&many.csg, 5).unwrap(),
-        "many",
+    // Only the work a cell calls for: 101 leaves, yet about one leaf box
+    // test per cell (the others are culled by the tree's bounds), and no
+    // point classification (boxes and spheres answer inside or outside).
+    let mut stats = Stats::default();
+    let tree = Octree::classify_csg(&many.csg, 5, &mut stats).unwrap();
+    let visited = tree.leaves().len() as u64;
+    assert!(
+        stats.primitive_cell_tests < 2 * visited && stats.culled_subtrees > 10 * visited,
+        "{stats} for {visited} leaves"
     );
+    assert_eq!(stats.primitive_point_tests, 0);
+    assert_centres_agree(&many.csg, &tree, "many");
     // Scenes without a closed form: the ray-integrated volume (close to
     // the exact one, far closer than the interval's width) lies inside.
     for name in [
@@ -241,9 +249,9 @@ fn cells_of_scenes_hold_their_volumes_and_agree_with_classify() {
         "blobby.json",
     ] {
         let s = scene(name);
-        let tree = Octree::classify_csg(&s.csg, 4).unwrap();
+        let tree = Octree::classify_csg(&s.csg, 4, &mut Stats::default()).unwrap();
         assert_centres_agree(&s.csg, &tree, name);
-        let tree = Octree::classify_csg(&s.csg, 6).unwrap();
+        let tree = Octree::classify_csg(&s.csg, 6, &mut Stats::default()).unwrap();
         let (low, high) = tree.volume_bounds();
         let estimate = s.csg.try_volume(0.03).unwrap().volume;
         assert!(
@@ -288,7 +296,8 @@ fn the_in_shell_is_a_valid_solid_of_volume_v_in() {
     let tree = Octree::classify(&fixture("torus_genus1.obj"), 5).unwrap();
     let shell = assert_valid_shell(&tree, "torus");
     assert!(shell.soup.polygons.len() > 100);
-    let tree = Octree::classify_csg(&scene("drilled_cube.json").csg, 5).unwrap();
+    let tree =
+        Octree::classify_csg(&scene("drilled_cube.json").csg, 5, &mut Stats::default()).unwrap();
     assert_valid_shell(&tree, "drilled cube");
     let tree = Octree::classify(&fixture("hollow_ball.obj"), 5).unwrap();
     assert_valid_shell(&tree, "hollow ball");
@@ -302,7 +311,7 @@ fn in_cells_touching_along_an_edge_or_at_a_corner_give_a_valid_solid() {
         (DVec3::new(0.0, 3.5, 0.0), DVec3::new(-1.0, 1.0, 0.0)),
         (DVec3::new(0.0, 0.5, 0.0), DVec3::new(1.0, -1.0, 0.0)),
     ]);
-    let tree = Octree::classify_csg(&slab, 3).unwrap();
+    let tree = Octree::classify_csg(&slab, 3, &mut Stats::default()).unwrap();
     let inside: Vec<_> = tree
         .leaves()
         .iter()
@@ -319,7 +328,7 @@ fn in_cells_touching_along_an_edge_or_at_a_corner_give_a_valid_solid() {
         (DVec3::new(0.0, 0.0, 3.5), DVec3::new(-1.0, 0.0, 1.0)),
         (DVec3::new(0.0, 0.0, 0.5), DVec3::new(1.0, 0.0, -1.0)),
     ]);
-    let tree = Octree::classify_csg(&tube, 3).unwrap();
+    let tree = Octree::classify_csg(&tube, 3, &mut Stats::default()).unwrap();
     let inside: Vec<_> = tree
         .leaves()
         .iter()
@@ -361,7 +370,7 @@ fn in_shells_of_random_cut_boxes_are_valid_solids() {
             Sphere::try_new(DVec3::new(next(), next(), next()) * 8.0, 1.0 + next()).unwrap(),
         ));
         let csg = Csg::try_new(CsgExpr::Union(parts)).unwrap();
-        let tree = Octree::classify_csg(&csg, 4 + trial % 2).unwrap();
+        let tree = Octree::classify_csg(&csg, 4 + trial % 2, &mut Stats::default()).unwrap();
         if tree.volume_bounds().0 == 0.0 {
             // No In cell: no faces.
             assert!(tree.in_shell().unwrap().soup.polygons.is_empty());

@@ -35,6 +35,7 @@
 //! the finest cell and rounded down and up only past 2^53 units, so the
 //! interval is certified.
 
+use std::cell::RefCell;
 use std::collections::HashMap;
 
 use glam::DVec3;
@@ -42,7 +43,7 @@ use thiserror::Error;
 
 use super::label::Label;
 use super::target::{CellTarget, CsgTarget, Judgement, SolidTarget};
-use crate::csg::Csg;
+use crate::csg::{Csg, Stats};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Readable};
 use crate::mesh::{FaceId, Solid};
@@ -205,14 +206,16 @@ impl Octree {
     /// cylinders and transformed leaves, so `On` cells hold the whole
     /// boundary of the result and perhaps a little more. A cell inside or
     /// outside every leaf that matters gets the tree's label at once, and
-    /// what a cell learns of a leaf holds for its sub-cells.
+    /// what a cell learns of a leaf holds for its sub-cells. The tree's
+    /// work is added to `stats` (leaf box tests, point classifications,
+    /// culled subtrees, skipped right operands).
     ///
     /// # Errors
     ///
     /// [`CellsError::TooDeep`], [`CellsError::Leaf`] for a polyhedral leaf
     /// whose faces cannot be tiled, [`CellsError::Unbounded`],
     /// [`CellsError::EmptyBounds`], [`CellsError::OutOfRange`].
-    pub fn classify_csg(csg: &Csg, depth: u32) -> Result<Octree, CellsError> {
+    pub fn classify_csg(csg: &Csg, depth: u32, stats: &mut Stats) -> Result<Octree, CellsError> {
         if depth > MAX_DEPTH {
             return Err(CellsError::TooDeep {
                 depth,
@@ -231,7 +234,13 @@ impl Octree {
         // Every primitive's bounds hold it (rounded ones are rounded
         // outward), so the root cube holds the solid.
         let (origin, side) = root_cube(&bounds, depth)?;
-        Ok(Octree::build(&CsgTarget { csg }, origin, side, depth))
+        let target = CsgTarget {
+            csg,
+            stats: RefCell::new(Stats::default()),
+        };
+        let tree = Octree::build(&target, origin, side, depth);
+        *stats += target.stats.into_inner();
+        Ok(tree)
     }
 
     /// Refines the cells the target's boundary may meet, labels the rest,

@@ -2,6 +2,8 @@
 //! how a cell lies. The octree's refinement, labelling and outputs are
 //! written once, over [`CellTarget`].
 
+use std::cell::RefCell;
+
 use glam::DVec3;
 
 use super::label::Label;
@@ -75,6 +77,8 @@ impl CellTarget for SolidTarget {
 /// of the leaves handed down to the sub-cells.
 pub(crate) struct CsgTarget<'a> {
     pub(crate) csg: &'a Csg,
+    /// The work of the tree's queries.
+    pub(crate) stats: RefCell<Stats>,
 }
 
 impl CellTarget for CsgTarget<'_> {
@@ -85,7 +89,10 @@ impl CellTarget for CsgTarget<'_> {
     }
 
     fn judge(&self, cell: &Aabb, known: &mut LeafSides) -> Judgement {
-        match self.csg.cell_verdict(cell, known) {
+        match self
+            .csg
+            .cell_verdict(cell, known, &mut self.stats.borrow_mut())
+        {
             CellVerdict::Inside => Judgement::In,
             CellVerdict::Outside => Judgement::Out,
             CellVerdict::Undecided => Judgement::Meets,
@@ -93,7 +100,7 @@ impl CellTarget for CsgTarget<'_> {
     }
 
     fn classify(&self, p: DVec3) -> Label {
-        match self.csg.classify_point(p, &mut Stats::default()) {
+        match self.csg.classify_point(p, &mut self.stats.borrow_mut()) {
             Containment::Inside => Label::In,
             Containment::Outside => Label::Out,
             Containment::OnBoundary => Label::On,

@@ -14,7 +14,7 @@
 use glam::DVec3;
 
 use super::tree::{NodeIndex, NodeKind};
-use super::{Containment, Csg, CsgOp, Primitive};
+use super::{Containment, Csg, CsgOp, Primitive, Stats};
 use crate::geom::Aabb;
 use crate::query::TileError;
 
@@ -104,6 +104,12 @@ fn apart(a: &Aabb, b: &Aabb) -> bool {
     a.max.cmplt(lo).any() || a.min.cmpgt(hi).any()
 }
 
+/// `primitive.classify_point(p)`, counted.
+fn count_point(stats: &mut Stats, primitive: &dyn Primitive, p: DVec3) -> Containment {
+    stats.primitive_point_tests += 1;
+    primitive.classify_point(p)
+}
+
 impl Csg {
     /// Makes every leaf ready for [`Csg::cell_verdict`] (a polyhedron tiles
     /// its faces exactly), so that no box is answered conservatively
@@ -128,15 +134,30 @@ impl Csg {
     /// intersection or difference is not asked when the left one already
     /// decides, nor the right operand of a union whose left one is inside.
     /// A leaf whose boundary is apart from the box is decided by
-    /// classifying the box's centre.
-    pub fn cell_verdict(&self, cell: &Aabb, sides: &mut LeafSides) -> CellVerdict {
-        self.node_verdict(self.root, cell, sides)
+    /// classifying the box's centre. The work is counted in `stats`
+    /// (`primitive_cell_tests`, `primitive_point_tests`, `bounds_tests`,
+    /// `culled_subtrees`, `skipped_right_sides`).
+    pub fn cell_verdict(
+        &self,
+        cell: &Aabb,
+        sides: &mut LeafSides,
+        stats: &mut Stats,
+    ) -> CellVerdict {
+        self.node_verdict(self.root, cell, sides, stats)
     }
 
-    fn node_verdict(&self, node: NodeIndex, cell: &Aabb, sides: &mut LeafSides) -> CellVerdict {
+    fn node_verdict(
+        &self,
+        node: NodeIndex,
+        cell: &Aabb,
+        sides: &mut LeafSides,
+        stats: &mut Stats,
+    ) -> CellVerdict {
         use CellVerdict::{Inside, Outside, Undecided};
         let n = &self.nodes[node];
+        stats.bounds_tests += 1;
         if apart(cell, &n.bounds) {
+            stats.culled_subtrees += 1;
             return Outside;
         }
         match n.kind {
@@ -146,11 +167,12 @@ impl Csg {
                     return if inside { Inside } else { Outside };
                 }
                 let primitive: &dyn Primitive = &*self.leaves[id.0 as usize].primitive;
+                stats.primitive_cell_tests += 1;
                 let inside = match primitive.cell_relation(cell) {
                     CellRelation::Inside => true,
                     CellRelation::Outside => false,
                     CellRelation::Meets => return Undecided,
-                    CellRelation::Apart => match primitive.classify_point(centre(cell)) {
+                    CellRelation::Apart => match count_point(stats, primitive, centre(cell)) {
                         Containment::Inside => true,
                         Containment::Outside => false,
                         // Apart from the boundary yet on it: only a rounded
@@ -162,13 +184,14 @@ impl Csg {
                 if inside { Inside } else { Outside }
             }
             NodeKind::Op { op, left, right } => {
-                let a = self.node_verdict(left, cell, sides);
+                let a = self.node_verdict(left, cell, sides, stats);
                 match op {
                     CsgOp::Union => {
                         if a == Inside {
+                            stats.skipped_right_sides += 1;
                             return Inside;
                         }
-                        match self.node_verdict(right, cell, sides) {
+                        match self.node_verdict(right, cell, sides, stats) {
                             Inside => Inside,
                             Outside => a,
                             Undecided => Undecided,
@@ -176,9 +199,10 @@ impl Csg {
                     }
                     CsgOp::Intersection => {
                         if a == Outside {
+                            stats.skipped_right_sides += 1;
                             return Outside;
                         }
-                        match self.node_verdict(right, cell, sides) {
+                        match self.node_verdict(right, cell, sides, stats) {
                             Outside => Outside,
                             Inside => a,
                             Undecided => Undecided,
@@ -186,9 +210,10 @@ impl Csg {
                     }
                     CsgOp::Difference => {
                         if a == Outside {
+                            stats.skipped_right_sides += 1;
                             return Outside;
                         }
-                        match self.node_verdict(right, cell, sides) {
+                        match self.node_verdict(right, cell, sides, stats) {
                             Inside => Outside,
                             Outside => a,
                             Undecided => Undecided,
@@ -197,9 +222,10 @@ impl Csg {
                     CsgOp::ReverseDifference => {
                         // right − left.
                         if a == Inside {
+                            stats.skipped_right_sides += 1;
                             return Outside;
                         }
-                        match self.node_verdict(right, cell, sides) {
+                        match self.node_verdict(right, cell, sides, stats) {
                             Outside => Outside,
                             Inside if a == Outside => Inside,
                             _ => Undecided,
@@ -245,18 +271,21 @@ mod tests {
         // On a's boundary (touches x = 1), far from b.
         let cell = cube(0.75, 1.25);
         let mut sides = LeafSides::unknown(&csg);
-        assert_eq!(csg.cell_verdict(&cell, &mut sides), CellVerdict::Outside);
+        assert_eq!(
+            csg.cell_verdict(&cell, &mut sides, &mut Stats::default()),
+            CellVerdict::Outside
+        );
         let union = Csg::try_new(a.clone().union(b.clone())).unwrap();
         let mut sides = LeafSides::unknown(&union);
         assert_eq!(
-            union.cell_verdict(&cell, &mut sides),
+            union.cell_verdict(&cell, &mut sides, &mut Stats::default()),
             CellVerdict::Undecided
         );
         // Inside a, the cut b is far: a − b holds the box.
         let diff = Csg::try_new(a.difference(b)).unwrap();
         let mut sides = LeafSides::unknown(&diff);
         assert_eq!(
-            diff.cell_verdict(&cube(0.25, 0.5), &mut sides),
+            diff.cell_verdict(&cube(0.25, 0.5), &mut sides, &mut Stats::default()),
             CellVerdict::Inside
         );
     }

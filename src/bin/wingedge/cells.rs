@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use wingedge::cells::{Label, MAX_DENSE_DEPTH, Octree, write_npy};
+use wingedge::csg::Stats;
 use wingedge::io::{read_obj, write_obj};
 use wingedge::mesh::Solid;
 use wingedge::scene::{Scene, is_scene_path};
@@ -20,17 +21,20 @@ pub fn run(target: &Path, depth: u32, npy: Option<&Path>, obj: Option<&Path>) ->
         ));
     }
     let named = |e: &dyn std::fmt::Display| format!("{}: {e}", target.display());
-    let (tree, seconds, mesh_volume) = if is_scene_path(target) {
+    let mut mesh_volume = None;
+    let (tree, seconds, scene_stats) = if is_scene_path(target) {
         let scene = Scene::from_file(target).map_err(|e| e.to_string())?;
         let start = Instant::now();
-        let tree = Octree::classify_csg(&scene.csg, depth).map_err(|e| named(&e))?;
-        (tree, start.elapsed().as_secs_f64(), None)
+        let mut stats = Stats::default();
+        let tree = Octree::classify_csg(&scene.csg, depth, &mut stats).map_err(|e| named(&e))?;
+        (tree, start.elapsed().as_secs_f64(), Some(stats))
     } else {
         let soup = read_obj(target).map_err(|e| e.to_string())?;
         let solid = Solid::try_from_soup(&soup).map_err(|e| named(&e))?;
         let start = Instant::now();
         let tree = Octree::classify(&solid, depth).map_err(|e| named(&e))?;
-        (tree, start.elapsed().as_secs_f64(), Some(solid.volume()))
+        mesh_volume = Some(solid.volume());
+        (tree, start.elapsed().as_secs_f64(), None)
     };
     let mut out = Out::new();
     let (origin, side) = tree.root();
@@ -55,18 +59,21 @@ pub fn run(target: &Path, depth: u32, npy: Option<&Path>, obj: Option<&Path>) ->
         ))?,
         None => out.write(format_args!("volume in [{low}, {high}] (certified)\n"))?,
     };
-    if mesh_volume.is_some() {
-        out.write(format_args!(
+    match scene_stats {
+        None => out.write(format_args!(
             "{} leaves, {} point classifications (one per region), {seconds:.3} s\n",
             tree.leaves().len(),
             tree.regions()
-        ))?;
-    } else {
-        out.write(format_args!(
-            "{} leaves (leaf sides handed down to sub-cells), {seconds:.3} s\n",
-            tree.leaves().len()
-        ))?;
-    }
+        ))?,
+        Some(s) => out.write(format_args!(
+            "{} leaves, {} leaf box tests, {} leaf point classifications, {} subtrees culled by bounds, {} right operands skipped, {seconds:.3} s\n",
+            tree.leaves().len(),
+            s.primitive_cell_tests,
+            s.primitive_point_tests,
+            s.culled_subtrees,
+            s.skipped_right_sides
+        ))?,
+    };
     out.finish()?;
     if let Some(path) = npy {
         let dense = tree
