@@ -156,6 +156,11 @@ fn bad_requests_are_refused() {
         Octree::classify(&open, 3).unwrap_err(),
         CellsError::NotClosed(3)
     );
+    // Depth 0 over a box around the origin: one On cell holding it.
+    let root = Octree::classify(&cube, 0).unwrap();
+    assert_eq!(root.leaves().len(), 1);
+    assert_eq!(root.leaves()[0].label, Label::On);
+    assert_holds(&root, 8.0, "cube at depth 0");
     let far = builders::cuboid(DVec3::splat(1e50), DVec3::splat(1.5e50)).unwrap();
     assert!(Octree::classify(&far, 3).is_ok());
     let mut huge = builders::cube().to_soup();

@@ -479,7 +479,9 @@ fn root_cube(bounds: &Aabb, depth: u32) -> Result<(DVec3, f64), CellsError> {
         1.0
     };
     for _ in 0..64 {
-        let finest = side / f64::from(1u32 << depth);
+        // The corner is aligned to half the root's side at least, so that
+        // a box straddling a multiple of the side still fits at depth 0.
+        let finest = side / f64::from(1u32 << depth.max(1));
         let origin = (bounds.min / finest).floor() * finest;
         if !(origin.is_finite() && finest > 0.0 && finest.is_normal()) {
             return Err(out_of_range());
