@@ -256,7 +256,18 @@ fn cells_of_scenes_hold_their_volumes_and_agree_with_classify() {
         let s = scene(name);
         let tree = Octree::classify_csg(&s.csg, 4, &mut Stats::default()).unwrap();
         assert_centres_agree(&s.csg, &tree, name);
-        let tree = Octree::classify_csg(&s.csg, 6, &mut Stats::default()).unwrap();
+        let mut stats = Stats::default();
+        let tree = Octree::classify_csg(&s.csg, 6, &mut stats).unwrap();
+        if name == "turned_part.json" {
+            // Polyhedral leaves: a side learnt on a cell serves its
+            // face neighbours among its siblings, so far fewer points are
+            // classified than there are cells.
+            let cells = tree.leaves().len() as u64;
+            assert!(
+                0 < stats.primitive_point_tests && stats.primitive_point_tests * 4 < cells,
+                "{stats} for {cells} leaves"
+            );
+        }
         let (low, high) = tree.volume_bounds();
         let estimate = s.csg.try_volume(0.03).unwrap().volume;
         assert!(

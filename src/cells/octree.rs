@@ -268,13 +268,13 @@ impl Octree {
                 }
                 Judgement::Meets if d == depth => Label::On,
                 Judgement::Meets => {
-                    for k in 0..8 {
+                    for (k, child) in (0u32..).zip(target.split(&known)) {
                         stack.push((
                             d + 1,
                             2 * x + (k & 1),
                             2 * y + (k >> 1 & 1),
                             2 * z + (k >> 2),
-                            known.clone(),
+                            child,
                         ));
                     }
                     continue;

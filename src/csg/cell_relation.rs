@@ -13,7 +13,7 @@
 
 use glam::DVec3;
 
-use super::tree::{NodeIndex, NodeKind};
+use super::tree::{LeafId, NodeIndex, NodeKind};
 use super::{Containment, Csg, CsgOp, Primitive, Stats};
 use crate::geom::Aabb;
 use crate::query::TileError;
@@ -90,6 +90,12 @@ impl LeafSides {
     pub fn known(&self) -> usize {
         self.0.iter().filter(|s| s.is_some()).count()
     }
+
+    /// The side of `leaf`, if known.
+    #[must_use]
+    pub fn side(&self, leaf: LeafId) -> Option<bool> {
+        self.0.get(leaf.0 as usize).copied().flatten()
+    }
 }
 
 /// Whether the closed boxes `a` and `b` share no point, with `b` first
@@ -143,7 +149,23 @@ impl Csg {
         sides: &mut LeafSides,
         stats: &mut Stats,
     ) -> CellVerdict {
-        self.node_verdict(self.root, cell, sides, stats)
+        self.cell_verdict_beside(cell, sides, stats, &|_| None)
+    }
+
+    /// [`Csg::cell_verdict`], where a leaf whose boundary is apart from the
+    /// box may take its side from `neighbour` instead of a point
+    /// classification: `neighbour(leaf)` is the leaf's side on a box that
+    /// shares a face with this one and that the leaf's boundary does not
+    /// meet either (the two closed boxes together are connected and miss
+    /// the boundary, so they lie on one side of it), or `None`.
+    pub fn cell_verdict_beside(
+        &self,
+        cell: &Aabb,
+        sides: &mut LeafSides,
+        stats: &mut Stats,
+        neighbour: &dyn Fn(LeafId) -> Option<bool>,
+    ) -> CellVerdict {
+        self.node_verdict(self.root, cell, sides, stats, neighbour)
     }
 
     fn node_verdict(
@@ -152,6 +174,7 @@ impl Csg {
         cell: &Aabb,
         sides: &mut LeafSides,
         stats: &mut Stats,
+        neighbour: &dyn Fn(LeafId) -> Option<bool>,
     ) -> CellVerdict {
         use CellVerdict::{Inside, Outside, Undecided};
         let n = &self.nodes[node];
@@ -172,7 +195,16 @@ impl Csg {
                     CellRelation::Inside => true,
                     CellRelation::Outside => false,
                     CellRelation::Meets => return Undecided,
-                    CellRelation::Apart => match count_point(stats, primitive, centre(cell)) {
+                    CellRelation::Apart => match neighbour(id).map_or_else(
+                        || count_point(stats, primitive, centre(cell)),
+                        |inside| {
+                            if inside {
+                                Containment::Inside
+                            } else {
+                                Containment::Outside
+                            }
+                        },
+                    ) {
                         Containment::Inside => true,
                         Containment::Outside => false,
                         // Apart from the boundary yet on it: only a rounded
@@ -184,14 +216,14 @@ impl Csg {
                 if inside { Inside } else { Outside }
             }
             NodeKind::Op { op, left, right } => {
-                let a = self.node_verdict(left, cell, sides, stats);
+                let a = self.node_verdict(left, cell, sides, stats, neighbour);
                 match op {
                     CsgOp::Union => {
                         if a == Inside {
                             stats.skipped_right_sides += 1;
                             return Inside;
                         }
-                        match self.node_verdict(right, cell, sides, stats) {
+                        match self.node_verdict(right, cell, sides, stats, neighbour) {
                             Inside => Inside,
                             Outside => a,
                             Undecided => Undecided,
@@ -202,7 +234,7 @@ impl Csg {
                             stats.skipped_right_sides += 1;
                             return Outside;
                         }
-                        match self.node_verdict(right, cell, sides, stats) {
+                        match self.node_verdict(right, cell, sides, stats, neighbour) {
                             Outside => Outside,
                             Inside => a,
                             Undecided => Undecided,
@@ -213,7 +245,7 @@ impl Csg {
                             stats.skipped_right_sides += 1;
                             return Outside;
                         }
-                        match self.node_verdict(right, cell, sides, stats) {
+                        match self.node_verdict(right, cell, sides, stats, neighbour) {
                             Inside => Outside,
                             Outside => a,
                             Undecided => Undecided,
@@ -225,7 +257,7 @@ impl Csg {
                             stats.skipped_right_sides += 1;
                             return Outside;
                         }
-                        match self.node_verdict(right, cell, sides, stats) {
+                        match self.node_verdict(right, cell, sides, stats, neighbour) {
                             Outside => Outside,
                             Inside if a == Outside => Inside,
                             _ => Undecided,
