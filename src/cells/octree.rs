@@ -43,11 +43,11 @@ use thiserror::Error;
 
 use super::label::Label;
 use super::target::{CellTarget, CsgTarget, Judgement, SolidTarget};
-use crate::csg::{Csg, Stats};
+use crate::csg::{Csg, LeafTileError, Stats};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Readable};
 use crate::mesh::{FaceId, Solid};
-use crate::query::{Accel, BoundaryTiles, TileError};
+use crate::query::{Accel, BoundaryTiles};
 
 /// The deepest octree [`Octree::classify`] builds: `2^16` cells along a
 /// side, far past what memory holds for a surface of any size.
@@ -111,13 +111,8 @@ pub enum CellsError {
         message: String,
     },
     /// A leaf of a CSG tree whose faces cannot be tiled exactly.
-    #[error("leaf {leaf}: {source}")]
-    Leaf {
-        /// The leaf's label (a scene's JSON path).
-        leaf: String,
-        /// Why.
-        source: TileError,
-    },
+    #[error(transparent)]
+    Leaf(#[from] LeafTileError),
     /// A CSG tree whose solid is unbounded (a half-space not cut down to a
     /// bounded piece).
     #[error("the solid is unbounded (its bounds reach infinity): nothing to lay cells over")]
@@ -222,8 +217,7 @@ impl Octree {
                 limit: MAX_DEPTH,
             });
         }
-        csg.prepare_cells()
-            .map_err(|(leaf, source)| CellsError::Leaf { leaf, source })?;
+        csg.prepare_cells()?;
         let bounds = csg.bounds();
         if bounds.is_empty() {
             return Err(CellsError::EmptyBounds);

@@ -12,6 +12,7 @@
 //! and only the leaves still undecided are asked again.
 
 use glam::DVec3;
+use thiserror::Error;
 
 use super::tree::{LeafId, NodeIndex, NodeKind};
 use super::{Containment, Csg, CsgOp, Primitive, Stats};
@@ -110,6 +111,16 @@ fn apart(a: &Aabb, b: &Aabb) -> bool {
     a.max.cmplt(lo).any() || a.min.cmpgt(hi).any()
 }
 
+/// A leaf that cannot answer boxes exactly.
+#[derive(Clone, Debug, Error, PartialEq)]
+#[error("leaf {leaf}: {source}")]
+pub struct LeafTileError {
+    /// The leaf's label (a scene's JSON path).
+    pub leaf: String,
+    /// Why.
+    pub source: TileError,
+}
+
 /// `primitive.classify_point(p)`, counted.
 fn count_point(stats: &mut Stats, primitive: &dyn Primitive, p: DVec3) -> Containment {
     stats.primitive_point_tests += 1;
@@ -123,12 +134,15 @@ impl Csg {
     ///
     /// # Errors
     ///
-    /// The label of the first leaf that cannot, with why.
-    pub fn prepare_cells(&self) -> Result<(), (String, TileError)> {
+    /// [`LeafTileError`] naming the first leaf that cannot.
+    pub fn prepare_cells(&self) -> Result<(), LeafTileError> {
         for leaf in &self.leaves {
             leaf.primitive
                 .prepare_cells()
-                .map_err(|e| (leaf.label.clone(), e))?;
+                .map_err(|source| LeafTileError {
+                    leaf: leaf.label.clone(),
+                    source,
+                })?;
         }
         Ok(())
     }

@@ -35,7 +35,7 @@ mod volume;
 /// Where a point lies: the query layer's three-way answer.
 pub use crate::query::Containment;
 pub use axis_box::{AxisBox, AxisBoxError};
-pub use cell_relation::{CellRelation, CellVerdict, LeafSides};
+pub use cell_relation::{CellRelation, CellVerdict, LeafSides, LeafTileError};
 pub use classify::Neighbourhood;
 pub use cylinder::{Cylinder, CylinderError};
 pub use halfspace::{HalfSpace, HalfSpaceError};
