@@ -1,15 +1,21 @@
-//! Space subdivision: the cells of an octree laid over a solid, each `In`,
-//! `Out` or `On` its boundary, decided exactly, with a certified volume
+//! Space subdivision: the cells of an octree laid over a solid or a CSG
+//! tree, each `In`, `Out` or `On` its boundary, with a certified volume
 //! interval.
 //!
-//! `box_triangle` is the exact closed box–triangle test; `octree` refines
-//! the cells the boundary meets and labels the others by propagation;
-//! `npy` writes the dense voxel array numpy reads.
+//! `target` says how a cell lies against a solid or a tree; `octree`
+//! refines the cells the boundary may meet and labels the others; `npy`
+//! writes the dense voxel array numpy reads; `in_shell` makes the `In`
+//! cells' outer faces a valid closed solid. The exact closed box–triangle
+//! test is [`box_meets_triangle`] (in `geom`).
 
-mod box_triangle;
+mod in_shell;
+mod label;
 mod npy;
 mod octree;
+mod target;
 
-pub use box_triangle::box_meets_triangle;
+pub use crate::geom::box_meets_triangle;
+pub use in_shell::{InShell, SUBDIVISION};
+pub use label::Label;
 pub use npy::write_npy;
-pub use octree::{Cell, CellsError, Label, LevelCounts, MAX_DENSE_DEPTH, MAX_DEPTH, Octree};
+pub use octree::{Cell, CellsError, LevelCounts, MAX_DENSE_DEPTH, MAX_DEPTH, Octree};

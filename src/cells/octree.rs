@@ -1,8 +1,9 @@
 //! The octree: cells the boundary meets are split down to the depth asked
-//! for; every other cell is `In` or `Out`, decided for a whole connected
-//! region by one point classification.
+//! for; every other cell is `In` or `Out`. Written once over a
+//! [`CellTarget`]: a solid (below) or a CSG tree
+//! ([`Octree::classify_csg`]).
 //!
-//! # How cells are labelled
+//! # How the cells of a solid are labelled
 //!
 //! 1. The root is the smallest cube of power-of-two side whose corner is a
 //!    multiple of the finest cell side and which holds the solid's box, so
@@ -12,7 +13,7 @@
 //!    cell: its faces, triangulated exactly (`Solid::try_triangulate_face`,
 //!    rings included), are
 //!    fetched by a box query on the shared BVH and tested by
-//!    [`box_meets_triangle`]. `On` cells above the finest depth are split;
+//!    [`box_meets_triangle`](crate::geom::box_meets_triangle). `On` cells above the finest depth are split;
 //!    cells the boundary does not meet are leaves.
 //! 3. Two leaves that share a face and are both not `On` lie in one region
 //!    without boundary, so they have the same label. Leaves are joined
@@ -22,6 +23,10 @@
 //!    rounded, still inside that cell — is classified exactly. A region
 //!    costs one query, not one per cell.
 //!
+//! A CSG tree labels each cell itself ([`Csg::cell_verdict`]): `In` or
+//! `Out` when every leaf whose side matters is decided on the cell, else
+//! refined; what a cell learnt of a leaf is handed down to its sub-cells.
+//!
 //! # The volume interval
 //!
 //! `In` cells lie inside the solid and `On` cells hold all of its
@@ -30,17 +35,19 @@
 //! the finest cell and rounded down and up only past 2^53 units, so the
 //! interval is certified.
 
+use std::cell::RefCell;
 use std::collections::HashMap;
 
 use glam::DVec3;
 use thiserror::Error;
 
-use super::box_triangle::box_meets_triangle;
+use super::label::Label;
+use super::target::{CellTarget, CsgTarget, Judgement, SolidTarget};
+use crate::csg::{Csg, LeafTileError, Stats};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Readable};
 use crate::mesh::{FaceId, Solid};
-use crate::query::{Accel, Containment};
-use crate::spatial::Bvh;
+use crate::query::{Accel, BoundaryTiles};
 
 /// The deepest octree [`Octree::classify`] builds: `2^16` cells along a
 /// side, far past what memory holds for a surface of any size.
@@ -49,17 +56,6 @@ pub const MAX_DEPTH: u32 = 16;
 /// The deepest octree whose dense array [`Octree::dense`] writes:
 /// `2^9 = 512` cells along a side, 128 MiB.
 pub const MAX_DENSE_DEPTH: u32 = 9;
-
-/// Where a cell is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Label {
-    /// Inside the solid: the boundary does not meet the closed cell.
-    In,
-    /// Outside the solid: the boundary does not meet the closed cell.
-    Out,
-    /// The boundary meets the closed cell (only at the finest depth).
-    On,
-}
 
 /// A leaf of the octree: cell `(x, y, z)` of the `2^depth` cells along each
 /// side at `depth`.
@@ -114,6 +110,24 @@ pub enum CellsError {
         /// Why.
         message: String,
     },
+    /// A leaf of a CSG tree whose faces cannot be tiled exactly.
+    #[error(transparent)]
+    Leaf(#[from] LeafTileError),
+    /// A CSG tree whose solid is unbounded (a half-space not cut down to a
+    /// bounded piece).
+    #[error("the solid is unbounded (its bounds reach infinity): nothing to lay cells over")]
+    Unbounded,
+    /// A CSG tree whose bounds hold nothing (an intersection of disjoint
+    /// boxes).
+    #[error("the solid is empty (its bounds hold nothing)")]
+    EmptyBounds,
+    /// The `In` cells' outer faces could not be made manifold within the
+    /// repair's bounds (see [`Octree::in_shell`]).
+    #[error("the In cells' faces cannot be made a manifold solid: {message}")]
+    Repair {
+        /// Why.
+        message: String,
+    },
     /// The solid's box is too large for cell corners to be exact.
     #[error("the solid's box (size {}) is too large or too far out for exact cell corners", Readable(*.size))]
     OutOfRange {
@@ -136,51 +150,6 @@ pub struct Octree {
     leaves: Vec<Cell>,
     counts: Vec<LevelCounts>,
     regions: usize,
-}
-
-/// The exact triangles of a solid's faces and the BVH over their boxes.
-struct Surface {
-    triangles: Vec<[DVec3; 3]>,
-    boxes: Vec<Aabb>,
-    bvh: Bvh,
-}
-
-impl Surface {
-    fn new(solid: &Solid) -> Result<Surface, CellsError> {
-        let mut triangles = Vec::new();
-        for (face, _) in solid.faces() {
-            let tiles = solid
-                .try_triangulate_face(face)
-                .map_err(|e| CellsError::Face {
-                    face,
-                    message: e.to_string(),
-                })?;
-            triangles.extend(tiles.iter().map(|t| t.map(|v| solid.position(v))));
-        }
-        let boxes: Vec<Aabb> = triangles
-            .iter()
-            .map(|t| Aabb::from_points(t.iter().copied()))
-            .collect();
-        let (bvh, order) = Bvh::build(&boxes);
-        let triangles: Vec<[DVec3; 3]> = order.iter().map(|&i| triangles[i as usize]).collect();
-        let boxes = order.iter().map(|&i| boxes[i as usize]).collect();
-        Ok(Surface {
-            triangles,
-            boxes,
-            bvh,
-        })
-    }
-
-    /// Whether the boundary meets the closed box.
-    fn meets(&self, cell: &Aabb) -> bool {
-        let mut met = false;
-        self.bvh.items_overlapping(
-            cell,
-            |p| self.boxes[p],
-            |p| met = met || box_meets_triangle(cell, &self.triangles[p]),
-        );
-        met
-    }
 }
 
 impl Octree {
@@ -211,7 +180,66 @@ impl Octree {
             return Err(CellsError::NotClosed(open));
         }
         let (origin, side) = root_cube(&solid.bounding_box(), depth)?;
-        let surface = Surface::new(solid)?;
+        let tiles = BoundaryTiles::try_new(solid).map_err(|e| CellsError::Face {
+            face: e.face,
+            message: e.source.to_string(),
+        })?;
+        Ok(Octree::build(
+            &SolidTarget { accel, tiles },
+            origin,
+            side,
+            depth,
+        ))
+    }
+
+    /// Labels the cells of an octree of depth `depth` over the solid of a
+    /// CSG tree (see [`Csg::cell_verdict`]).
+    ///
+    /// A cell is `On` when the boundary of a leaf whose side could change
+    /// the tree's answer may meet it: exactly when it meets for flat leaves
+    /// (half-spaces, boxes, polyhedra), conservatively for spheres,
+    /// cylinders and transformed leaves, so `On` cells hold the whole
+    /// boundary of the result and perhaps a little more. A cell inside or
+    /// outside every leaf that matters gets the tree's label at once, and
+    /// what a cell learns of a leaf holds for its sub-cells. The tree's
+    /// work is added to `stats` (leaf box tests, point classifications,
+    /// culled subtrees, skipped right operands).
+    ///
+    /// # Errors
+    ///
+    /// [`CellsError::TooDeep`], [`CellsError::Leaf`] for a polyhedral leaf
+    /// whose faces cannot be tiled, [`CellsError::Unbounded`],
+    /// [`CellsError::EmptyBounds`], [`CellsError::OutOfRange`].
+    pub fn classify_csg(csg: &Csg, depth: u32, stats: &mut Stats) -> Result<Octree, CellsError> {
+        if depth > MAX_DEPTH {
+            return Err(CellsError::TooDeep {
+                depth,
+                limit: MAX_DEPTH,
+            });
+        }
+        csg.prepare_cells()?;
+        let bounds = csg.bounds();
+        if bounds.is_empty() {
+            return Err(CellsError::EmptyBounds);
+        }
+        if !(bounds.min.is_finite() && bounds.max.is_finite()) {
+            return Err(CellsError::Unbounded);
+        }
+        // Every primitive's bounds hold it (rounded ones are rounded
+        // outward), so the root cube holds the solid.
+        let (origin, side) = root_cube(&bounds, depth)?;
+        let target = CsgTarget {
+            csg,
+            stats: RefCell::new(Stats::default()),
+        };
+        let tree = Octree::build(&target, origin, side, depth);
+        *stats += target.stats.into_inner();
+        Ok(tree)
+    }
+
+    /// Refines the cells the target's boundary may meet, labels the rest,
+    /// and counts.
+    fn build<T: CellTarget>(target: &T, origin: DVec3, side: f64, depth: u32) -> Octree {
         let mut tree = Octree {
             origin,
             side,
@@ -220,40 +248,43 @@ impl Octree {
             counts: vec![LevelCounts::default(); depth as usize + 1],
             regions: 0,
         };
-        // Refine what the boundary meets.
-        let mut stack = vec![(0u32, 0u32, 0u32, 0u32)];
-        let mut undecided = Vec::new();
-        while let Some((d, x, y, z)) = stack.pop() {
+        let mut stack = vec![(0u32, 0u32, 0u32, 0u32, target.root_known())];
+        let mut free = Vec::new();
+        while let Some((d, x, y, z, mut known)) = stack.pop() {
             let cell = tree.cell_box(d, x, y, z);
-            if !surface.meets(&cell) {
-                undecided.push(tree.leaves.len());
-                tree.leaves.push(Cell {
-                    depth: d,
-                    x,
-                    y,
-                    z,
-                    label: Label::Out,
-                });
-            } else if d == depth {
-                tree.leaves.push(Cell {
-                    depth: d,
-                    x,
-                    y,
-                    z,
-                    label: Label::On,
-                });
-            } else {
-                for k in 0..8 {
-                    stack.push((
-                        d + 1,
-                        2 * x + (k & 1),
-                        2 * y + (k >> 1 & 1),
-                        2 * z + (k >> 2),
-                    ));
+            let label = match target.judge(&cell, &mut known) {
+                Judgement::In => Label::In,
+                Judgement::Out => Label::Out,
+                Judgement::Free => {
+                    free.push(tree.leaves.len());
+                    // Replaced by the region's label.
+                    Label::Out
                 }
-            }
+                Judgement::Meets if d == depth => Label::On,
+                Judgement::Meets => {
+                    for (k, child) in (0u32..).zip(target.split(&known)) {
+                        stack.push((
+                            d + 1,
+                            2 * x + (k & 1),
+                            2 * y + (k >> 1 & 1),
+                            2 * z + (k >> 2),
+                            child,
+                        ));
+                    }
+                    continue;
+                }
+            };
+            tree.leaves.push(Cell {
+                depth: d,
+                x,
+                y,
+                z,
+                label,
+            });
         }
-        tree.label_regions(&undecided, &accel);
+        if !free.is_empty() {
+            tree.label_regions(&free, target);
+        }
         for c in &tree.leaves {
             let counts = &mut tree.counts[c.depth as usize];
             match c.label {
@@ -262,12 +293,12 @@ impl Octree {
                 Label::On => counts.on += 1,
             }
         }
-        Ok(tree)
+        tree
     }
 
     /// Joins face-adjacent undecided leaves and labels each region by one
     /// exact point classification.
-    fn label_regions(&mut self, undecided: &[usize], accel: &Accel) {
+    fn label_regions<T: CellTarget>(&mut self, undecided: &[usize], target: &T) {
         let index: HashMap<(u32, u32, u32, u32), usize> = self
             .leaves
             .iter()
@@ -309,13 +340,7 @@ impl Octree {
                 let c = self.leaves[root];
                 let b = self.cell_box(c.depth, c.x, c.y, c.z);
                 let centre = (b.min + (b.max - b.min) * 0.5).clamp(b.min, b.max);
-                match accel.classify(centre) {
-                    Ok(Containment::Inside) => Label::In,
-                    Ok(Containment::Outside) => Label::Out,
-                    // The closed cell meets no boundary: neither can happen;
-                    // `On` would still be a safe (conservative) answer.
-                    Ok(Containment::OnBoundary) | Err(_) => Label::On,
-                }
+                target.classify(centre)
             });
             self.leaves[i].label = label;
         }
@@ -448,7 +473,9 @@ fn root_cube(bounds: &Aabb, depth: u32) -> Result<(DVec3, f64), CellsError> {
         1.0
     };
     for _ in 0..64 {
-        let finest = side / f64::from(1u32 << depth);
+        // The corner is aligned to half the root's side at least, so that
+        // a box straddling a multiple of the side still fits at depth 0.
+        let finest = side / f64::from(1u32 << depth.max(1));
         let origin = (bounds.min / finest).floor() * finest;
         if !(origin.is_finite() && finest > 0.0 && finest.is_normal()) {
             return Err(out_of_range());

@@ -4,7 +4,7 @@ use glam::DVec3;
 use thiserror::Error;
 
 use super::primitive::push_convex_interval;
-use super::{Containment, Crossing, Primitive, Stats, SurfaceId};
+use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
 use crate::geom::{Aabb, Ray};
 
 /// Why a box could not be made.
@@ -175,6 +175,19 @@ impl Primitive for AxisBox {
         Aabb {
             min: self.min,
             max: self.max,
+        }
+    }
+
+    /// Exact (comparisons of input coordinates): a closed cell that meets
+    /// the closed box without lying in its open interior is connected, so
+    /// it meets the boundary.
+    fn cell_relation(&self, cell: &Aabb) -> CellRelation {
+        if cell.max.cmplt(self.min).any() || cell.min.cmpgt(self.max).any() {
+            CellRelation::Outside
+        } else if cell.min.cmpgt(self.min).all() && cell.max.cmplt(self.max).all() {
+            CellRelation::Inside
+        } else {
+            CellRelation::Meets
         }
     }
 

@@ -5,7 +5,7 @@ use glam::DVec3;
 use thiserror::Error;
 
 use super::primitive::perturbed_side;
-use super::{Containment, Crossing, Primitive, Stats, SurfaceId};
+use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
 use crate::geom::{Aabb, Ray, Sign, dot_sign, side_of_plane};
 
 /// Why a half-space could not be made.
@@ -130,6 +130,23 @@ impl Primitive for HalfSpace {
 
     fn normal(&self, _p: DVec3, _surface: SurfaceId) -> DVec3 {
         self.normal
+    }
+
+    /// Exact: the signs of the plane at the two corners extreme along
+    /// the normal.
+    fn cell_relation(&self, cell: &Aabb) -> CellRelation {
+        let n = self.normal;
+        let positive = n.cmpge(DVec3::ZERO);
+        let low = DVec3::select(positive, cell.min, cell.max);
+        let high = DVec3::select(positive, cell.max, cell.min);
+        match (
+            side_of_plane(low, self.point, n),
+            side_of_plane(high, self.point, n),
+        ) {
+            (_, Sign::Negative) => CellRelation::Inside,
+            (Sign::Positive, _) => CellRelation::Outside,
+            _ => CellRelation::Meets,
+        }
     }
 
     fn bounds(&self) -> Aabb {

@@ -10,12 +10,15 @@
 //! - Answers: [`Spans`] of a ray, the [`FirstHit`] with its normal when
 //!   asked, point classification right at coincident faces, and volume by
 //!   integrating span lengths ([`VolumeEstimate`]).
+//! - Octree cells: how a closed box lies against a primitive
+//!   ([`CellRelation`]) and against a tree ([`Csg::cell_verdict`]).
 //! - Every query adds to a [`Stats`] value, so tests can check that only the
 //!   needed work was done.
 //!
 //! Scene files (JSON) are read one layer up, in `wingedge::scene`.
 
 mod axis_box;
+mod cell_relation;
 mod classify;
 mod cylinder;
 mod evaluate;
@@ -34,6 +37,7 @@ mod volume;
 /// Where a point lies: the query layer's three-way answer.
 pub use crate::query::Containment;
 pub use axis_box::{AxisBox, AxisBoxError};
+pub use cell_relation::{CellRelation, CellVerdict, LeafSides, LeafTileError};
 pub use classify::Neighbourhood;
 pub use cylinder::{Cylinder, CylinderError};
 pub use evaluate::{EvaluateError, EvaluateOptions, Evaluated, evaluate};

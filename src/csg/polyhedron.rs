@@ -1,16 +1,16 @@
 //! The main kind of leaf: a validated closed polyhedral solid.
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use glam::DVec3;
 use slotmap::SecondaryMap;
 use thiserror::Error;
 
-use super::{Containment, Crossing, Primitive, Stats, SurfaceId};
+use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
 use crate::geom::polygon::{PolygonLocation, Projection, locate_point_in_polygon};
 use crate::geom::{Aabb, Ray, Sign};
 use crate::mesh::{FaceId, Solid};
-use crate::query::{Accel, Transition};
+use crate::query::{Accel, BoundaryTiles, TileError, Transition};
 
 /// Why a solid cannot be a CSG leaf.
 #[derive(Clone, Debug, Error, PartialEq)]
@@ -50,6 +50,8 @@ pub struct Polyhedron {
     accel: Arc<Accel>,
     faces: Vec<FaceId>,
     face_index: SecondaryMap<FaceId, SurfaceId>,
+    /// The exact face tiles of box tests, built on first use.
+    tiles: Arc<OnceLock<Result<BoundaryTiles, TileError>>>,
 }
 
 impl Polyhedron {
@@ -79,6 +81,7 @@ impl Polyhedron {
             accel: Arc::new(accel),
             faces,
             face_index,
+            tiles: Arc::new(OnceLock::new()),
         })
     }
 
@@ -92,6 +95,12 @@ impl Polyhedron {
     #[must_use]
     pub fn face(&self, surface: SurfaceId) -> Option<FaceId> {
         self.faces.get(surface as usize).copied()
+    }
+
+    /// The exact face tiles, built once.
+    fn tiles(&self) -> &Result<BoundaryTiles, TileError> {
+        self.tiles
+            .get_or_init(|| BoundaryTiles::try_new(&self.solid))
     }
 
     fn face_normal(&self, face: FaceId) -> DVec3 {
@@ -189,6 +198,26 @@ impl Primitive for Polyhedron {
 
     fn bounds(&self) -> Aabb {
         self.solid.bounding_box()
+    }
+
+    /// Exact: the cell is `Outside` when it misses the solid's box, else
+    /// `Meets` or `Apart` by the exact box–triangle test on the faces'
+    /// tiles (a box query on the shared BVH). Without tiles (a face that
+    /// cannot be tiled, reported by `prepare_cells`) every cell in the box
+    /// is `Meets`.
+    fn cell_relation(&self, cell: &Aabb) -> CellRelation {
+        let b = self.accel.bounds();
+        if cell.max.cmplt(b.min).any() || cell.min.cmpgt(b.max).any() {
+            return CellRelation::Outside;
+        }
+        match self.tiles() {
+            Ok(tiles) if !tiles.meets(cell) => CellRelation::Apart,
+            _ => CellRelation::Meets,
+        }
+    }
+
+    fn prepare_cells(&self) -> Result<(), TileError> {
+        self.tiles().as_ref().map(|_| ()).map_err(Clone::clone)
     }
 
     fn exact_volume(&self) -> Option<f64> {

@@ -5,8 +5,9 @@ use std::fmt::Debug;
 
 use glam::DVec3;
 
-use super::{Containment, Stats, TessellateError};
+use super::{CellRelation, Containment, Stats, TessellateError};
 use crate::geom::{Aabb, Ray, Sign};
+use crate::query::TileError;
 
 /// Which surface of a primitive a crossing lies on: a face index for a box
 /// or a polyhedron, 0 for a sphere, side/base/top for a cylinder. Only
@@ -94,6 +95,23 @@ pub trait Primitive: Debug + Send + Sync {
 
     /// A box holding the solid.
     fn bounds(&self) -> Aabb;
+
+    /// How the closed box `cell` lies against the solid (see
+    /// [`CellRelation`]): `Inside`, `Outside` and `Apart` are certain;
+    /// `Meets` is exact for flat primitives and may be conservative for
+    /// curved ones.
+    fn cell_relation(&self, cell: &Aabb) -> CellRelation;
+
+    /// Builds what [`cell_relation`](Primitive::cell_relation) needs, once
+    /// (a polyhedron's exact face tiles). Without it a primitive may answer
+    /// `Meets` where it cannot do better.
+    ///
+    /// # Errors
+    ///
+    /// [`TileError`] for a face that cannot be tiled.
+    fn prepare_cells(&self) -> Result<(), TileError> {
+        Ok(())
+    }
 
     /// The solid's volume when it has a closed form (box, sphere, cylinder,
     /// polyhedron by the divergence theorem); `None` otherwise (half-spaces).

@@ -3,7 +3,8 @@
 use glam::DVec3;
 use thiserror::Error;
 
-use super::{Containment, Crossing, Primitive, Stats, SurfaceId};
+use super::cell_relation::{CELL_ROUNDING, CELL_UNDERFLOW};
+use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
 use crate::geom::{Aabb, Ray};
 
 /// Why a sphere could not be made.
@@ -107,9 +108,31 @@ impl Primitive for Sphere {
 
     fn bounds(&self) -> Aabb {
         let r = DVec3::splat(self.radius);
+        // Rounded outward, so that the box holds the ball.
+        let (min, max) = (self.center - r, self.center + r);
         Aabb {
-            min: self.center - r,
-            max: self.center + r,
+            min: DVec3::new(min.x.next_down(), min.y.next_down(), min.z.next_down()),
+            max: DVec3::new(max.x.next_up(), max.y.next_up(), max.z.next_up()),
+        }
+    }
+
+    /// Conservative: the squared distances from the centre to the nearest
+    /// point of the cell and to its farthest corner, compared with `r²`
+    /// beyond their rounding bound (32 ε of the magnitudes); a cell within that
+    /// bound of the sphere is `Meets`.
+    fn cell_relation(&self, cell: &Aabb) -> CellRelation {
+        let c = self.center;
+        let near = c.clamp(cell.min, cell.max) - c;
+        let far = (cell.min - c).abs().max((cell.max - c).abs());
+        let (near2, far2) = (near.length_squared(), far.length_squared());
+        let rr = self.radius * self.radius;
+        let margin = CELL_ROUNDING * (far2 + rr) + CELL_UNDERFLOW;
+        if near2 > rr + margin {
+            CellRelation::Outside
+        } else if far2 < rr - margin {
+            CellRelation::Inside
+        } else {
+            CellRelation::Meets
         }
     }
 

@@ -15,6 +15,9 @@ pub struct Stats {
     pub primitive_ray_tests: u64,
     /// Calls of [`Primitive::classify_point`](super::Primitive::classify_point).
     pub primitive_point_tests: u64,
+    /// Calls of [`Primitive::cell_relation`](super::Primitive::cell_relation)
+    /// (octree cells against a leaf).
+    pub primitive_cell_tests: u64,
     /// Bounding-box tests of tree nodes (cheap; each guards a subtree).
     pub bounds_tests: u64,
     /// Subtrees never visited because the ray (or point) missed their bounds.
@@ -45,6 +48,7 @@ impl AddAssign for Stats {
         self.rays += o.rays;
         self.primitive_ray_tests += o.primitive_ray_tests;
         self.primitive_point_tests += o.primitive_point_tests;
+        self.primitive_cell_tests += o.primitive_cell_tests;
         self.bounds_tests += o.bounds_tests;
         self.culled_subtrees += o.culled_subtrees;
         self.skipped_right_sides += o.skipped_right_sides;
@@ -60,10 +64,11 @@ impl std::fmt::Display for Stats {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "rays {}  primitive ray tests {}  primitive point tests {}  bounds tests {}  culled subtrees {}  skipped right sides {}  early stops {}  exact fallbacks {}  tie-breaks {}  normals {}  shadow rays {}",
+            "rays {}  primitive ray tests {}  primitive point tests {}  primitive cell tests {}  bounds tests {}  culled subtrees {}  skipped right sides {}  early stops {}  exact fallbacks {}  tie-breaks {}  normals {}  shadow rays {}",
             self.rays,
             self.primitive_ray_tests,
             self.primitive_point_tests,
+            self.primitive_cell_tests,
             self.bounds_tests,
             self.culled_subtrees,
             self.skipped_right_sides,

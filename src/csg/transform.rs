@@ -5,8 +5,9 @@ use std::sync::Arc;
 use glam::{DAffine3, DMat3, DVec3};
 use thiserror::Error;
 
-use super::{Containment, Crossing, Primitive, Stats, SurfaceId};
+use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
 use crate::geom::{Aabb, Ray};
+use crate::query::TileError;
 
 /// Why a transform could not be applied.
 #[derive(Clone, Debug, Error, PartialEq)]
@@ -133,6 +134,18 @@ impl Primitive for Transformed {
 
     fn bounds(&self) -> Aabb {
         self.bounds
+    }
+
+    /// The child's answer for the box holding the cell's image in the
+    /// child's frame (padded for rounding): certain answers stay certain,
+    /// and `Meets` may be conservative unless the map keeps axes.
+    fn cell_relation(&self, cell: &Aabb) -> CellRelation {
+        self.child
+            .cell_relation(&transform_bounds(&self.to_local, *cell))
+    }
+
+    fn prepare_cells(&self) -> Result<(), TileError> {
+        self.child.prepare_cells()
     }
 
     fn exact_volume(&self) -> Option<f64> {

@@ -5,6 +5,7 @@
 //! extents) is a floating-point construction that never decides a sign.
 
 mod aabb;
+mod box_triangle;
 mod dot;
 pub(crate) mod dyadic;
 pub mod exact;
@@ -20,6 +21,7 @@ pub mod tri_tri;
 pub mod triangulate;
 
 pub use aabb::Aabb;
+pub use box_triangle::box_meets_triangle;
 pub use dot::{dot_sign, side_of_plane};
 pub use exact::{line_side, line_side_sos};
 pub use plane::{Plane, PlaneError, PlaneFit, newell_vector_area};

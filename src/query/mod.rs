@@ -30,6 +30,7 @@
 //!   *listed* in order of their rounded `t`.
 
 mod accel;
+mod boundary_tiles;
 mod convexity;
 mod fan;
 mod first_hit;
@@ -49,6 +50,7 @@ mod triangle_records;
 mod winding;
 
 pub use accel::{Accel, AccelStats};
+pub use boundary_tiles::{BoundaryTiles, TileError};
 pub use convexity::NotConvex;
 pub use line_face::{LineFaceHit, LineKind, intersect_line_face};
 pub use point_in_solid::Method;

@@ -1,34 +1,41 @@
-//! `wingedge cells SOLID.obj --depth N [--npy OUT]`: the octree cells of a
-//! solid, In, Out or On, with the certified volume interval.
+//! `wingedge cells TARGET --depth N [--npy OUT] [--obj OUT]`: the octree
+//! cells of a solid or a CSG scene, In, Out or On, with the certified
+//! volume interval, the dense array and the In cells' outer faces.
 
 use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
 use wingedge::cells::{Label, MAX_DENSE_DEPTH, Octree, write_npy};
-use wingedge::io::read_obj;
+use wingedge::csg::Stats;
+use wingedge::io::{read_obj, write_obj};
 use wingedge::mesh::Solid;
-use wingedge::scene::is_scene_path;
+use wingedge::scene::{Scene, is_scene_path};
 
 use crate::output::{Out, Outcome};
 
-pub fn run(target: &Path, depth: u32, npy: Option<&Path>) -> Outcome {
-    if is_scene_path(target) {
-        return Err(format!(
-            "{}: cells of scene files are not built yet; give a solid (.obj)",
-            target.display()
-        ));
-    }
+pub fn run(target: &Path, depth: u32, npy: Option<&Path>, obj: Option<&Path>) -> Outcome {
     if npy.is_some() && depth > MAX_DENSE_DEPTH {
         return Err(format!(
             "--npy: depth {depth} is beyond the limit of {MAX_DENSE_DEPTH} for a dense array"
         ));
     }
-    let soup = read_obj(target).map_err(|e| e.to_string())?;
-    let solid = Solid::try_from_soup(&soup).map_err(|e| format!("{}: {e}", target.display()))?;
-    let start = Instant::now();
-    let tree = Octree::classify(&solid, depth).map_err(|e| format!("{}: {e}", target.display()))?;
-    let seconds = start.elapsed().as_secs_f64();
+    let named = |e: &dyn std::fmt::Display| format!("{}: {e}", target.display());
+    let mut mesh_volume = None;
+    let (tree, seconds, scene_stats) = if is_scene_path(target) {
+        let scene = Scene::from_file(target).map_err(|e| e.to_string())?;
+        let start = Instant::now();
+        let mut stats = Stats::default();
+        let tree = Octree::classify_csg(&scene.csg, depth, &mut stats).map_err(|e| named(&e))?;
+        (tree, start.elapsed().as_secs_f64(), Some(stats))
+    } else {
+        let soup = read_obj(target).map_err(|e| e.to_string())?;
+        let solid = Solid::try_from_soup(&soup).map_err(|e| named(&e))?;
+        let start = Instant::now();
+        let tree = Octree::classify(&solid, depth).map_err(|e| named(&e))?;
+        mesh_volume = Some(solid.volume());
+        (tree, start.elapsed().as_secs_f64(), None)
+    };
     let mut out = Out::new();
     let (origin, side) = tree.root();
     out.write(format_args!(
@@ -46,15 +53,27 @@ pub fn run(target: &Path, depth: u32, npy: Option<&Path>) -> Outcome {
         ))?;
     }
     let (low, high) = tree.volume_bounds();
-    out.write(format_args!(
-        "volume in [{low}, {high}] (certified; the mesh's rounded volume is {})\n",
-        solid.volume()
-    ))?;
-    out.write(format_args!(
-        "{} leaves, {} point classifications (one per region), {seconds:.3} s\n",
-        tree.leaves().len(),
-        tree.regions()
-    ))?;
+    match mesh_volume {
+        Some(v) => out.write(format_args!(
+            "volume in [{low}, {high}] (certified; the mesh's rounded volume is {v})\n"
+        ))?,
+        None => out.write(format_args!("volume in [{low}, {high}] (certified)\n"))?,
+    };
+    match scene_stats {
+        None => out.write(format_args!(
+            "{} leaves, {} point classifications (one per region), {seconds:.3} s\n",
+            tree.leaves().len(),
+            tree.regions()
+        ))?,
+        Some(s) => out.write(format_args!(
+            "{} leaves, {} leaf box tests, {} leaf point classifications, {} subtrees culled by bounds, {} right operands skipped, {seconds:.3} s\n",
+            tree.leaves().len(),
+            s.primitive_cell_tests,
+            s.primitive_point_tests,
+            s.culled_subtrees,
+            s.skipped_right_sides
+        ))?,
+    };
     out.finish()?;
     if let Some(path) = npy {
         let dense = tree
@@ -73,5 +92,29 @@ pub fn run(target: &Path, depth: u32, npy: Option<&Path>) -> Outcome {
             n = 1 << tree.depth()
         );
     }
+    if let Some(path) = obj {
+        write_shell(&tree, path)?;
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Writes the In cells' outer faces as OBJ.
+fn write_shell(tree: &Octree, path: &Path) -> Result<(), String> {
+    let named = |e: &dyn std::fmt::Display| format!("{}: --obj: {e}", path.display());
+    let shell = tree.in_shell().map_err(|e| named(&e))?;
+    if shell.soup.polygons.is_empty() {
+        eprintln!("no In cells: {} not written", path.display());
+        return Ok(());
+    }
+    let solid = Solid::try_from_soup(&shell.soup).map_err(|e| named(&e))?;
+    write_obj(&solid, path).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    eprintln!(
+        "wrote {} ({} faces, volume {}; {} sub-cells filled at contacts along edges or at corners, {} cavities)",
+        path.display(),
+        solid.face_count(),
+        solid.volume(),
+        shell.filled,
+        shell.cavities
+    );
+    Ok(())
 }

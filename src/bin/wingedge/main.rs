@@ -120,12 +120,13 @@ enum Command {
         #[arg(long, value_name = "N", default_value_t = wingedge::io::DEFAULT_MAX_FACE_CORNERS)]
         max_face_corners: usize,
     },
-    /// The octree cells of a solid, each In, Out or On its boundary (exact),
-    /// with the certified volume interval [V_in, V_in + V_on]; only cells
-    /// the boundary meets are refined.
+    /// The octree cells of a solid or a CSG scene, each In, Out or On its
+    /// boundary (exact for flat surfaces, conservative for spheres and
+    /// cylinders), with the certified volume interval [V_in, V_in + V_on];
+    /// only cells the boundary may meet are refined.
     Cells {
-        /// The solid (.obj).
-        solid: PathBuf,
+        /// The solid (.obj) or scene (.json).
+        target: PathBuf,
         /// The finest depth (2^depth cells along each side of the root cube).
         #[arg(long, default_value_t = 6)]
         depth: u32,
@@ -133,6 +134,10 @@ enum Command {
         /// (uint8, shape (n, n, n): 0 out, 1 on, 2 in; depth at most 9).
         #[arg(long, value_name = "OUT.npy")]
         npy: Option<PathBuf>,
+        /// Write the In cells' outer faces as OBJ: a valid closed solid of
+        /// volume exactly V_in.
+        #[arg(long, value_name = "OUT.obj")]
+        obj: Option<PathBuf>,
     },
     /// Mesh a field document (blobs and field CSG, JSON) by marching cubes
     /// into a validated closed solid and write it as OBJ. Exit code 0 for a
@@ -233,7 +238,12 @@ fn main() -> ExitCode {
             integrate,
             stats,
         } => volume::run(&target, spacing, integrate, stats),
-        Command::Cells { solid, depth, npy } => cells::run(&solid, depth, npy.as_deref()),
+        Command::Cells {
+            target,
+            depth,
+            npy,
+            obj,
+        } => cells::run(&target, depth, npy.as_deref(), obj.as_deref()),
         Command::Mesh {
             field,
             output,

@@ -17,7 +17,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::geom::{Aabb, Sign, orient2d, orient3d};
+use super::{Aabb, Sign, orient2d, orient3d};
 
 /// Whether the closed triangle `t` and the closed box `b` share a point.
 /// A degenerate triangle (collinear or repeated corners) is the segment or
