@@ -20,8 +20,9 @@
 //! [`spatial`] (the shared BVH: ray walk, pair walk, box queries) →
 //! [`mesh`] (topology) → [`io`] (OBJ in and out) → [`validate`] (named
 //! checks and a graded verdict) and [`query`] (line–face, ray–solid,
-//! point-in-polyhedron) → [`csg`] (ray-cast CSG: primitives, trees, the span
-//! merge) → [`cells`] (octree cells In, Out or On, certified volumes) →
+//! point-in-polyhedron) → [`boolean`] (exact boundary evaluation: union,
+//! intersection and difference into valid solids) → [`csg`] (ray-cast CSG:
+//! primitives, trees, the span merge, tree evaluation by booleans) → [`cells`] (octree cells In, Out or On, certified volumes) →
 //! [`field`] (implicit solids: blobby fields, field CSG, marching
 //! cubes to a valid solid) → [`scene`] (the JSON scene format; a mesh or a
 //! scene as one query target) → [`render`] (images).

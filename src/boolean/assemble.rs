@@ -13,7 +13,7 @@ use crate::validate::{Options, Report, Validity, check_rings, validate_soup};
 
 use super::BooleanError;
 use super::merge::{PieceSource, merge_faces};
-use super::operand::{Operand, Prepared};
+use super::operand::{FaceOrigin, Operand, Prepared};
 use super::points::PointTable;
 
 /// A piece that bounds the result, wound as it faces out of the result.
@@ -24,15 +24,6 @@ pub(crate) struct KeptPiece {
     pub face: FaceId,
     /// The operand triangle the piece lies in, wound as the piece.
     pub plane: [DVec3; 3],
-}
-
-/// The face of an operand a result face came from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct FaceOrigin {
-    /// Which operand.
-    pub side: Operand,
-    /// The operand's face.
-    pub face: FaceId,
 }
 
 /// The soup of the kept pieces: each canonical point once, rounded; each

@@ -20,8 +20,8 @@ use glam::DVec3;
 use crate::geom::{Sign, orient3d};
 use crate::mesh::{EdgeId, FaceId, Solid, VertexId};
 
-use super::assemble::FaceOrigin;
 use super::intersect::projection;
+use super::operand::FaceOrigin;
 
 /// What the merge needs to know about each polygon of the soup the solid
 /// was built from (indexed by the faces' `source_index`).

@@ -6,21 +6,24 @@
 //! Voelcker's boundary evaluation; the seeds' §9.5). The stages, one file
 //! each, in the order they run:
 //!
-//! 1. [`operand`]: each face triangulated exactly, a BVH over the triangles;
+//! 1. `operand`: each face triangulated exactly, a BVH over the triangles;
 //!    operands that are not valid closed solids are refused first.
-//! 2. [`intersect`]: the BVH pair walk hands over triangle pairs whose boxes
+//! 2. `intersect`: the BVH pair walk hands over triangle pairs whose boxes
 //!    meet; each pair's contact (points and segments, or a coplanar overlap)
 //!    is decided with exact predicates, new points kept implicit.
-//! 3. [`points`]: every point once, by exact comparison.
-//! 4. [`split`]: each cut triangle triangulated along its segments.
-//! 5. [`classify`]: pieces grouped into patches, one exact membership
+//! 3. `points`: every point once, by exact comparison.
+//! 4. `split`: each cut triangle triangulated along its segments.
+//! 5. `classify`: pieces grouped into patches, one exact membership
 //!    decision per patch.
-//! 6. [`select`]: the operator's rule.
-//! 7. [`assemble`]: points rounded to `f64`, the solid built, and proven
-//!    valid by the validator (closed, oriented, no self-intersection).
+//! 6. `select`: the operator's rule.
+//! 7. `assemble`: points rounded to `f64` (constructed points a few units
+//!    in the last place from another snapped onto it), the solid built.
+//! 8. `merge`: coplanar neighbours merged back into polygon faces (with
+//!    rings) by Euler operators; then the result is proven valid by the
+//!    validator (closed, oriented, no self-intersection).
 //!
 //! No sign is decided on a rounded constructed point: implicit points
-//! ([`ImplicitPoint`](crate::geom::implicit::ImplicitPoint)) carry their
+//! ([`ImplicitPoint`]) carry their
 //! definitions until the output is written.
 
 mod assemble;
@@ -42,9 +45,8 @@ use crate::geom::implicit::ImplicitPoint;
 use crate::mesh::Solid;
 use crate::validate::Report;
 
-pub use assemble::FaceOrigin;
 pub use error::BooleanError;
-pub use operand::Operand;
+pub use operand::{FaceOrigin, Operand};
 
 use classify::{Partner, Piece};
 use intersect::{Contact, PointRef, Tri};

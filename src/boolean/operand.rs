@@ -21,6 +21,15 @@ pub enum Operand {
     Second,
 }
 
+/// The face of an operand a result face came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct FaceOrigin {
+    /// Which operand.
+    pub side: Operand,
+    /// The operand's face.
+    pub face: FaceId,
+}
+
 /// A solid prepared for a boolean.
 ///
 /// # Invariants

@@ -61,8 +61,9 @@ pub(crate) fn side_of_plane(plane: [DVec3; 3], p: &impl HasHomogeneous) -> Sign 
     )
 }
 
-/// [`side_of_plane`] for an [`ImplicitPoint`], taking [`orient3d`] when the
-/// point is explicit.
+/// The side of the plane through `plane` on which `p` lies, exactly:
+/// `Positive` on the side the normal `(b − a) × (c − a)` points to, as
+/// [`orient3d`]`(a, b, c, p)` (which it takes when the point is explicit).
 #[must_use]
 pub fn point_side_of_plane(plane: [DVec3; 3], p: &ImplicitPoint) -> Sign {
     match p {
@@ -106,8 +107,10 @@ pub(crate) fn orient2d_projected(
     )
 }
 
-/// [`orient2d_projected`] on implicit points, by [`orient2d`] when all
-/// three are explicit.
+/// The orientation of three points in the projection that drops
+/// coordinate `axis` (the other two in cyclic order: `y, z` for `x`, `z, x`
+/// for `y`, `x, y` for `z`), exactly: `Positive` when counter-clockwise; by
+/// [`orient2d`] when all three are explicit.
 #[must_use]
 pub fn orient2d_points(a: &ImplicitPoint, b: &ImplicitPoint, c: &ImplicitPoint, axis: u8) -> Sign {
     if let (Some(a), Some(b), Some(c)) = (a.explicit(), b.explicit(), c.explicit()) {
