@@ -25,6 +25,7 @@ fn main() {
             Operation::Difference,
             BooleanOptions {
                 check_operands: check,
+                ..BooleanOptions::default()
             },
         )
         .expect("a valid difference");

@@ -127,3 +127,19 @@ fn faces_are_merged_back_into_polygons() {
         assert!(i < joined.origins.len());
     }
 }
+
+#[test]
+fn a_boolean_beyond_its_limit_says_so() {
+    let a = builders::sphere(12);
+    let b = cuboid([0.0; 3], [2.0; 3]);
+    let options = wingedge::boolean::BooleanOptions {
+        max_contacts: 10,
+        ..Default::default()
+    };
+    let err = wingedge::boolean::boolean(&a, &b, wingedge::boolean::Operation::Union, options)
+        .unwrap_err();
+    assert!(
+        matches!(err, BooleanError::TooLarge { limit: 10, .. }),
+        "{err}"
+    );
+}

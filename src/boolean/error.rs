@@ -30,6 +30,17 @@ pub enum BooleanError {
         /// The triangulator's reason.
         reason: String,
     },
+    /// The operands touch in more pairs of triangles than the boolean's
+    /// limit allows (the memory it would take).
+    #[error(
+        "the operands' surfaces meet in {contacts} pairs of triangles, more than the limit of {limit}"
+    )]
+    TooLarge {
+        /// Pairs of touching triangles found.
+        contacts: usize,
+        /// The limit ([`BooleanOptions::max_contacts`](super::BooleanOptions::max_contacts)).
+        limit: usize,
+    },
     /// The exact decisions disagreed with each other — a defect of
     /// wingedge, reported instead of returning a broken solid.
     #[error("inconsistent intersection (a wingedge defect, please report it): {0}")]

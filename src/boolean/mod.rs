@@ -113,12 +113,21 @@ pub struct BooleanOptions {
     /// before any work; on by default. Turn off only for operands known to
     /// be valid (the output of an earlier boolean, a builder's solid).
     pub check_operands: bool,
+    /// The most pairs of touching triangles a boolean takes on: each costs
+    /// a few hundred bytes through the later stages, so the default
+    /// ([`MAX_CONTACTS`]) keeps a boolean within a few gigabytes and refuses
+    /// beyond it instead of running out of memory.
+    pub max_contacts: usize,
 }
+
+/// The default limit on touching triangle pairs: 10 million.
+pub const MAX_CONTACTS: usize = 10_000_000;
 
 impl Default for BooleanOptions {
     fn default() -> BooleanOptions {
         BooleanOptions {
             check_operands: true,
+            max_contacts: MAX_CONTACTS,
         }
     }
 }
@@ -203,6 +212,12 @@ pub fn boolean(
     let offset = first.positions.len() as u32;
     let contacts = contacts(&first, &second, offset);
     stats.contacts = contacts.len();
+    if contacts.len() > options.max_contacts {
+        return Err(BooleanError::TooLarge {
+            contacts: contacts.len(),
+            limit: options.max_contacts,
+        });
+    }
     stats.intersect_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();

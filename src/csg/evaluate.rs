@@ -157,6 +157,7 @@ fn node(
             // Leaves were proven valid above and every result is.
             let options = BooleanOptions {
                 check_operands: false,
+                ..BooleanOptions::default()
             };
             let result = boolean(&a.solid, &b.solid, operation, options).map_err(|source| {
                 EvaluateError::Boolean {
