@@ -29,21 +29,19 @@
 //! Faces that are not polygons, degenerate faces and later copies of
 //! duplicate faces are left out: other rules report them.
 
+mod apart;
+mod around_axis;
+mod sharing;
+mod triangles;
+
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use super::super::context::{Context, Shape};
+use super::super::context::Context;
 use super::super::report::{Rule, Violation};
 use crate::geom::polygon::Projection;
 use crate::geom::{Aabb, Sign, orient2d, orient3d, triangles_intersect};
-use crate::spatial::Bvh;
-
-/// A triangle of a face: three soup vertices and the face.
-#[derive(Clone, Copy, Debug)]
-struct Triangle {
-    vertices: [usize; 3],
-    face: usize,
-}
+use triangles::{Triangle, triangulate};
 
 /// Every pair of faces that cross or touch without sharing a vertex.
 pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
@@ -75,92 +73,46 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
         .collect()
 }
 
-fn triangulate(ctx: &Context) -> Vec<Triangle> {
-    (0..ctx.face_count())
-        .into_par_iter()
-        .filter(|&f| {
-            ctx.shape[f] == Shape::Polygon && ctx.duplicate_of[f].is_none() && !ctx.degenerate[f]
-        })
-        .flat_map_iter(|face| {
-            let c = ctx.corners(face);
-            let out: Vec<Triangle> = if c.len() == 3 {
-                vec![Triangle {
-                    vertices: [c[0], c[1], c[2]],
-                    face,
-                }]
-            } else {
-                ear_clip(ctx, face)
-                    .into_iter()
-                    .map(|vertices| Triangle { vertices, face })
-                    .collect()
-            };
-            out
-        })
-        .collect()
-}
-
-/// Triangles covering a polygon: its exact constrained Delaunay
-/// triangulation in its axis projection; a fan when the projection is not a
-/// simple polygon (other rules report such faces).
-fn ear_clip(ctx: &Context, face: usize) -> Vec<[usize; 3]> {
-    let corners = ctx.corners(face);
-    let projection = ctx.projection(face);
-    let p2: Vec<DVec2> = corners
-        .iter()
-        .map(|&v| projection.apply(ctx.position(v)))
-        .collect();
-    match crate::geom::triangulate(&p2, &[]) {
-        Ok(triangles) => triangles
-            .into_iter()
-            .map(|t| t.map(|k| corners[k]))
-            .collect(),
-        Err(_) => (1..corners.len() - 1)
-            .map(|i| [corners[0], corners[i], corners[i + 1]])
-            .collect(),
-    }
-}
-
 /// The triangle's exact bounding box.
 fn bounds(ctx: &Context, t: &Triangle) -> Aabb {
     Aabb::from_points(t.vertices.map(|v| ctx.position(v)))
 }
 
-/// Whether two closed boxes share a point.
-fn overlap(a: &Aabb, b: &Aabb) -> bool {
-    !a.min.max(b.min).cmpgt(a.max.min(b.max)).any()
-}
-
 /// The pairs of faces (smaller index first, sorted, each once) of which
 /// two triangles meet beyond what they share.
 fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize, usize)> {
+    intersecting_face_pairs_counted(ctx, triangles).0
+}
+
+/// [`intersecting_face_pairs`] and the number of triangle pairs it tested
+/// exactly.
+///
+/// Pairs that share a vertex or an edge come from the topology
+/// ([`sharing`]); the box walks ([`apart`]) hand over every other pair
+/// whose boxes overlap.
+fn intersecting_face_pairs_counted(
+    ctx: &Context,
+    triangles: &[Triangle],
+) -> (Vec<(usize, usize)>, usize) {
     if triangles.len() < 2 {
-        return Vec::new();
+        return (Vec::new(), 0);
     }
-    let boxes: Vec<Aabb> = triangles.par_iter().map(|t| bounds(ctx, t)).collect();
-    let (bvh, order) = Bvh::build(&boxes);
-    let test = |a: usize, b: usize| -> Option<(usize, usize)> {
+    let meet = |a: usize, b: usize| -> Option<(usize, usize)> {
         let (ta, tb) = (&triangles[a], &triangles[b]);
-        if ta.face == tb.face || !overlap(&boxes[a], &boxes[b]) {
+        if ta.face == tb.face {
             return None;
         }
         triangles_meet_beyond_shared(ctx, ta, tb)
             .then(|| (ta.face.min(tb.face), ta.face.max(tb.face)))
     };
-    let items = |leaf| bvh.leaf(leaf).unwrap_or_default().range();
-    let mut pairs = bvh.par_self_leaf_pairs(|la, lb, found| {
-        for p in items(la) {
-            // Within one leaf, each pair once.
-            let others = items(lb);
-            let start = if la == lb { p + 1 } else { others.start };
-            for q in start..others.end {
-                let (a, b) = (order[p] as usize, order[q] as usize);
-                found.extend(test(a.min(b), a.max(b)));
-            }
-        }
-    });
+    let sharing = sharing::pairs_sharing_corners(ctx, triangles, &meet);
+    let boxes: Vec<Aabb> = triangles.par_iter().map(|t| bounds(ctx, t)).collect();
+    let apart = apart::pairs_apart(ctx, triangles, &boxes, sharing::SMALL_FAN, &meet);
+    let mut pairs = apart.found;
+    pairs.extend(sharing.found);
     pairs.par_sort_unstable();
     pairs.dedup();
-    pairs
+    (pairs, sharing.tested + apart.tested)
 }
 
 fn faces_share_a_vertex(ctx: &Context, a: usize, b: usize) -> bool {
