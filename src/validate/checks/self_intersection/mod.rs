@@ -341,6 +341,147 @@ mod tests {
         );
     }
 
+    /// The positions and faces of a closed cone of `n` sides.
+    fn cone(n: usize, centre_fan: bool) -> (Vec<DVec3>, Vec<Vec<usize>>) {
+        use crate::mesh::builders::{ConeBase, cone_soup};
+        let base = if centre_fan {
+            ConeBase::CentreFan
+        } else {
+            ConeBase::CornerFan
+        };
+        let soup = cone_soup(n, base);
+        let faces = soup.polygons.iter().map(|f| f.vertices.to_vec()).collect();
+        (soup.positions, faces)
+    }
+
+    /// The face pairs and the number of triangle pairs tested.
+    fn counted(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> (Vec<(usize, usize)>, usize) {
+        let soup = crate::mesh::PolygonSoup::new(positions, polygons);
+        let ctx = Context::new(&soup, None, crate::geom::Tolerance::default());
+        intersecting_face_pairs_counted(&ctx, &triangulate(&ctx))
+    }
+
+    /// What testing every pair of triangles whose boxes overlap finds.
+    fn every_pair(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> Vec<(usize, usize)> {
+        let soup = crate::mesh::PolygonSoup::new(positions, polygons);
+        let ctx = Context::new(&soup, None, crate::geom::Tolerance::default());
+        let triangles = triangulate(&ctx);
+        let mut pairs = Vec::new();
+        for (i, a) in triangles.iter().enumerate() {
+            for b in &triangles[i + 1..] {
+                if a.face != b.face
+                    && apart::overlap(&bounds(&ctx, a), &bounds(&ctx, b))
+                    && triangles_meet_beyond_shared(&ctx, a, b)
+                {
+                    pairs.push((a.face.min(b.face), a.face.max(b.face)));
+                }
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        pairs
+    }
+
+    #[test]
+    fn cones_and_fans_test_a_bounded_number_of_pairs_per_triangle() {
+        // Around an apex of valence n a box walk tests n²/2 pairs; here the
+        // pairs tested stay a small multiple of the triangles.
+        let n = 600;
+        for centre_fan in [true, false] {
+            let (p, f) = cone(n, centre_fan);
+            let triangles = f.len();
+            let (pairs, tested) = counted(p, f);
+            assert!(pairs.is_empty(), "{pairs:?}");
+            // About 5 per triangle with a centre fan, 12 with a corner fan
+            // (whose long chords run along the rim); every pair would be
+            // over 100 per triangle.
+            assert!(
+                tested <= 16 * triangles,
+                "{tested} pairs for {triangles} triangles"
+            );
+        }
+        // A fan of n triangles on one edge: n²/2 pairs share the edge.
+        let fan = crate::mesh::builders::edge_fan_soup(n);
+        let faces = fan.polygons.iter().map(|f| f.vertices.to_vec()).collect();
+        let (pairs, tested) = counted(fan.positions, faces);
+        assert!(pairs.is_empty(), "{pairs:?}");
+        assert!(tested <= 8 * n, "{tested} pairs for {n} triangles");
+    }
+
+    #[test]
+    fn an_apex_face_folded_through_its_neighbours_is_found() {
+        // Rim vertex 10 pulled out past the rim at a third of a turn: the two
+        // apex faces at it cross the apex faces they sweep over (sharing
+        // only the apex with them) and the base.
+        let n = 200;
+        for centre_fan in [true, false] {
+            let (mut p, f) = cone(n, centre_fan);
+            let a = std::f64::consts::TAU / 3.0;
+            let rim = if centre_fan { 2 } else { 1 };
+            p[rim + 10] = v(1.5 * a.cos(), 1.5 * a.sin(), 0.1);
+            let want = every_pair(p.clone(), f.clone());
+            let (found, _) = counted(p, f);
+            assert_eq!(found, want);
+            // Apex faces 9 and 10 against apex faces they share only the
+            // apex with.
+            assert!(
+                found
+                    .iter()
+                    .any(|&(a, b)| a >= 9 && a <= 10 && b > 11 && b < n),
+                "{found:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_angular_filters_find_what_every_pair_finds() {
+        let mut unit = crate::test_rng::uniform(21);
+        let mut random = |lo: f64, hi: f64| lo + (hi - lo) * unit();
+        // A flat fan that wraps over itself 1.3 times.
+        let m = 120;
+        let mut p = vec![v(0., 0., 0.)];
+        p.extend((0..=m).map(|i| {
+            let a = 1.3 * std::f64::consts::TAU * i as f64 / m as f64;
+            v(a.cos(), a.sin(), 0.)
+        }));
+        let f: Vec<Vec<usize>> = (0..m).map(|i| vec![0, i + 1, i + 2]).collect();
+        let want = every_pair(p.clone(), f.clone());
+        assert!(!want.is_empty());
+        assert_eq!(counted(p, f).0, want);
+        // A fan on one edge with repeated half-planes, some opposite.
+        let mut p = vec![v(0., 0., 0.), v(0., 0., 1.)];
+        let mut f = Vec::new();
+        for k in 0..80 {
+            let a = std::f64::consts::TAU * (k % 30) as f64 / 30.0;
+            let r = 1.0 + 0.1 * k as f64;
+            p.push(v(r * a.cos(), r * a.sin(), [0.5, 1.5, -0.5][k % 3]));
+            f.push(vec![0, 1, k + 2]);
+        }
+        let want = every_pair(p.clone(), f.clone());
+        assert!(!want.is_empty());
+        assert_eq!(counted(p, f).0, want);
+        // Random stars around one vertex, and cones with random rim
+        // vertices.
+        for round in 0..6 {
+            let (mut p, f) = if round % 2 == 0 {
+                let mut p = vec![v(0., 0., 0.)];
+                p.extend((0..60).map(|_| v(random(-1., 1.), random(-1., 1.), random(-1., 1.))));
+                let f = (0..60).map(|k| vec![0, 1 + k, 1 + (k + 1) % 60]).collect();
+                (p, f)
+            } else {
+                cone(100, round % 4 == 1)
+            };
+            if round % 2 == 1 {
+                for k in [7, 31, 64] {
+                    p[k] = v(random(-1.2, 1.2), random(-1.2, 1.2), random(-0.3, 0.8));
+                }
+            }
+            let want = every_pair(p.clone(), f.clone());
+            assert!(!want.is_empty(), "round {round}");
+            assert_eq!(counted(p, f).0, want, "round {round}");
+        }
+    }
+
     fn v(x: f64, y: f64, z: f64) -> DVec3 {
         DVec3::new(x, y, z)
     }
