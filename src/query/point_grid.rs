@@ -13,7 +13,7 @@ use super::triangle_records::YzTri;
 
 /// A uniform grid over the `yz` projection of the solid's bounding box; each
 /// cell lists the triangles whose projection can hold a point of the cell
-/// (see [`CellMap::row_columns`]: the cells the projected triangle meets, not every
+/// (see [`TriangleCut::row_columns`]: the cells the projected triangle meets, not every
 /// cell of its projected box), by ascending lower bound of `x`, and a bound on their `x` extents: so the
 /// triangles a `−x` ray from a point can meet are a prefix of the cell's list
 /// and those a `+x` ray can meet are within a suffix.
@@ -173,8 +173,13 @@ pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         counts.into_par_iter().enumerate().for_each(|(b, count)| {
             let (lo, hi) = band_rows(b);
             for (t, span) in yz.iter().zip(&spans) {
-                for r in rows_of(span, (lo, hi)) {
-                    for c in map.row_columns(t, span, r) {
+                let rows = rows_of(span, (lo, hi));
+                if rows.is_empty() {
+                    continue;
+                }
+                let cut = map.cut(t, span);
+                for r in rows {
+                    for c in cut.row_columns(r) {
                         count[(r - lo) * ny + c] += 1;
                     }
                 }
@@ -228,8 +233,9 @@ pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
                 // is within half an ulp of it, the next `f64` above it is not
                 // below it, and rounding up to `f32` keeps that.
                 let reach = f32_up(f64_above(t.max_x() - f64::from(min_x)));
+                let cut = map.cut(t, span);
                 for r in rows {
-                    for c in map.row_columns(t, span, r) {
+                    for c in cut.row_columns(r) {
                         let cell = (r - lo) * ny + c;
                         part[fill[cell] as usize] = GridEntry {
                             x: min_x,
@@ -267,7 +273,7 @@ struct CellMap {
     nz: usize,
 }
 
-/// How far (in cells) [`CellMap::row_columns`] widens a row and a
+/// How far (in cells) [`TriangleCut::row_columns`] widens a row and a
 /// triangle's reach in it, to cover the roundings of the cell coordinates.
 /// Every cell coordinate of a point of the solid's box is at most `2¹⁵`
 /// (`ny, nz ≤ 2¹⁴`), and is computed with two roundings of relative size
@@ -278,7 +284,7 @@ struct CellMap {
 /// fewer, and decides no answer.
 const ROUNDING_MARGIN: f64 = 1.0 / (1u64 << 20) as f64;
 
-/// The largest cell coordinate [`CellMap::row_columns`] computes with (see
+/// The largest cell coordinate [`TriangleCut::row_columns`] computes with (see
 /// [`ROUNDING_MARGIN`]); beyond it a triangle keeps its box's columns.
 const CELL_COORDINATE_LIMIT: f64 = (1u64 << 15) as f64;
 
@@ -293,11 +299,46 @@ impl CellMap {
         }
     }
 
-    /// The columns of row `r` (one of the rows of `span`, the triangle's
-    /// projected box in cells: columns `span[0]..=span[1]`, rows
-    /// `span[2]..=span[3]`) that list the triangle `t`: every column `c`
-    /// such that a point of `t`'s closed projection lies in cell `(c, r)`,
-    /// and perhaps a few more.
+    /// The triangle `t`, whose projected box in cells is `span` (columns
+    /// `span[0]..=span[1]`, rows `span[2]..=span[3]`), ready to be cut into
+    /// rows by [`TriangleCut::row_columns`].
+    fn cut(&self, t: &YzTri, span: &[u16; 4]) -> TriangleCut {
+        let (c0, c1) = (usize::from(span[0]), usize::from(span[1]));
+        let u = t.y.map(|y| (y - self.y0) * self.inv_hy);
+        let w = t.z.map(|z| (z - self.z0) * self.inv_hz);
+        let tame = |x: f64| x.abs() <= CELL_COORDINATE_LIMIT;
+        let whole = c0 == c1
+            || span[2] == span[3]
+            || !(u.iter().all(|&x| tame(x)) && w.iter().all(|&x| tame(x)));
+        TriangleCut {
+            u,
+            w,
+            columns: (c0, c1),
+            whole,
+            last_row: self.nz - 1,
+        }
+    }
+}
+
+/// A triangle in cell coordinates, cut into the grid's rows.
+#[derive(Clone, Copy, Debug)]
+struct TriangleCut {
+    /// The corners' cell coordinates, as [`CellMap`] computes them.
+    u: [f64; 3],
+    w: [f64; 3],
+    /// The columns of the triangle's projected box.
+    columns: (usize, usize),
+    /// Whether every row keeps the box's columns (one row or column, or
+    /// coordinates beyond [`CELL_COORDINATE_LIMIT`]).
+    whole: bool,
+    /// The grid's last row.
+    last_row: usize,
+}
+
+impl TriangleCut {
+    /// The columns of row `r` (one of the rows of the triangle's box) that
+    /// list the triangle: every column `c` such that a point of its closed
+    /// projection lies in cell `(c, r)`, and perhaps a few more.
     ///
     /// Why that holds: let `A` be the exact affine map whose rounding gives
     /// the cell coordinates `(u, w)`. A point `q` of the projected triangle
@@ -310,25 +351,19 @@ impl CellMap {
     /// within the `u` range of the computed triangle cut by that slab, and
     /// `q`'s column is that range widened by `m`, rounded down. The first
     /// row reaches down to `−∞` and the last up to `+∞`, as the clamping of
-    /// [`YzGrid::row`] does. Corners whose cell coordinates are not finite or
-    /// exceed [`CELL_COORDINATE_LIMIT`] keep the box's columns.
-    fn row_columns(&self, t: &YzTri, span: &[u16; 4], r: usize) -> RangeInclusive<usize> {
-        let (c0, c1) = (usize::from(span[0]), usize::from(span[1]));
-        if c0 == c1 || span[2] == span[3] {
+    /// [`YzGrid::row`] does.
+    fn row_columns(&self, r: usize) -> RangeInclusive<usize> {
+        let (c0, c1) = self.columns;
+        if self.whole {
             return c0..=c1;
         }
-        let u = t.y.map(|y| (y - self.y0) * self.inv_hy);
-        let w = t.z.map(|z| (z - self.z0) * self.inv_hz);
-        let tame = |x: f64| x.abs() <= CELL_COORDINATE_LIMIT;
-        if !(u.iter().all(|&x| tame(x)) && w.iter().all(|&x| tame(x))) {
-            return c0..=c1;
-        }
+        let (u, w) = (self.u, self.w);
         let bottom = if r == 0 {
             f64::NEG_INFINITY
         } else {
             r as f64 - ROUNDING_MARGIN
         };
-        let top = if r + 1 >= self.nz {
+        let top = if r >= self.last_row {
             f64::INFINITY
         } else {
             (r + 1) as f64 + ROUNDING_MARGIN
@@ -354,15 +389,22 @@ impl CellMap {
             // rather than relying on that.
             return c0..=c1;
         }
-        let column = |x: f64| (x.floor().max(0.0) as usize).clamp(c0, c1);
+        // `as` rounds a non-negative value down and takes a negative one to 0.
+        let column = |x: f64| (x as usize).clamp(c0, c1);
         column(low - ROUNDING_MARGIN)..=column(high + ROUNDING_MARGIN)
     }
 }
 
-/// Stable insertion sort of a cell's entries by ascending [`GridEntry::x`]:
-/// cells hold a handful of entries, for which this is the fastest sort. The
-/// bounds are never NaN (rounded from finite coordinates).
+/// Stable sort of a cell's entries by ascending [`GridEntry::x`]: most
+/// cells hold a handful of entries, for which insertion sort is the
+/// fastest; a cell that many triangles cross (around a vertex where many
+/// faces meet) takes the library's stable sort. The bounds are never NaN
+/// (rounded from finite coordinates).
 fn sort_by_x(entries: &mut [GridEntry]) {
+    if entries.len() > INSERTION_SORT_LIMIT {
+        entries.sort_by(|a, b| a.x.partial_cmp(&b.x).unwrap_or(std::cmp::Ordering::Equal));
+        return;
+    }
     for i in 1..entries.len() {
         let e = entries[i];
         let mut j = i;
@@ -373,3 +415,6 @@ fn sort_by_x(entries: &mut [GridEntry]) {
         entries[j] = e;
     }
 }
+
+/// The longest cell list [`sort_by_x`] sorts by insertion.
+const INSERTION_SORT_LIMIT: usize = 32;
