@@ -23,7 +23,9 @@ use wingedge::mesh::{PolygonSoup, Solid};
 use wingedge::query::Accel;
 use wingedge::validate::{Options, validate_and_build};
 
+// Shared with the peer programs; this one uses only the memory reading.
 #[path = "common/peers_io.rs"]
+#[allow(dead_code)]
 mod peers_io;
 
 use peers_io::{Result, peak_rss_mib};

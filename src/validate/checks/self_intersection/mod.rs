@@ -3,13 +3,16 @@
 //!
 //! Faces are cut into triangles (the exact constrained Delaunay
 //! triangulation of `geom::triangulate` in the face's axis projection; a
-//! fan for a face whose projection is not simple), the broad phase is the
-//! shared BVH's pair walk over the triangles' boxes ([`Bvh::par_self_leaf_pairs`]),
-//! and every pair of triangles of different faces whose boxes overlap
-//! (closed boxes: touching counts) is tested exactly, once: only `orient3d`
-//! and `orient2d` signs decide, no epsilon. The pairs of leaves are tested
-//! in parallel; the defects found are sorted, so their order depends on
-//! neither the tree nor the threads.
+//! fan for a face whose projection is not simple), and every pair of
+//! triangles of different faces whose boxes overlap (closed boxes: touching
+//! counts) is decided exactly: only `orient3d` and `orient2d` signs decide,
+//! no epsilon. Not every such pair is handed to the test: pairs that share
+//! a vertex or an edge come from the topology, filtered by exact angular
+//! order ([`sharing`]), and the others from the shared BVH's pair walks
+//! ([`apart`]); each filter drops only pairs the test would answer "no",
+//! so the verdicts are those of testing every pair. Pairs are tested in
+//! parallel; the defects found are sorted, so their order depends on
+//! neither the trees nor the threads.
 //!
 //! How a pair is tested depends on the vertices its triangles share:
 //!
@@ -105,9 +108,9 @@ fn intersecting_face_pairs_counted(
         triangles_meet_beyond_shared(ctx, ta, tb)
             .then(|| (ta.face.min(tb.face), ta.face.max(tb.face)))
     };
-    let sharing = sharing::pairs_sharing_corners(ctx, triangles, &meet);
+    let sharing = sharing::pairs_sharing_corners(ctx, triangles, meet);
     let boxes: Vec<Aabb> = triangles.par_iter().map(|t| bounds(ctx, t)).collect();
-    let apart = apart::pairs_apart(ctx, triangles, &boxes, sharing::SMALL_FAN, &meet);
+    let apart = apart::pairs_apart(ctx, triangles, &boxes, sharing::SMALL_FAN, meet);
     let mut pairs = apart.found;
     pairs.extend(sharing.found);
     pairs.par_sort_unstable();
@@ -427,7 +430,7 @@ mod tests {
             assert!(
                 found
                     .iter()
-                    .any(|&(a, b)| a >= 9 && a <= 10 && b > 11 && b < n),
+                    .any(|&(a, b)| (9..=10).contains(&a) && b > 11 && b < n),
                 "{found:?}"
             );
         }

@@ -42,6 +42,9 @@ use crate::geom::{Sign, collinear3d, orient3d};
 /// is tested; above it the angular filters choose.
 pub(super) const SMALL_FAN: usize = 24;
 
+/// Receives candidate pairs of triangles (indices).
+type Visit<'a> = dyn FnMut(u32, u32) + 'a;
+
 /// What [`pairs_sharing_corners`] found and how many pairs it tested.
 pub(super) struct Sharing<T> {
     /// What the test returned for the pairs it kept.
@@ -61,7 +64,7 @@ pub(super) fn pairs_sharing_corners<T: Send>(
     let tested = AtomicUsize::new(0);
     // Tests the candidates that `candidates` visits and share exactly
     // `shared` vertices.
-    let run = |shared: usize, candidates: &dyn Fn(&mut dyn FnMut(u32, u32))| -> Vec<T> {
+    let run = |shared: usize, candidates: &dyn Fn(&mut Visit)| -> Vec<T> {
         let mut count = 0;
         let mut found = Vec::new();
         candidates(&mut |a, b| {
