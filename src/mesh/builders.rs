@@ -254,6 +254,62 @@ pub fn sphere_soup(rings: usize) -> PolygonSoup {
     PolygonSoup::new(positions, polygons)
 }
 
+/// How [`cone_soup`] closes the cone's base.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConeBase {
+    /// A fan from a vertex at the base's centre: `n` triangles.
+    CentreFan,
+    /// A fan from the first base vertex, as CAD exporters write caps:
+    /// `n − 2` triangles.
+    CornerFan,
+}
+
+/// A closed triangulated cone as a soup: the apex `(0, 0, 1)` (vertex 0)
+/// joined to `segments` base vertices on the unit circle at `z = 0` (at
+/// least 3), the base closed by a fan, wound outward. With
+/// [`ConeBase::CentreFan`] the centre is vertex 1 and the base vertices
+/// follow; with [`ConeBase::CornerFan`] they start at vertex 1. The apex
+/// (and the centre) has valence `segments`: benchmarks and tests use it as
+/// the valid input whose faces all meet at one vertex.
+///
+/// # Panics
+///
+/// When the soup does not fit in memory (a programmer's choice of size).
+#[must_use]
+pub fn cone_soup(segments: usize, base: ConeBase) -> PolygonSoup {
+    let n = segments.max(3);
+    let mut positions = vec![DVec3::Z];
+    if base == ConeBase::CentreFan {
+        positions.push(DVec3::ZERO);
+    }
+    let first = positions.len();
+    positions.extend((0..n).map(|i| {
+        let angle = std::f64::consts::TAU * i as f64 / n as f64;
+        DVec3::new(angle.cos(), angle.sin(), 0.0)
+    }));
+    let rim = |i: usize| first + i % n;
+    let mut polygons: Vec<[usize; 3]> = (0..n).map(|i| [0, rim(i), rim(i + 1)]).collect();
+    match base {
+        ConeBase::CentreFan => polygons.extend((0..n).map(|i| [1, rim(i + 1), rim(i)])),
+        ConeBase::CornerFan => polygons.extend((1..n - 1).map(|i| [first, rim(i + 1), rim(i)])),
+    }
+    PolygonSoup::new(positions, polygons)
+}
+
+/// `pages` triangles on one edge, from `(0, 0, 0)` to `(0, 0, 1)`, their
+/// third vertices around it on the unit circle at `z = ½`: not a solid (an
+/// edge of more than two faces), the input on which every pair of faces
+/// shares an edge. For benchmarks and tests of refusals.
+#[must_use]
+pub fn edge_fan_soup(pages: usize) -> PolygonSoup {
+    let mut positions = vec![DVec3::ZERO, DVec3::Z];
+    positions.extend((0..pages).map(|k| {
+        let angle = std::f64::consts::TAU * k as f64 / pages as f64;
+        DVec3::new(angle.cos(), angle.sin(), 0.5)
+    }));
+    PolygonSoup::new(positions, (0..pages).map(|k| [0, 1, k + 2]))
+}
+
 /// The solid of [`sphere_soup`].
 #[must_use]
 pub fn sphere(rings: usize) -> Solid {

@@ -1,6 +1,8 @@
 //! The uniform grid over the `yz` projection that point classification
 //! walks along `±x` (see ARCHITECTURE.md, "The point grid").
 
+use std::ops::RangeInclusive;
+
 use rayon::prelude::*;
 
 use crate::geom::Aabb;
@@ -10,8 +12,9 @@ use crate::spatial::rounding::{f32_down, f32_up, f64_above};
 use super::triangle_records::YzTri;
 
 /// A uniform grid over the `yz` projection of the solid's bounding box; each
-/// cell lists the triangles whose projected bounding box overlaps it, by
-/// ascending lower bound of `x`, and a bound on their `x` extents: so the
+/// cell lists the triangles whose projection can hold a point of the cell
+/// (see [`TriangleCut::row_columns`]: the cells the projected triangle meets, not every
+/// cell of its projected box), by ascending lower bound of `x`, and a bound on their `x` extents: so the
 /// triangles a `−x` ray from a point can meet are a prefix of the cell's list
 /// and those a `+x` ray can meet are within a suffix.
 ///
@@ -19,6 +22,9 @@ use super::triangle_records::YzTri;
 ///
 /// - Cell `c` owns `entries[cell_start[c] .. cell_start[c + 1]]`, sorted by
 ///   ascending [`GridEntry::x`], ties by record.
+/// - Every triangle whose closed projection holds a point `(y, z)` of the
+///   solid's projected box is listed in the cell
+///   [`YzGrid::cell_index`]`(y, z)`.
 /// - `extent[c] ≥ max x − entry.x` for every triangle listed in cell `c`
 ///   (exactly, not only as rounded), so a triangle whose largest `x` is at
 ///   least `x` has `entry.x ≥ x − extent[c]`.
@@ -128,6 +134,7 @@ pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         entries: HugeVec::with_capacity(0),
         extent: vec![0.0; ny * nz],
     };
+    let map = CellMap::of(&grid);
     // Each triangle's cells: columns `c0..=c1`, rows `r0..=r1` (its
     // projected box mapped by the monotone `col` and `row`).
     let spans: Vec<[u16; 4]> = yz
@@ -165,9 +172,14 @@ pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         }
         counts.into_par_iter().enumerate().for_each(|(b, count)| {
             let (lo, hi) = band_rows(b);
-            for span in &spans {
-                for r in rows_of(span, (lo, hi)) {
-                    for c in usize::from(span[0])..=usize::from(span[1]) {
+            for (t, span) in yz.iter().zip(&spans) {
+                let rows = rows_of(span, (lo, hi));
+                if rows.is_empty() {
+                    continue;
+                }
+                let cut = map.cut(t, span);
+                for r in rows {
+                    for c in cut.row_columns(r) {
                         count[(r - lo) * ny + c] += 1;
                     }
                 }
@@ -221,8 +233,9 @@ pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
                 // is within half an ulp of it, the next `f64` above it is not
                 // below it, and rounding up to `f32` keeps that.
                 let reach = f32_up(f64_above(t.max_x() - f64::from(min_x)));
+                let cut = map.cut(t, span);
                 for r in rows {
-                    for c in usize::from(span[0])..=usize::from(span[1]) {
+                    for c in cut.row_columns(r) {
                         let cell = (r - lo) * ny + c;
                         part[fill[cell] as usize] = GridEntry {
                             x: min_x,
@@ -248,10 +261,150 @@ pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
     grid
 }
 
-/// Stable insertion sort of a cell's entries by ascending [`GridEntry::x`]:
-/// cells hold a handful of entries, for which this is the fastest sort. The
-/// bounds are never NaN (rounded from finite coordinates).
+/// The map from `yz` to cell coordinates that [`YzGrid::col`] and
+/// [`YzGrid::row`] round down: `u = (y − y0)·inv_hy`, `w = (z − z0)·inv_hz`,
+/// each computed with the same two roundings.
+#[derive(Clone, Copy, Debug)]
+struct CellMap {
+    y0: f64,
+    z0: f64,
+    inv_hy: f64,
+    inv_hz: f64,
+    nz: usize,
+}
+
+/// How far (in cells) [`TriangleCut::row_columns`] widens a row and a
+/// triangle's reach in it, to cover the roundings of the cell coordinates.
+/// Every cell coordinate of a point of the solid's box is at most `2¹⁵`
+/// (`ny, nz ≤ 2¹⁴`), and is computed with two roundings of relative size
+/// `2⁻⁵³`, so it is within `2⁻³⁷` of the exact affine image; the crossing of
+/// an edge with a row's border adds roundings of at most a few `2⁻³⁸` times
+/// coordinates below `2¹⁶`. Their sum is below `2⁻³²`: this margin covers it
+/// many times over. It makes a triangle listed in a few more cells, never in
+/// fewer, and decides no answer.
+const ROUNDING_MARGIN: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// The largest cell coordinate [`TriangleCut::row_columns`] computes with (see
+/// [`ROUNDING_MARGIN`]); beyond it a triangle keeps its box's columns.
+const CELL_COORDINATE_LIMIT: f64 = (1u64 << 15) as f64;
+
+impl CellMap {
+    fn of(grid: &YzGrid) -> Self {
+        Self {
+            y0: grid.y0,
+            z0: grid.z0,
+            inv_hy: grid.inv_hy,
+            inv_hz: grid.inv_hz,
+            nz: grid.nz,
+        }
+    }
+
+    /// The triangle `t`, whose projected box in cells is `span` (columns
+    /// `span[0]..=span[1]`, rows `span[2]..=span[3]`), ready to be cut into
+    /// rows by [`TriangleCut::row_columns`].
+    fn cut(&self, t: &YzTri, span: &[u16; 4]) -> TriangleCut {
+        let (c0, c1) = (usize::from(span[0]), usize::from(span[1]));
+        let u = t.y.map(|y| (y - self.y0) * self.inv_hy);
+        let w = t.z.map(|z| (z - self.z0) * self.inv_hz);
+        let tame = |x: f64| x.abs() <= CELL_COORDINATE_LIMIT;
+        let whole = c0 == c1
+            || span[2] == span[3]
+            || !(u.iter().all(|&x| tame(x)) && w.iter().all(|&x| tame(x)));
+        TriangleCut {
+            u,
+            w,
+            columns: (c0, c1),
+            whole,
+            last_row: self.nz - 1,
+        }
+    }
+}
+
+/// A triangle in cell coordinates, cut into the grid's rows.
+#[derive(Clone, Copy, Debug)]
+struct TriangleCut {
+    /// The corners' cell coordinates, as [`CellMap`] computes them.
+    u: [f64; 3],
+    w: [f64; 3],
+    /// The columns of the triangle's projected box.
+    columns: (usize, usize),
+    /// Whether every row keeps the box's columns (one row or column, or
+    /// coordinates beyond [`CELL_COORDINATE_LIMIT`]).
+    whole: bool,
+    /// The grid's last row.
+    last_row: usize,
+}
+
+impl TriangleCut {
+    /// The columns of row `r` (one of the rows of the triangle's box) that
+    /// list the triangle: every column `c` such that a point of its closed
+    /// projection lies in cell `(c, r)`, and perhaps a few more.
+    ///
+    /// Why that holds: let `A` be the exact affine map whose rounding gives
+    /// the cell coordinates `(u, w)`. A point `q` of the projected triangle
+    /// has `A(q)` in the triangle of the exact images of the corners, each
+    /// within `δ = 2⁻³⁷` (per coordinate) of its computed image, so `A(q)` is
+    /// within `δ` of a point `t′` of the triangle of computed corners, and
+    /// the computed `(u, w)` of `q` within `2δ` of `t′`. If `q` is in row `r`
+    /// (computed `w ∈ [r, r + 1)`), `t′` lies in the slab
+    /// `r − m ≤ w ≤ r + 1 + m` (`m` = [`ROUNDING_MARGIN`]), so `t′.u` is
+    /// within the `u` range of the computed triangle cut by that slab, and
+    /// `q`'s column is that range widened by `m`, rounded down. The first
+    /// row reaches down to `−∞` and the last up to `+∞`, as the clamping of
+    /// [`YzGrid::row`] does.
+    fn row_columns(&self, r: usize) -> RangeInclusive<usize> {
+        let (c0, c1) = self.columns;
+        if self.whole {
+            return c0..=c1;
+        }
+        let (u, w) = (self.u, self.w);
+        let bottom = if r == 0 {
+            f64::NEG_INFINITY
+        } else {
+            r as f64 - ROUNDING_MARGIN
+        };
+        let top = if r >= self.last_row {
+            f64::INFINITY
+        } else {
+            (r + 1) as f64 + ROUNDING_MARGIN
+        };
+        let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
+        for i in 0..3 {
+            if w[i] >= bottom && w[i] <= top {
+                low = low.min(u[i]);
+                high = high.max(u[i]);
+            }
+            let j = (i + 1) % 3;
+            for level in [bottom, top] {
+                if (w[i] < level && w[j] > level) || (w[i] > level && w[j] < level) {
+                    let s = (level - w[i]) / (w[j] - w[i]);
+                    let cross = u[i] + s * (u[j] - u[i]);
+                    low = low.min(cross);
+                    high = high.max(cross);
+                }
+            }
+        }
+        if low > high {
+            // Not reached by the rows of the triangle's box; kept whole
+            // rather than relying on that.
+            return c0..=c1;
+        }
+        // `as` rounds a non-negative value down and takes a negative one to 0.
+        let column = |x: f64| (x as usize).clamp(c0, c1);
+        column(low - ROUNDING_MARGIN)..=column(high + ROUNDING_MARGIN)
+    }
+}
+
+/// Stable sort of a cell's entries by ascending [`GridEntry::x`]: most
+/// cells hold a handful of entries, for which insertion sort is the
+/// fastest; a cell that many triangles cross (around a vertex where many
+/// faces meet) takes the library's stable sort. The bounds are never NaN
+/// (rounded from finite coordinates).
 fn sort_by_x(entries: &mut [GridEntry]) {
+    if entries.len() > INSERTION_SORT_LIMIT {
+        entries.sort_by(|a, b| a.x.partial_cmp(&b.x).unwrap_or(std::cmp::Ordering::Equal));
+        return;
+    }
     for i in 1..entries.len() {
         let e = entries[i];
         let mut j = i;
@@ -262,3 +415,6 @@ fn sort_by_x(entries: &mut [GridEntry]) {
         entries[j] = e;
     }
 }
+
+/// The longest cell list [`sort_by_x`] sorts by insertion.
+const INSERTION_SORT_LIMIT: usize = 32;

@@ -3,13 +3,16 @@
 //!
 //! Faces are cut into triangles (the exact constrained Delaunay
 //! triangulation of `geom::triangulate` in the face's axis projection; a
-//! fan for a face whose projection is not simple), the broad phase is the
-//! shared BVH's pair walk over the triangles' boxes ([`Bvh::par_self_leaf_pairs`]),
-//! and every pair of triangles of different faces whose boxes overlap
-//! (closed boxes: touching counts) is tested exactly, once: only `orient3d`
-//! and `orient2d` signs decide, no epsilon. The pairs of leaves are tested
-//! in parallel; the defects found are sorted, so their order depends on
-//! neither the tree nor the threads.
+//! fan for a face whose projection is not simple), and every pair of
+//! triangles of different faces whose boxes overlap (closed boxes: touching
+//! counts) is decided exactly: only `orient3d` and `orient2d` signs decide,
+//! no epsilon. Not every such pair is handed to the test: pairs that share
+//! a vertex or an edge come from the topology, filtered by exact angular
+//! order ([`sharing`]), and the others from the shared BVH's pair walks
+//! ([`apart`]); each filter drops only pairs the test would answer "no",
+//! so the verdicts are those of testing every pair. Pairs are tested in
+//! parallel; the defects found are sorted, so their order depends on
+//! neither the trees nor the threads.
 //!
 //! How a pair is tested depends on the vertices its triangles share:
 //!
@@ -29,21 +32,19 @@
 //! Faces that are not polygons, degenerate faces and later copies of
 //! duplicate faces are left out: other rules report them.
 
+mod apart;
+mod around_axis;
+mod sharing;
+mod triangles;
+
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use super::super::context::{Context, Shape};
+use super::super::context::Context;
 use super::super::report::{Rule, Violation};
 use crate::geom::polygon::Projection;
 use crate::geom::{Aabb, Sign, orient2d, orient3d, triangles_intersect};
-use crate::spatial::Bvh;
-
-/// A triangle of a face: three soup vertices and the face.
-#[derive(Clone, Copy, Debug)]
-struct Triangle {
-    vertices: [usize; 3],
-    face: usize,
-}
+use triangles::{Triangle, triangulate};
 
 /// Every pair of faces that cross or touch without sharing a vertex.
 pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
@@ -75,92 +76,46 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
         .collect()
 }
 
-fn triangulate(ctx: &Context) -> Vec<Triangle> {
-    (0..ctx.face_count())
-        .into_par_iter()
-        .filter(|&f| {
-            ctx.shape[f] == Shape::Polygon && ctx.duplicate_of[f].is_none() && !ctx.degenerate[f]
-        })
-        .flat_map_iter(|face| {
-            let c = ctx.corners(face);
-            let out: Vec<Triangle> = if c.len() == 3 {
-                vec![Triangle {
-                    vertices: [c[0], c[1], c[2]],
-                    face,
-                }]
-            } else {
-                ear_clip(ctx, face)
-                    .into_iter()
-                    .map(|vertices| Triangle { vertices, face })
-                    .collect()
-            };
-            out
-        })
-        .collect()
-}
-
-/// Triangles covering a polygon: its exact constrained Delaunay
-/// triangulation in its axis projection; a fan when the projection is not a
-/// simple polygon (other rules report such faces).
-fn ear_clip(ctx: &Context, face: usize) -> Vec<[usize; 3]> {
-    let corners = ctx.corners(face);
-    let projection = ctx.projection(face);
-    let p2: Vec<DVec2> = corners
-        .iter()
-        .map(|&v| projection.apply(ctx.position(v)))
-        .collect();
-    match crate::geom::triangulate(&p2, &[]) {
-        Ok(triangles) => triangles
-            .into_iter()
-            .map(|t| t.map(|k| corners[k]))
-            .collect(),
-        Err(_) => (1..corners.len() - 1)
-            .map(|i| [corners[0], corners[i], corners[i + 1]])
-            .collect(),
-    }
-}
-
 /// The triangle's exact bounding box.
 fn bounds(ctx: &Context, t: &Triangle) -> Aabb {
     Aabb::from_points(t.vertices.map(|v| ctx.position(v)))
 }
 
-/// Whether two closed boxes share a point.
-fn overlap(a: &Aabb, b: &Aabb) -> bool {
-    !a.min.max(b.min).cmpgt(a.max.min(b.max)).any()
-}
-
 /// The pairs of faces (smaller index first, sorted, each once) of which
 /// two triangles meet beyond what they share.
 fn intersecting_face_pairs(ctx: &Context, triangles: &[Triangle]) -> Vec<(usize, usize)> {
+    intersecting_face_pairs_counted(ctx, triangles).0
+}
+
+/// [`intersecting_face_pairs`] and the number of triangle pairs it tested
+/// exactly.
+///
+/// Pairs that share a vertex or an edge come from the topology
+/// ([`sharing`]); the box walks ([`apart`]) hand over every other pair
+/// whose boxes overlap.
+fn intersecting_face_pairs_counted(
+    ctx: &Context,
+    triangles: &[Triangle],
+) -> (Vec<(usize, usize)>, usize) {
     if triangles.len() < 2 {
-        return Vec::new();
+        return (Vec::new(), 0);
     }
-    let boxes: Vec<Aabb> = triangles.par_iter().map(|t| bounds(ctx, t)).collect();
-    let (bvh, order) = Bvh::build(&boxes);
-    let test = |a: usize, b: usize| -> Option<(usize, usize)> {
+    let meet = |a: usize, b: usize| -> Option<(usize, usize)> {
         let (ta, tb) = (&triangles[a], &triangles[b]);
-        if ta.face == tb.face || !overlap(&boxes[a], &boxes[b]) {
+        if ta.face == tb.face {
             return None;
         }
         triangles_meet_beyond_shared(ctx, ta, tb)
             .then(|| (ta.face.min(tb.face), ta.face.max(tb.face)))
     };
-    let items = |leaf| bvh.leaf(leaf).unwrap_or_default().range();
-    let mut pairs = bvh.par_self_leaf_pairs(|la, lb, found| {
-        for p in items(la) {
-            // Within one leaf, each pair once.
-            let others = items(lb);
-            let start = if la == lb { p + 1 } else { others.start };
-            for q in start..others.end {
-                let (a, b) = (order[p] as usize, order[q] as usize);
-                found.extend(test(a.min(b), a.max(b)));
-            }
-        }
-    });
+    let sharing = sharing::pairs_sharing_corners(ctx, triangles, meet);
+    let boxes: Vec<Aabb> = triangles.par_iter().map(|t| bounds(ctx, t)).collect();
+    let apart = apart::pairs_apart(ctx, triangles, &boxes, sharing::SMALL_FAN, meet);
+    let mut pairs = apart.found;
+    pairs.extend(sharing.found);
     pairs.par_sort_unstable();
     pairs.dedup();
-    pairs
+    (pairs, sharing.tested + apart.tested)
 }
 
 fn faces_share_a_vertex(ctx: &Context, a: usize, b: usize) -> bool {
@@ -387,6 +342,147 @@ mod tests {
             report.count(crate::validate::Rule::SelfIntersection),
             expected
         );
+    }
+
+    /// The positions and faces of a closed cone of `n` sides.
+    fn cone(n: usize, centre_fan: bool) -> (Vec<DVec3>, Vec<Vec<usize>>) {
+        use crate::mesh::builders::{ConeBase, cone_soup};
+        let base = if centre_fan {
+            ConeBase::CentreFan
+        } else {
+            ConeBase::CornerFan
+        };
+        let soup = cone_soup(n, base);
+        let faces = soup.polygons.iter().map(|f| f.vertices.to_vec()).collect();
+        (soup.positions, faces)
+    }
+
+    /// The face pairs and the number of triangle pairs tested.
+    fn counted(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> (Vec<(usize, usize)>, usize) {
+        let soup = crate::mesh::PolygonSoup::new(positions, polygons);
+        let ctx = Context::new(&soup, None, crate::geom::Tolerance::default());
+        intersecting_face_pairs_counted(&ctx, &triangulate(&ctx))
+    }
+
+    /// What testing every pair of triangles whose boxes overlap finds.
+    fn every_pair(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> Vec<(usize, usize)> {
+        let soup = crate::mesh::PolygonSoup::new(positions, polygons);
+        let ctx = Context::new(&soup, None, crate::geom::Tolerance::default());
+        let triangles = triangulate(&ctx);
+        let mut pairs = Vec::new();
+        for (i, a) in triangles.iter().enumerate() {
+            for b in &triangles[i + 1..] {
+                if a.face != b.face
+                    && apart::overlap(&bounds(&ctx, a), &bounds(&ctx, b))
+                    && triangles_meet_beyond_shared(&ctx, a, b)
+                {
+                    pairs.push((a.face.min(b.face), a.face.max(b.face)));
+                }
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        pairs
+    }
+
+    #[test]
+    fn cones_and_fans_test_a_bounded_number_of_pairs_per_triangle() {
+        // Around an apex of valence n a box walk tests n²/2 pairs; here the
+        // pairs tested stay a small multiple of the triangles.
+        let n = 600;
+        for centre_fan in [true, false] {
+            let (p, f) = cone(n, centre_fan);
+            let triangles = f.len();
+            let (pairs, tested) = counted(p, f);
+            assert!(pairs.is_empty(), "{pairs:?}");
+            // About 5 per triangle with a centre fan, 12 with a corner fan
+            // (whose long chords run along the rim); every pair would be
+            // over 100 per triangle.
+            assert!(
+                tested <= 16 * triangles,
+                "{tested} pairs for {triangles} triangles"
+            );
+        }
+        // A fan of n triangles on one edge: n²/2 pairs share the edge.
+        let fan = crate::mesh::builders::edge_fan_soup(n);
+        let faces = fan.polygons.iter().map(|f| f.vertices.to_vec()).collect();
+        let (pairs, tested) = counted(fan.positions, faces);
+        assert!(pairs.is_empty(), "{pairs:?}");
+        assert!(tested <= 8 * n, "{tested} pairs for {n} triangles");
+    }
+
+    #[test]
+    fn an_apex_face_folded_through_its_neighbours_is_found() {
+        // Rim vertex 10 pulled out past the rim at a third of a turn: the two
+        // apex faces at it cross the apex faces they sweep over (sharing
+        // only the apex with them) and the base.
+        let n = 200;
+        for centre_fan in [true, false] {
+            let (mut p, f) = cone(n, centre_fan);
+            let a = std::f64::consts::TAU / 3.0;
+            let rim = if centre_fan { 2 } else { 1 };
+            p[rim + 10] = v(1.5 * a.cos(), 1.5 * a.sin(), 0.1);
+            let want = every_pair(p.clone(), f.clone());
+            let (found, _) = counted(p, f);
+            assert_eq!(found, want);
+            // Apex faces 9 and 10 against apex faces they share only the
+            // apex with.
+            assert!(
+                found
+                    .iter()
+                    .any(|&(a, b)| (9..=10).contains(&a) && b > 11 && b < n),
+                "{found:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_angular_filters_find_what_every_pair_finds() {
+        let mut unit = crate::test_rng::uniform(21);
+        let mut random = |lo: f64, hi: f64| lo + (hi - lo) * unit();
+        // A flat fan that wraps over itself 1.3 times.
+        let m = 120;
+        let mut p = vec![v(0., 0., 0.)];
+        p.extend((0..=m).map(|i| {
+            let a = 1.3 * std::f64::consts::TAU * i as f64 / m as f64;
+            v(a.cos(), a.sin(), 0.)
+        }));
+        let f: Vec<Vec<usize>> = (0..m).map(|i| vec![0, i + 1, i + 2]).collect();
+        let want = every_pair(p.clone(), f.clone());
+        assert!(!want.is_empty());
+        assert_eq!(counted(p, f).0, want);
+        // A fan on one edge with repeated half-planes, some opposite.
+        let mut p = vec![v(0., 0., 0.), v(0., 0., 1.)];
+        let mut f = Vec::new();
+        for k in 0..80 {
+            let a = std::f64::consts::TAU * (k % 30) as f64 / 30.0;
+            let r = 1.0 + 0.1 * k as f64;
+            p.push(v(r * a.cos(), r * a.sin(), [0.5, 1.5, -0.5][k % 3]));
+            f.push(vec![0, 1, k + 2]);
+        }
+        let want = every_pair(p.clone(), f.clone());
+        assert!(!want.is_empty());
+        assert_eq!(counted(p, f).0, want);
+        // Random stars around one vertex, and cones with random rim
+        // vertices.
+        for round in 0..6 {
+            let (mut p, f) = if round % 2 == 0 {
+                let mut p = vec![v(0., 0., 0.)];
+                p.extend((0..60).map(|_| v(random(-1., 1.), random(-1., 1.), random(-1., 1.))));
+                let f = (0..60).map(|k| vec![0, 1 + k, 1 + (k + 1) % 60]).collect();
+                (p, f)
+            } else {
+                cone(100, round % 4 == 1)
+            };
+            if round % 2 == 1 {
+                for k in [7, 31, 64] {
+                    p[k] = v(random(-1.2, 1.2), random(-1.2, 1.2), random(-0.3, 0.8));
+                }
+            }
+            let want = every_pair(p.clone(), f.clone());
+            assert!(!want.is_empty(), "round {round}");
+            assert_eq!(counted(p, f).0, want, "round {round}");
+        }
     }
 
     fn v(x: f64, y: f64, z: f64) -> DVec3 {
