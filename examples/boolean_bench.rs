@@ -16,8 +16,8 @@
 //!
 //! Prints one JSON line: the best time, the stage split of the best run,
 //! the work counters, the result's counts and verdict, and this process's
-//! peak resident memory. With `OUT.obj`, writes the result there (after the
-//! timing).
+//! peak resident memory up to the end of the runs (reading included). With
+//! `OUT.obj`, writes the result there afterwards.
 
 use std::path::Path;
 use std::time::Instant;
@@ -73,6 +73,7 @@ fn run() -> Result<()> {
     let Some((seconds, result)) = best else {
         return Err("no run".into());
     };
+    let peak = peak_rss_mib();
     if let Some(path) = out {
         write_obj(&result.solid, path).map_err(|e| format!("{}: {e}", path.display()))?;
     }
@@ -100,7 +101,7 @@ fn run() -> Result<()> {
         "faces": result.solid.face_count(),
         "valid": result.report.is_valid(),
         "volume": result.solid.volume(),
-        "peak_rss_mib": peak_rss_mib(),
+        "peak_rss_mib": peak,
     });
     println!("{line}");
     Ok(())

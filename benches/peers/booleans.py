@@ -21,8 +21,11 @@ manifold3d's `Mesh` hold `f32`), so every tool reads the same triangles:
 OBJ for wingedge, manifold3d and MeshLib, OFF with the same numbers for
 CGAL. Each operand file is checked with `wingedge validate` after rounding.
 
-Each measurement is its own process, so its peak resident memory
-(`ru_maxrss` from `wait4`) is its own; it reads the operands (untimed),
+Each measurement is its own process, so its peak resident memory is its
+own: the child reports its `VmHWM` just after the boolean, before it
+writes its result (`ru_maxrss` from `wait4` is the
+fallback for a child that dies; it is not used otherwise because Linux
+carries the parent's high-water mark into a vfork-and-exec child); it reads the operands (untimed),
 times one difference, and writes the result (untimed). Tools alternate
 within a round; each tool's time is the best of --rounds, its memory the
 largest peak. Each result file is then checked with `wingedge validate`
@@ -176,6 +179,8 @@ def make_cases(args):
             off = os.path.join(args.workdir, f"{name}.{side}.off")
             write_obj(obj, v, t)
             write_off(off, v, t)
+            np.save(obj[:-4] + ".v.npy", v)
+            np.save(obj[:-4] + ".t.npy", t.astype(np.uint64))
             files[side] = (obj, off)
         checks = [validate(args.wingedge, files[s][0]) for s in "ab"]
         bad = [f"{s}: {why}" for s, (ok, why) in zip("AB", checks) if not ok]
@@ -195,8 +200,9 @@ def child(tool, a_obj, a_off, b_obj, b_off, out):
         import manifold3d as m3d
 
         def load(path):
-            v, t = read_obj_triangles(path)
-            mesh = m3d.Mesh64(vert_properties=v, tri_verts=t.astype(np.uint64))
+            # The OBJ's numbers, saved by make_cases: no parsing in this process.
+            v, t = np.load(path[:-4] + ".v.npy"), np.load(path[:-4] + ".t.npy")
+            mesh = m3d.Mesh64(vert_properties=v, tri_verts=t)
             solid = m3d.Manifold(mesh)
             if solid.status() != m3d.Error.NoError:
                 raise RuntimeError(f"{os.path.basename(path)} refused: {solid.status()}")
@@ -207,6 +213,7 @@ def child(tool, a_obj, a_off, b_obj, b_off, out):
         r = a - b
         triangles = r.num_tri()  # forces the lazy CSG tree
         seconds = time.perf_counter() - clock
+        peak = peak_rss_mib()
         if r.status() != m3d.Error.NoError:
             raise RuntimeError(f"result status {r.status()}")
         mesh = r.to_mesh64()
@@ -218,6 +225,7 @@ def child(tool, a_obj, a_off, b_obj, b_off, out):
         clock = time.perf_counter()
         r = mr.boolean(a, b, mr.BooleanOperation.DifferenceAB)
         seconds = time.perf_counter() - clock
+        peak = peak_rss_mib()
         if not r.valid():
             raise RuntimeError(f"boolean failed: {r.errorString}")
         triangles = r.mesh.topology.numValidFaces()
@@ -232,16 +240,28 @@ def child(tool, a_obj, a_off, b_obj, b_off, out):
         clock = time.perf_counter()
         done = corefine_and_compute_difference(a, b, r)
         seconds = time.perf_counter() - clock
+        peak = peak_rss_mib()
         if done is False:
             raise RuntimeError("corefine_and_compute_difference returned false")
         triangles = r.size_of_facets()
         off = out[:-4] + ".off"
-        r.write_to_file(off)
-        v, t = read_off_triangles(off)
+        r.write_to_file(off)  # the faces; its coordinates have 6 digits only
+        _, t = read_off_triangles(off)
+        os.remove(off)
+        v = np.array([(q.x(), q.y(), q.z()) for q in r.points()], dtype=np.float64)
         write_obj(out, v, t)
     else:
         raise ValueError(tool)
-    print(json.dumps({"tool": tool, "seconds": seconds, "triangles": int(triangles)}))
+    print(json.dumps({"tool": tool, "seconds": seconds, "reported_triangles": int(triangles), "peak_rss_mib": peak}))
+
+
+def peak_rss_mib():
+    """This process's peak resident memory (VmHWM), MiB."""
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) / 1024
+    return None
 
 
 def measure(args, tool, case, round_index):
@@ -278,9 +298,7 @@ def measure(args, tool, case, round_index):
         return {"error": f"exit {p.returncode}: {last[:160]}"}, peak
     result = json.loads(lines[-1])
     result["out"] = out
-    if tool == "wingedge":
-        result["triangles"] = None  # counted from the OBJ below
-    return result, peak
+    return result, result.get("peak_rss_mib") or peak
 
 
 def run(args):
@@ -308,12 +326,10 @@ def run(args):
                 else:
                     os.remove(result["out"])
         for tool in TOOLS:
-            row = {"case": case["name"], "triangles": case["triangles"], "tool": tool, "peak_mib": peaks[tool]}
-            if best[tool] is None:
-                row["error"] = errors[tool]
-            else:
-                row.update(best[tool])
-                v, t = read_obj_triangles(best[tool]["out"])
+            row = dict(best[tool] or {"error": errors[tool]})
+            row.update(case=case["name"], operands=case["triangles"], tool=tool, peak_mib=peaks[tool])
+            if best[tool] is not None:
+                _, t = read_obj_triangles(best[tool]["out"])
                 row["triangles_out"] = len(t)
                 row["valid"], row["verdict"] = validate(args.wingedge, best[tool]["out"])
             rows.append(row)
@@ -334,7 +350,7 @@ def table(rows, skipped):
         ref = tools.get("manifold3d", {}).get("seconds")
         for tool in TOOLS:
             row = tools[tool]
-            tri = " + ".join(f"{n:,}" for n in row["triangles"])
+            tri = " + ".join(f"{n:,}" for n in row["operands"])
             if "error" in row:
                 out.append(f"| {name} | {tri} | {tool} | failed: {row['error']} | | {row['peak_mib']:.0f} | | |")
                 continue
@@ -361,6 +377,23 @@ def table(rows, skipped):
     return "\n".join(out)
 
 
+IMPORTS = {
+    "manifold3d": "import manifold3d",
+    "meshlib": "from meshlib import mrmeshpy",
+    "cgal": "from CGAL import CGAL_Polygon_mesh_processing, CGAL_Polyhedron_3",
+}
+
+
+def import_baselines():
+    """Peak MiB of a Python process that only imports numpy and each peer."""
+    found = {}
+    for tool, statement in IMPORTS.items():
+        code = f"import numpy; {statement}\n" + "print(next(int(l.split()[1]) for l in open('/proc/self/status') if l.startswith('VmHWM:')) / 1024)"
+        p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        found[tool] = float(p.stdout) if p.returncode == 0 else None
+    return found
+
+
 def main():
     if len(sys.argv) > 1 and sys.argv[1] == "--child":
         child(*sys.argv[2:8])
@@ -376,10 +409,14 @@ def main():
     ap.add_argument("--json", help="also write the rows to this file")
     args = ap.parse_args()
     rows, skipped = run(args)
+    baselines = import_baselines()
     if args.json:
         with open(args.json, "w") as f:
-            json.dump({"rows": rows, "skipped": skipped}, f, indent=1)
+            json.dump({"rows": rows, "skipped": skipped, "import_mib": baselines}, f, indent=1)
     print(table(rows, skipped))
+    print()
+    print("A Python peer's peak includes the interpreter and its library; after the imports alone: "
+          + ", ".join(f"{t} {m:.0f} MiB" if m else f"{t} n/a" for t, m in baselines.items()) + ".")
 
 
 if __name__ == "__main__":
