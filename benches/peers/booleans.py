@@ -408,15 +408,19 @@ def main():
     ap.add_argument("--timeout", type=float, default=900)
     ap.add_argument("--json", help="also write the rows to this file")
     args = ap.parse_args()
+    load_before = os.getloadavg()[0]
     rows, skipped = run(args)
+    load_after = os.getloadavg()[0]
     baselines = import_baselines()
     if args.json:
         with open(args.json, "w") as f:
-            json.dump({"rows": rows, "skipped": skipped, "import_mib": baselines}, f, indent=1)
+            json.dump({"rows": rows, "skipped": skipped, "import_mib": baselines,
+                       "load_average": [load_before, load_after], "cpus": os.cpu_count()}, f, indent=1)
     print(table(rows, skipped))
     print()
     print("A Python peer's peak includes the interpreter and its library; after the imports alone: "
           + ", ".join(f"{t} {m:.0f} MiB" if m else f"{t} n/a" for t, m in baselines.items()) + ".")
+    print(f"Load average (1 min) {load_before:.1f} at the start, {load_after:.1f} at the end, on {os.cpu_count()} CPUs.")
 
 
 if __name__ == "__main__":
