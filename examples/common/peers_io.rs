@@ -1,6 +1,6 @@
 //! What the peer programs (`examples/peers_wingedge.rs`,
-//! `benches/peers/parry/`) share: the raw input files of `benches/peers/`,
-//! answer files and peak memory.
+//! `examples/boolean_bench.rs`, `benches/peers/parry/`) share: the raw input
+//! files of `benches/peers/`, answer files and peak memory.
 
 use std::error::Error;
 use std::path::Path;
