@@ -60,6 +60,7 @@ fn run() -> Result<()> {
 
     let options = BooleanOptions {
         check_operands: false,
+        ..BooleanOptions::default()
     };
     let mut best = None;
     for _ in 0..repeats.max(1) {
