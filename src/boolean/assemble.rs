@@ -3,7 +3,7 @@
 //! exact definitions — and the rounded solid proven valid by wingedge's
 //! own validator.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
 
@@ -33,7 +33,7 @@ pub(crate) fn soup_of(
     pieces: &[KeptPiece],
     operands: [&Prepared; 2],
 ) -> (PolygonSoup, Vec<PieceSource>) {
-    let mut index: HashMap<u32, usize> = HashMap::new();
+    let mut index: HashMap<u32, usize> = HashMap::default();
     let mut positions: Vec<DVec3> = Vec::new();
     let mut constructed: Vec<bool> = Vec::new();
     for piece in pieces {
@@ -49,7 +49,7 @@ pub(crate) fn soup_of(
     let snapped = snap(&positions, &constructed);
     let mut sources = Vec::with_capacity(pieces.len());
     let mut polygons = Vec::with_capacity(pieces.len());
-    let mut seen: HashMap<[usize; 3], usize> = HashMap::new();
+    let mut seen: HashMap<[usize; 3], usize> = HashMap::default();
     let mut dropped = vec![false; pieces.len()];
     for piece in pieces {
         let corners = piece.corners.map(|c| snapped[index[&c]]);
@@ -123,7 +123,7 @@ fn snap(positions: &[DVec3], constructed: &[bool]) -> Vec<usize> {
         return representative;
     }
     let cell = |p: DVec3| ((p / reach).floor()).as_i64vec3();
-    let mut grid: HashMap<glam::I64Vec3, Vec<usize>> = HashMap::new();
+    let mut grid: HashMap<glam::I64Vec3, Vec<usize>> = HashMap::default();
     for (i, &p) in positions.iter().enumerate() {
         grid.entry(cell(p)).or_default().push(i);
     }
@@ -195,7 +195,7 @@ pub(crate) fn build_and_prove(
         Solid::try_from_soup(soup).map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
     merge_faces(&mut solid, sources);
     let mut origins = Vec::new();
-    let mut origin_index: HashMap<FaceOrigin, usize> = HashMap::new();
+    let mut origin_index: HashMap<FaceOrigin, usize> = HashMap::default();
     let faces: Vec<FaceId> = solid.faces().map(|(f, _)| f).collect();
     for f in faces {
         let Some(i) = solid.face(f).attributes.source_index else {
@@ -243,7 +243,7 @@ pub(crate) fn prove(solid: &Solid) -> Result<Report, BooleanError> {
 /// The solid as a soup of the exact triangulations of its faces (rings
 /// included), which the soup validator can check.
 fn triangulated(solid: &Solid) -> Result<PolygonSoup, BooleanError> {
-    let mut index = HashMap::new();
+    let mut index = HashMap::default();
     let mut positions = Vec::with_capacity(solid.vertex_count());
     for (i, (v, vertex)) in solid.vertices().enumerate() {
         index.insert(v, i);

@@ -11,7 +11,7 @@
 //! exact `+x` ray from a piece's centroid, an implicit point, against the
 //! other operand's triangles.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
 
@@ -56,12 +56,13 @@ pub(crate) fn label_pieces(
     table: &PointTable,
     mine: &Prepared,
     pieces: &[Piece],
-    constrained: &std::collections::HashSet<(u32, u32)>,
+    constrained: &rustc_hash::FxHashSet<(u32, u32)>,
     partners: &HashMap<u32, Vec<Partner>>,
     other: &Prepared,
 ) -> Result<Vec<Label>, BooleanError> {
     let mut sets = DisjointSets::new(pieces.len());
-    let mut by_edge: HashMap<(u32, u32), u32> = HashMap::with_capacity(pieces.len() * 2);
+    let mut by_edge: HashMap<(u32, u32), u32> =
+        HashMap::with_capacity_and_hasher(pieces.len() * 2, Default::default());
     for (i, piece) in pieces.iter().enumerate() {
         for k in 0..3 {
             let (u, v) = (piece.corners[k], piece.corners[(k + 1) % 3]);
@@ -76,7 +77,7 @@ pub(crate) fn label_pieces(
             }
         }
     }
-    let mut patches: HashMap<usize, Vec<u32>> = HashMap::new();
+    let mut patches: HashMap<usize, Vec<u32>> = HashMap::default();
     for i in 0..pieces.len() {
         patches.entry(sets.find(i)).or_default().push(i as u32);
     }

@@ -13,7 +13,7 @@
 //! shape, and it drops the near-collinear points that rounding could
 //! otherwise fold.
 
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use glam::DVec3;
 
@@ -36,7 +36,7 @@ pub(crate) struct PieceSource {
 /// removes the edges and vertices the merge left inside faces.
 pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) {
     let source_of = |solid: &Solid, f| solid.face(f).attributes.source_index.map(|i| sources[i]);
-    let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> = HashMap::new();
+    let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> = HashMap::default();
     let edges: Vec<EdgeId> = solid.edges().map(|(e, _)| e).collect();
     for &e in &edges {
         let Some(edge) = solid.get_edge(e) else {

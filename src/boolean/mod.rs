@@ -36,7 +36,7 @@ mod points;
 mod select;
 mod split;
 
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -229,8 +229,8 @@ pub fn boolean(
         .collect();
     let base = vertices.len();
     let mut made: Vec<ImplicitPoint> = Vec::new();
-    let mut cuts: [HashMap<u32, Cuts>; 2] = [HashMap::new(), HashMap::new()];
-    let mut partners: [HashMap<u32, Vec<Partner>>; 2] = [HashMap::new(), HashMap::new()];
+    let mut cuts: [HashMap<u32, Cuts>; 2] = [HashMap::default(), HashMap::default()];
+    let mut partners: [HashMap<u32, Vec<Partner>>; 2] = [HashMap::default(), HashMap::default()];
     let mut candidates: Vec<u32> = Vec::new();
     for (ta, tb, contact) in &contacts {
         let ids: Vec<u32> = contact

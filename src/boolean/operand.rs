@@ -2,7 +2,7 @@
 //! triangulated (exactly, rings included), each triangle remembering its
 //! face, with a BVH over the triangles.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
 
@@ -51,7 +51,8 @@ pub(crate) struct Prepared<'s> {
 impl<'s> Prepared<'s> {
     /// Triangulates every face of `solid` and indexes the triangles.
     pub fn new(solid: &'s Solid, side: Operand) -> Result<Prepared<'s>, BooleanError> {
-        let mut index: HashMap<VertexId, u32> = HashMap::with_capacity(solid.vertex_count());
+        let mut index: HashMap<VertexId, u32> =
+            HashMap::with_capacity_and_hasher(solid.vertex_count(), Default::default());
         let mut positions = Vec::with_capacity(solid.vertex_count());
         for (id, vertex) in solid.vertices() {
             index.insert(id, positions.len() as u32);

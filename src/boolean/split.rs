@@ -9,7 +9,7 @@
 //! procedure; the segments of one boolean never cross each other, they
 //! meet only at their ends). Sub-triangles keep the triangle's winding.
 
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use crate::geom::Sign;
 use crate::geom::implicit::{HasHomogeneous, compare_axis, kept_axes, orient2d_projected, times};
@@ -70,8 +70,8 @@ pub(crate) fn split_triangle(
         vertices: corners.to_vec(),
         present: corners.iter().copied().collect(),
         triangles: Vec::new(),
-        edges: HashMap::new(),
-        constrained: HashSet::new(),
+        edges: HashMap::default(),
+        constrained: HashSet::default(),
         last: 0,
         coin: 0x9E37_79B9_7F4A_7C15,
     };
