@@ -492,3 +492,74 @@ fn a_path_that_crosses_itself_is_refused_with_both_places() {
     let solid = try_sweep(&rectangle(-0.5, 0.5, -0.5, 0.5), &arch, 1e-4).unwrap();
     assert_eq!(valid_genus(&solid), 0);
 }
+
+/// A profile with two holes swept along a bent B-spline: a valid solid of
+/// genus 2 whose caps are faces with a ring per hole, and whose volume is
+/// the outer sweep's minus the holes' sweeps (the same frames, so the same
+/// tessellation); its scene leaf too.
+#[test]
+fn a_profile_with_holes_sweeps_to_a_bar_with_tunnels() {
+    let path = BSpline::try_open_uniform(
+        vec![
+            DVec3::ZERO,
+            DVec3::new(0.0, 0.0, 4.0),
+            DVec3::new(3.0, 0.0, 6.0),
+            DVec3::new(6.0, 1.0, 6.0),
+        ],
+        3,
+    )
+    .unwrap();
+    let outer = rectangle(-1.0, 1.0, -0.6, 0.6);
+    let holes = vec![
+        rectangle(-0.8, -0.2, -0.3, 0.3),
+        rectangle(0.2, 0.8, -0.3, 0.3),
+    ];
+    let solid = wingedge::mesh::try_sweep_with_holes(&outer, &holes, &path, 1e-3).unwrap();
+    solid.check_consistency().unwrap();
+    let report = wingedge::boolean::prove(&solid).expect("a valid solid");
+    assert_eq!(report.validity, Validity::ValidSolid);
+    assert_eq!(report.genus, Some(2));
+    assert_eq!(solid.ring_count(), 4);
+    let expected = try_sweep(&outer, &path, 1e-3).unwrap().volume()
+        - holes
+            .iter()
+            .map(|h| try_sweep(h, &path, 1e-3).unwrap().volume())
+            .sum::<f64>();
+    assert!(
+        close(solid.volume(), expected, 1e-12),
+        "{} vs {expected}",
+        solid.volume()
+    );
+    // Bad holes name themselves.
+    let err = wingedge::mesh::try_sweep_with_holes(&outer, &[vec![DVec2::ZERO; 3]], &path, 1e-3)
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            SweepError::RepeatedVertex {
+                argument: Argument::Hole(0),
+                ..
+            }
+        ),
+        "{err}"
+    );
+    // The scene leaf: a point in a tunnel is outside, one in the wall inside.
+    let scene = wingedge::scene::Scene::from_json(
+        r#"{"root": {"sweep": {"profile": [[-1,-0.6],[1,-0.6],[1,0.6],[-1,0.6]],
+            "holes": [[[-0.8,-0.3],[-0.2,-0.3],[-0.2,0.3],[-0.8,0.3]]],
+            "path": {"degree": 1, "points": [[0,0,0],[0,0,4]]}, "tolerance": 1e-3}}}"#,
+        "holed.json",
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let mut stats = wingedge::csg::Stats::default();
+    let mut at = |p: DVec3| scene.csg.classify_point(p, &mut stats);
+    assert_eq!(
+        at(DVec3::new(-0.5, 0.0, 2.0)),
+        wingedge::csg::Containment::Outside
+    );
+    assert_eq!(
+        at(DVec3::new(0.5, 0.0, 2.0)),
+        wingedge::csg::Containment::Inside
+    );
+}

@@ -39,6 +39,6 @@ pub use measure::Shell;
 pub use revolve::{RevolveAxis, Segments, try_revolve, try_revolve_curve};
 pub use solid::Solid;
 pub use soup::{Polygon, PolygonSoup};
-pub use sweep::{Argument, MAX_VERTICES, SweepError, try_sweep};
+pub use sweep::{Argument, MAX_VERTICES, SweepError, try_sweep, try_sweep_with_holes};
 pub use traverse::{LoopWalk, StarWalk};
 pub use vertex::Vertex;

@@ -25,6 +25,7 @@
 
 mod collision;
 mod error;
+mod holed;
 
 use glam::{DVec2, DVec3};
 
@@ -52,6 +53,7 @@ pub(crate) fn check_size(count: usize) -> Result<(), SweepError> {
     }
 }
 pub use error::{Argument, SweepError};
+pub use holed::try_sweep_with_holes;
 
 /// A checked 2-D profile: its vertices counter-clockwise and three of them
 /// spanning a triangle of the same winding.
@@ -198,52 +200,74 @@ pub fn try_sweep(
     tolerance: f64,
 ) -> Result<Solid, SweepError> {
     let profile = check_profile(profile, Argument::Profile)?;
-    let curve_error = |source| SweepError::Curve {
-        argument: Argument::Path,
-        source,
-    };
-    let samples = path.try_flatten(tolerance).map_err(curve_error)?;
-    let (first, last) = match (samples.first(), samples.last()) {
-        (Some(f), Some(l)) => (*f, *l),
-        _ => return Err(curve_error(CurveError::BadTolerance { tolerance })),
-    };
-    if samples.iter().all(|s| s.point == first.point) {
-        return Err(SweepError::ZeroLengthPath { point: first.point });
-    }
-    if first.point == last.point {
-        return Err(SweepError::ClosedPath { point: first.point });
-    }
-    let mut tangents = Vec::with_capacity(samples.len());
-    for sample in &samples {
-        let d = path
-            .try_derivative_at(sample.parameter, 1)
-            .map_err(curve_error)?;
-        let t = d.try_normalize().ok_or(SweepError::ZeroTangent {
-            parameter: sample.parameter,
-        })?;
-        tangents.push(t);
-    }
-    check_size(samples.len().saturating_mul(profile.points.len()))?;
-    let points: Vec<DVec3> = samples.iter().map(|s| s.point).collect();
-    let frames = rotation_minimizing_frames(&points, &tangents);
-    let sections: Vec<Vec<DVec3>> = points
-        .iter()
-        .zip(&frames)
-        .map(|(&x, &(r, s))| {
-            profile
-                .points
-                .iter()
-                .map(|p| x + r * p.x + s * p.y)
-                .collect()
-        })
-        .collect();
-    let parameters: Vec<f64> = samples.iter().map(|s| s.parameter).collect();
+    let frames = PathFrames::along(path, tolerance)?;
+    check_size(frames.points.len().saturating_mul(profile.points.len()))?;
+    let sections = frames.place(&profile.points);
     let pivots = vec![profile.pivot; sections.len()];
-    check_stacking(&sections, &pivots, Some(&parameters))?;
+    check_stacking(&sections, &pivots, Some(&frames.parameters))?;
     let cap = triangulate(&profile.points, &[])?;
     let soup = stacked_soup(sections);
-    check_collisions(&soup, profile.points.len(), [&cap, &cap], Some(&parameters))?;
+    check_collisions(
+        &soup,
+        profile.points.len(),
+        [&cap, &cap],
+        Some(&frames.parameters),
+    )?;
     Ok(Solid::try_from_soup(&soup)?)
+}
+
+/// The flattened path with a rotation-minimizing frame at each sample.
+pub(crate) struct PathFrames {
+    pub(crate) points: Vec<DVec3>,
+    pub(crate) frames: Vec<(DVec3, DVec3)>,
+    pub(crate) parameters: Vec<f64>,
+}
+
+impl PathFrames {
+    /// Flattens `path` to `tolerance` and frames it.
+    pub(crate) fn along(path: &impl Curve, tolerance: f64) -> Result<PathFrames, SweepError> {
+        let curve_error = |source| SweepError::Curve {
+            argument: Argument::Path,
+            source,
+        };
+        let samples = path.try_flatten(tolerance).map_err(curve_error)?;
+        let (first, last) = match (samples.first(), samples.last()) {
+            (Some(f), Some(l)) => (*f, *l),
+            _ => return Err(curve_error(CurveError::BadTolerance { tolerance })),
+        };
+        if samples.iter().all(|s| s.point == first.point) {
+            return Err(SweepError::ZeroLengthPath { point: first.point });
+        }
+        if first.point == last.point {
+            return Err(SweepError::ClosedPath { point: first.point });
+        }
+        let mut tangents = Vec::with_capacity(samples.len());
+        for sample in &samples {
+            let d = path
+                .try_derivative_at(sample.parameter, 1)
+                .map_err(curve_error)?;
+            let t = d.try_normalize().ok_or(SweepError::ZeroTangent {
+                parameter: sample.parameter,
+            })?;
+            tangents.push(t);
+        }
+        let points: Vec<DVec3> = samples.iter().map(|s| s.point).collect();
+        let frames = rotation_minimizing_frames(&points, &tangents);
+        Ok(PathFrames {
+            points,
+            frames,
+            parameters: samples.iter().map(|s| s.parameter).collect(),
+        })
+    }
+
+    /// The 2-D polygon placed in every frame: one section per sample.
+    pub(crate) fn place(&self, polygon: &[DVec2]) -> Vec<Vec<DVec3>> {
+        self.points
+            .iter()
+            .zip(&self.frames)
+            .map(|(&x, &(r, s))| polygon.iter().map(|p| x + r * p.x + s * p.y).collect())
+            .collect()
+    }
 }
 
 /// The frames `(r, s)` (with `s = t × r`) at each point, by the double

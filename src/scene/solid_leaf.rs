@@ -5,7 +5,7 @@
 //! renders and volumes like a mesh read from a file.
 //!
 //! ```text
-//! {"sweep":   {"profile": [[x,y], ...], "path": CURVE, "tolerance": t}}
+//! {"sweep":   {"profile": [[x,y], ...], "holes": [[[x,y], ...], ...], "path": CURVE, "tolerance": t}}
 //! {"revolve": {"profile": [[x,y], ...] | CURVE, "origin": [x,y,z], "axis": [x,y,z],
 //!              "radial": [x,y,z], "angle_deg": a, "segments": n | "tolerance": t}}
 //! {"loft":    {"sections": [[[x,y,z], ...], ...]}}
@@ -28,16 +28,13 @@ use super::json::{bad, fields, number, positive, req, vec3, vec3_or};
 use crate::csg::{Polyhedron, Primitive};
 use crate::curve::{BSpline, KnotVector, Nurbs};
 use crate::mesh::{
-    RevolveAxis, Segments, Solid, SweepError, try_loft, try_revolve, try_revolve_curve, try_sweep,
+    RevolveAxis, Segments, Solid, SweepError, try_loft, try_revolve, try_revolve_curve,
+    try_sweep_with_holes,
 };
-use crate::validate::{Options, validate_soup};
 
 /// The chord tolerance when a leaf gives none: a fraction of the size of
 /// the curve (sweeps, curve profiles) or of the solid (turns).
 pub const DEFAULT_TOLERANCE: f64 = 1e-3;
-
-/// How many violations a refused leaf's message lists.
-const VIOLATIONS_SHOWN: usize = 5;
 
 /// A curve of a scene file: polynomial or rational.
 enum SceneCurve {
@@ -50,15 +47,24 @@ pub(super) fn sweep(body: &Value, here: &str) -> Result<Arc<dyn Primitive>, Scen
     let o = fields(
         body,
         here,
-        &["profile", "path", "tolerance"],
-        "profile, path, tolerance",
+        &["profile", "holes", "path", "tolerance"],
+        "profile, holes, path, tolerance",
     )?;
     let profile = points_2d(req(o, here, "profile")?, &format!("{here}.profile"))?;
+    let holes = match o.get("holes") {
+        None => Vec::new(),
+        Some(Value::Array(items)) => items
+            .iter()
+            .enumerate()
+            .map(|(k, h)| points_2d(h, &format!("{here}.holes[{k}]")))
+            .collect::<Result<Vec<_>, _>>()?,
+        Some(v) => return Err(bad(&format!("{here}.holes"), "an array of polygons", v)),
+    };
     let path = curve(req(o, here, "path")?, &format!("{here}.path"))?;
     let tolerance = tolerance_of(o, here)?;
     let solid = match &path {
-        SceneCurve::Polynomial(c) => try_sweep(&profile, c, tolerance),
-        SceneCurve::Rational(c) => try_sweep(&profile, c, tolerance),
+        SceneCurve::Polynomial(c) => try_sweep_with_holes(&profile, &holes, c, tolerance),
+        SceneCurve::Rational(c) => try_sweep_with_holes(&profile, &holes, c, tolerance),
     };
     leaf(solid, here)
 }
@@ -155,19 +161,10 @@ fn leaf(solid: Result<Solid, SweepError>, here: &str) -> Result<Arc<dyn Primitiv
         message,
     };
     let solid = solid.map_err(|e| refused(e.to_string()))?;
-    let report = validate_soup(&solid.to_soup(), None, &Options::default())
-        .map_err(|e| refused(e.to_string()))?;
-    if !report.is_valid() {
-        let mut message = format!(
-            "the built solid is not valid ({}); {} violation(s)",
-            report.validity.describe(),
-            report.violations.len()
-        );
-        for v in report.violations.iter().take(VIOLATIONS_SHOWN) {
-            message.push_str(&format!("\n  {}: {}", v.rule, v.message));
-        }
-        return Err(refused(message));
-    }
+    // The validator on the exact triangulation of the faces (rings
+    // included), as every built solid is checked.
+    crate::boolean::prove(&solid)
+        .map_err(|e| refused(format!("the built solid is not valid: {e}")))?;
     let polyhedron = Polyhedron::try_new(solid).map_err(|e| refused(e.to_string()))?;
     Ok(Arc::new(polyhedron))
 }

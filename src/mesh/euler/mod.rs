@@ -67,6 +67,7 @@ mod face_ring;
 mod from_polygons;
 mod lamina;
 mod links;
+mod merge_faces;
 mod split_edge;
 mod vertex_face_shell;
 

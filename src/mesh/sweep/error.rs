@@ -17,6 +17,8 @@ pub enum Argument {
     Path,
     /// One section of a loft, by index.
     Section(usize),
+    /// One hole of a sweep's profile, by index.
+    Hole(usize),
 }
 
 impl std::fmt::Display for Argument {
@@ -25,6 +27,7 @@ impl std::fmt::Display for Argument {
             Argument::Profile => write!(f, "the profile"),
             Argument::Path => write!(f, "the path"),
             Argument::Section(i) => write!(f, "section {i}"),
+            Argument::Hole(i) => write!(f, "hole {i} of the profile"),
         }
     }
 }
