@@ -47,34 +47,25 @@ pub(crate) fn soup_of(
         }
     }
     let snapped = snap(&positions, &constructed);
-    let mut sources = Vec::with_capacity(pieces.len());
-    let mut polygons = Vec::with_capacity(pieces.len());
+    // Each kept triangle after the snap, or `None` once it collapsed or
+    // cancelled against its mirror image.
+    let mut kept: Vec<Option<(Polygon, PieceSource)>> = Vec::with_capacity(pieces.len());
     let mut seen: HashMap<[usize; 3], usize> = HashMap::default();
-    let mut dropped = vec![false; pieces.len()];
     for piece in pieces {
         let corners = piece.corners.map(|c| snapped[index[&c]]);
         if corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0] {
             continue;
         }
-        // A sliver pair collapsed by the snap: two copies of one triangle
-        // wound opposite ways cancel.
-        let mut sorted = corners;
-        sorted.sort_unstable();
-        if let Some(&other) = seen.get(&sorted)
-            && !dropped[other]
+        // A sliver pair collapsed by the snap: the same triangle wound both
+        // ways cancels.
+        let mirror = rotated_to_smallest([corners[0], corners[2], corners[1]]);
+        if let Some(&other) = seen.get(&mirror)
+            && kept[other].is_some()
         {
-            dropped[other] = true;
+            kept[other] = None;
             continue;
         }
-        seen.insert(sorted, polygons.len());
-        let origin = FaceOrigin {
-            side: piece.side,
-            face: piece.face,
-        };
-        sources.push(PieceSource {
-            origin,
-            plane: piece.plane,
-        });
+        seen.insert(rotated_to_smallest(corners), kept.len());
         let operand = match piece.side {
             Operand::First => operands[0],
             Operand::Second => operands[1],
@@ -83,19 +74,16 @@ pub(crate) fn soup_of(
         let face = operand.solid.face(piece.face);
         polygon.attributes.group = face.attributes.group.clone();
         polygon.attributes.material = face.attributes.material.clone();
-        polygons.push(polygon);
+        let source = PieceSource {
+            origin: FaceOrigin {
+                side: piece.side,
+                face: piece.face,
+            },
+            plane: piece.plane,
+        };
+        kept.push(Some((polygon, source)));
     }
-    let keep: Vec<bool> = (0..polygons.len()).map(|i| !dropped[i]).collect();
-    let mut k = 0;
-    polygons.retain(|_| {
-        k += 1;
-        keep[k - 1]
-    });
-    let mut k = 0;
-    sources.retain(|_| {
-        k += 1;
-        keep[k - 1]
-    });
+    let (polygons, sources) = kept.into_iter().flatten().unzip();
     (
         PolygonSoup {
             positions,
@@ -103,6 +91,14 @@ pub(crate) fn soup_of(
         },
         sources,
     )
+}
+
+/// The triangle's corners in the same cyclic order, smallest first: equal
+/// for two triangles exactly when they are one triangle wound one way.
+fn rotated_to_smallest(mut corners: [usize; 3]) -> [usize; 3] {
+    let first = (0..3).min_by_key(|&k| corners[k]).unwrap_or(0);
+    corners.rotate_left(first);
+    corners
 }
 
 /// Snap rounding of the constructed points: a constructed point whose

@@ -22,6 +22,7 @@ use crate::geom::implicit::{
 use crate::geom::{Aabb, Sign};
 
 use super::BooleanError;
+use super::intersect::projection;
 use super::operand::Prepared;
 use super::points::{PointTable, PointView};
 
@@ -148,18 +149,11 @@ fn label_patch(
 
 /// Whether `p` (in the plane of `tri`) is strictly inside `tri`.
 fn strictly_inside(p: &Centroid<PointView>, tri: [DVec3; 3]) -> bool {
-    let corners = tri.map(ImplicitPoint::Explicit);
-    let mut axis_facing = None;
-    for axis in 0..3u8 {
-        let s = orient2d_projected(&corners[0], &corners[1], &corners[2], axis);
-        if s != Sign::Zero {
-            axis_facing = Some((axis, s));
-            break;
-        }
-    }
-    let Some((axis, facing)) = axis_facing else {
+    let (axis, facing) = projection(&tri);
+    if facing == Sign::Zero {
         return false;
-    };
+    }
+    let corners = tri.map(ImplicitPoint::Explicit);
     (0..3).all(|k| orient2d_projected(&corners[k], &corners[(k + 1) % 3], p, axis) == facing)
 }
 

@@ -91,6 +91,23 @@ pub struct BooleanStats {
     pub cut_triangles: usize,
 }
 
+impl std::ops::AddAssign<&BooleanStats> for BooleanStats {
+    /// Sums the time and work of several booleans (a tree's).
+    fn add_assign(&mut self, one: &BooleanStats) {
+        self.check_seconds += one.check_seconds;
+        self.prepare_seconds += one.prepare_seconds;
+        self.intersect_seconds += one.intersect_seconds;
+        self.points_seconds += one.points_seconds;
+        self.split_seconds += one.split_seconds;
+        self.classify_seconds += one.classify_seconds;
+        self.output_seconds += one.output_seconds;
+        self.proof_seconds += one.proof_seconds;
+        self.contacts += one.contacts;
+        self.new_points += one.new_points;
+        self.cut_triangles += one.cut_triangles;
+    }
+}
+
 /// The result of a boolean: a valid solid, where each face came from, and
 /// the validator's report on it.
 #[derive(Clone, Debug)]

@@ -97,8 +97,7 @@ impl<'s> Prepared<'s> {
     }
 
     /// Calls `visit(t)` for every triangle whose box overlaps `query`.
-    pub fn triangles_overlapping(&self, query: &Aabb, visit: impl FnMut(u32)) {
-        let mut visit = visit;
+    pub fn triangles_overlapping(&self, query: &Aabb, mut visit: impl FnMut(u32)) {
         self.bvh.items_overlapping(
             query,
             |p| self.bounds[self.order[p] as usize],

@@ -168,7 +168,7 @@ fn node(
                 }
             })?;
             out.booleans += 1;
-            add(&mut out.stats, &result.stats);
+            out.stats += &result.stats;
             Ok(Partial {
                 solid: result.solid,
                 report: result.report,
@@ -184,18 +184,4 @@ fn symbol(operation: Operation) -> &'static str {
         Operation::Intersection => "∩",
         Operation::Difference => "−",
     }
-}
-
-fn add(total: &mut BooleanStats, one: &BooleanStats) {
-    total.check_seconds += one.check_seconds;
-    total.prepare_seconds += one.prepare_seconds;
-    total.intersect_seconds += one.intersect_seconds;
-    total.points_seconds += one.points_seconds;
-    total.split_seconds += one.split_seconds;
-    total.classify_seconds += one.classify_seconds;
-    total.output_seconds += one.output_seconds;
-    total.proof_seconds += one.proof_seconds;
-    total.contacts += one.contacts;
-    total.new_points += one.new_points;
-    total.cut_triangles += one.cut_triangles;
 }

@@ -288,10 +288,6 @@ mod tests {
         ];
         let point = edge_plane(DVec3::new(0.4, 0.4, -1.0), DVec3::new(0.5, 0.3, 2.0), plane);
         assert_eq!(side_of_plane(plane, &point), Sign::Zero);
-        let r = ImplicitPoint::Explicit(rounded(&point));
-        // The rounded point is off the plane (this one, by a rounding error).
-        let rounded_side = point_side_of_plane(plane, &r);
-        let _ = rounded_side;
         // Collinear with its segment in every projection.
         let (p, q) = (
             ImplicitPoint::Explicit(DVec3::new(0.4, 0.4, -1.0)),
