@@ -4,7 +4,7 @@ use glam::DVec3;
 use thiserror::Error;
 
 use super::primitive::push_convex_interval;
-use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
+use super::{CellRelation, Containment, Crossing, LocalPlane, Primitive, Stats, SurfaceId};
 use crate::geom::{Aabb, Ray};
 
 /// Why a box could not be made.
@@ -163,6 +163,26 @@ impl Primitive for AxisBox {
             normal = Some(n);
         }
         normal
+    }
+
+    fn planes_through(&self, p: DVec3, planes: &mut Vec<LocalPlane>) -> bool {
+        for axis in 0..3 {
+            if p[axis] == self.min[axis] || p[axis] == self.max[axis] {
+                let mut n = DVec3::ZERO;
+                n[axis] = 1.0;
+                planes.extend(LocalPlane::from_normal(n));
+            }
+        }
+        true
+    }
+
+    /// Inside along `d` when `d` points into the box across every face
+    /// through `p`.
+    fn inside_along(&self, p: DVec3, d: DVec3) -> Option<bool> {
+        Some((0..3).all(|axis| {
+            (p[axis] != self.min[axis] || d[axis] > 0.0)
+                && (p[axis] != self.max[axis] || d[axis] < 0.0)
+        }))
     }
 
     fn normal(&self, _p: DVec3, surface: SurfaceId) -> DVec3 {

@@ -97,12 +97,25 @@ impl Csg {
     ///
     /// Exact when every leaf involved is exact at `p` (half-spaces, boxes,
     /// polyhedra). Two faces are recognised as coincident when their normals
-    /// are exactly parallel; faces that meet at an angle give `OnBoundary`.
+    /// are exactly parallel. Where surfaces meet at an angle (edges,
+    /// corners, faces of two meshes whose rounded normals differ), the
+    /// point is decided by one direction per cell of the planes through it
+    /// (counted in `stats.direction_analyses`): two boxes that share only a
+    /// face have an empty intersection, so even their shared corners are
+    /// `Outside`. Points where a curved or transformed leaf's boundary meets
+    /// another surface at an angle stay `OnBoundary` (see
+    /// [`Primitive::planes_through`](super::Primitive::planes_through)).
     ///
     /// A point with a NaN or infinite coordinate is answered `Outside`;
     /// [`Csg::try_classify_point`] refuses it instead.
     pub fn classify_point(&self, p: DVec3, stats: &mut Stats) -> Containment {
-        self.neighbourhood(p, stats).containment()
+        match self.neighbourhood(p, stats) {
+            Neighbourhood::Complex => counting_fallbacks(stats, |stats| {
+                self.classify_by_directions(p, stats)
+                    .unwrap_or(Containment::OnBoundary)
+            }),
+            n => n.containment(),
+        }
     }
 
     /// [`Csg::classify_point`] for points from users: a non-finite point is

@@ -5,7 +5,7 @@ use glam::DVec3;
 use thiserror::Error;
 
 use super::primitive::perturbed_side;
-use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
+use super::{CellRelation, Containment, Crossing, LocalPlane, Primitive, Stats, SurfaceId};
 use crate::geom::{Aabb, Ray, Sign, dot_sign, side_of_plane};
 
 /// Why a half-space could not be made.
@@ -126,6 +126,15 @@ impl Primitive for HalfSpace {
 
     fn boundary_normal(&self, p: DVec3) -> Option<DVec3> {
         (self.classify_point(p) == Containment::OnBoundary).then_some(self.normal)
+    }
+
+    fn planes_through(&self, _p: DVec3, planes: &mut Vec<LocalPlane>) -> bool {
+        planes.extend(LocalPlane::from_normal(self.normal));
+        true
+    }
+
+    fn inside_along(&self, _p: DVec3, d: DVec3) -> Option<bool> {
+        Some(dot_sign(self.normal, d) == Sign::Negative)
     }
 
     fn normal(&self, _p: DVec3, _surface: SurfaceId) -> DVec3 {

@@ -6,7 +6,7 @@ use glam::DVec3;
 use slotmap::SecondaryMap;
 use thiserror::Error;
 
-use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
+use super::{CellRelation, Containment, Crossing, LocalPlane, Primitive, Stats, SurfaceId};
 use crate::geom::polygon::{PolygonLocation, Projection, locate_point_in_polygon};
 use crate::geom::{Aabb, Ray, Sign};
 use crate::mesh::{FaceId, Solid};
@@ -189,6 +189,33 @@ impl Primitive for Polyhedron {
         }
         // A point on an edge or vertex is in no face strictly: `None`.
         found.map(|f| self.face_normal(f))
+    }
+
+    /// The planes of the fan triangles the ray and point queries use that
+    /// hold `p` (a face that is not exactly flat contributes the planes of
+    /// its triangles there).
+    fn planes_through(&self, p: DVec3, planes: &mut Vec<LocalPlane>) -> bool {
+        planes.extend(
+            self.accel
+                .triangles_holding(p)
+                .into_iter()
+                .filter_map(LocalPlane::from_triangle),
+        );
+        true
+    }
+
+    /// The exact ray from `p` along `d`: `p + ε d` is inside when the
+    /// first crossing after `p` leaves the solid.
+    fn inside_along(&self, p: DVec3, d: DVec3) -> Option<bool> {
+        let answer = self.accel.ray_crossings(&Ray::new(p, d)).ok()?;
+        Some(match answer.origin {
+            Containment::Inside => true,
+            Containment::Outside => false,
+            Containment::OnBoundary => answer
+                .hits
+                .first()
+                .is_some_and(|h| h.transition == Transition::Exit),
+        })
     }
 
     fn normal(&self, _p: DVec3, surface: SurfaceId) -> DVec3 {

@@ -5,7 +5,7 @@ use std::fmt::Debug;
 
 use glam::DVec3;
 
-use super::{CellRelation, Containment, Stats, TessellateError};
+use super::{CellRelation, Containment, LocalPlane, Stats, TessellateError};
 use crate::geom::{Aabb, Ray, Sign};
 use crate::query::TileError;
 
@@ -88,6 +88,30 @@ pub trait Primitive: Debug + Send + Sync {
     /// is not on the boundary. Normals of flat faces are the exact input
     /// normals (so coincident faces compare equal); curved ones are rounded.
     fn boundary_normal(&self, p: DVec3) -> Option<DVec3>;
+
+    /// Appends the planes of the flat pieces of the boundary that pass
+    /// through the boundary point `p` (a face: one; an edge: two; a corner:
+    /// all of its faces), exactly, and returns `true`; returns `false` when
+    /// the primitive cannot list them (the boundary is curved at `p`, or
+    /// the primitive does not say: the default). With them, and
+    /// [`inside_along`](Primitive::inside_along), a tree decides exactly
+    /// the points where surfaces meet at an angle (a corner shared by two
+    /// boxes that touch only along a face is outside their intersection);
+    /// without them such points are `OnBoundary`.
+    fn planes_through(&self, p: DVec3, planes: &mut Vec<LocalPlane>) -> bool {
+        let _ = (p, planes);
+        false
+    }
+
+    /// Whether `p + ε d` is inside for an infinitesimal `ε > 0`, where `p`
+    /// is on the boundary and `d` lies in none of the planes of
+    /// [`planes_through`](Primitive::planes_through) at `p` (so the answer
+    /// is a first-order one). `None` when the primitive cannot tell (the
+    /// default).
+    fn inside_along(&self, p: DVec3, d: DVec3) -> Option<bool> {
+        let _ = (p, d);
+        None
+    }
 
     /// The outward normal (not necessarily unit) of `surface` at `p`, for
     /// shading. A rounded construction.

@@ -41,6 +41,10 @@ pub struct Stats {
     pub normals: u64,
     /// Shadow rays cast (only when the scene asks for shadows).
     pub shadow_rays: u64,
+    /// Boundary points where surfaces meet at an angle, decided by one
+    /// direction per cell of the planes there (see
+    /// [`Csg::classify_point`](super::Csg::classify_point)).
+    pub direction_analyses: u64,
 }
 
 impl AddAssign for Stats {
@@ -57,6 +61,7 @@ impl AddAssign for Stats {
         self.tie_breaks += o.tie_breaks;
         self.normals += o.normals;
         self.shadow_rays += o.shadow_rays;
+        self.direction_analyses += o.direction_analyses;
     }
 }
 
@@ -64,7 +69,7 @@ impl std::fmt::Display for Stats {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "rays {}  primitive ray tests {}  primitive point tests {}  primitive cell tests {}  bounds tests {}  culled subtrees {}  skipped right sides {}  early stops {}  exact fallbacks {}  tie-breaks {}  normals {}  shadow rays {}",
+            "rays {}  primitive ray tests {}  primitive point tests {}  primitive cell tests {}  bounds tests {}  culled subtrees {}  skipped right sides {}  early stops {}  exact fallbacks {}  tie-breaks {}  normals {}  shadow rays {}  direction analyses {}",
             self.rays,
             self.primitive_ray_tests,
             self.primitive_point_tests,
@@ -76,7 +81,8 @@ impl std::fmt::Display for Stats {
             self.exact_fallbacks,
             self.tie_breaks,
             self.normals,
-            self.shadow_rays
+            self.shadow_rays,
+            self.direction_analyses
         )
     }
 }

@@ -47,6 +47,7 @@ mod ray_stream;
 mod ray_triangle;
 mod tri_packet;
 mod triangle_records;
+mod triangles_holding;
 mod winding;
 
 pub use accel::{Accel, AccelStats};
