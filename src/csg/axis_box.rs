@@ -4,7 +4,9 @@ use glam::DVec3;
 use thiserror::Error;
 
 use super::primitive::push_convex_interval;
-use super::{CellRelation, Containment, Crossing, LocalPlane, Primitive, Stats, SurfaceId};
+use super::{
+    CellRelation, Containment, Crossing, CrossingPlane, LocalPlane, Primitive, Stats, SurfaceId,
+};
 use crate::geom::{Aabb, Ray};
 
 /// Why a box could not be made.
@@ -163,6 +165,20 @@ impl Primitive for AxisBox {
             normal = Some(n);
         }
         normal
+    }
+
+    /// Surface `2 axis` is the face at `min[axis]`, `2 axis + 1` the one at
+    /// `max[axis]`.
+    fn crossing_plane(&self, surface: SurfaceId) -> Option<CrossingPlane> {
+        let axis = (surface / 2) as usize;
+        (axis < 3).then(|| CrossingPlane::Axis {
+            axis,
+            value: if surface.is_multiple_of(2) {
+                self.min[axis]
+            } else {
+                self.max[axis]
+            },
+        })
     }
 
     fn planes_through(&self, p: DVec3, planes: &mut Vec<LocalPlane>) -> bool {

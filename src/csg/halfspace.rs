@@ -5,7 +5,9 @@ use glam::DVec3;
 use thiserror::Error;
 
 use super::primitive::perturbed_side;
-use super::{CellRelation, Containment, Crossing, LocalPlane, Primitive, Stats, SurfaceId};
+use super::{
+    CellRelation, Containment, Crossing, CrossingPlane, LocalPlane, Primitive, Stats, SurfaceId,
+};
 use crate::geom::{Aabb, Ray, Sign, dot_sign, side_of_plane};
 
 /// Why a half-space could not be made.
@@ -126,6 +128,13 @@ impl Primitive for HalfSpace {
 
     fn boundary_normal(&self, p: DVec3) -> Option<DVec3> {
         (self.classify_point(p) == Containment::OnBoundary).then_some(self.normal)
+    }
+
+    fn crossing_plane(&self, _surface: SurfaceId) -> Option<CrossingPlane> {
+        Some(CrossingPlane::PointNormal {
+            point: self.point,
+            normal: self.normal,
+        })
     }
 
     fn planes_through(&self, _p: DVec3, planes: &mut Vec<LocalPlane>) -> bool {

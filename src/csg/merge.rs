@@ -11,6 +11,8 @@
 //! two boxes sharing a face leave no zero-length span and no phantom
 //! boundary. Equal `t` repeated within one list toggle once per copy.
 
+use std::cmp::Ordering;
+
 use glam::DVec3;
 
 use super::{LeafId, SurfaceId};
@@ -19,8 +21,11 @@ use super::{LeafId, SurfaceId};
 /// surface of which leaf.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
-    /// The ray parameter, `t > 0`.
+    /// The ray parameter, `t > 0` (rounded).
     pub t: f64,
+    /// A bound on the rounding of `t` (the exact parameter is within
+    /// `t ± spread`); 0 when the leaf gives none (curved surfaces).
+    pub spread: f32,
     /// The leaf whose surface is crossed.
     pub leaf: LeafId,
     /// Which surface of that leaf.
@@ -133,17 +138,31 @@ impl CsgOp {
 }
 
 /// Runs the state machine: appends `C`'s crossings to `out` and returns
-/// `INOUT_C`.
+/// `INOUT_C`, with hits ordered (and equal) by their rounded `t`.
 ///
 /// `limit` stops the merge once `out` holds that many crossings of `C`
 /// (a first-hit query needs one); the returned `INOUT_C` is correct either
 /// way. Returns whether the merge was stopped early as the second value.
 pub fn merge(
     op: CsgOp,
+    a: (bool, &[Hit]),
+    b: (bool, &[Hit]),
+    out: &mut Vec<Hit>,
+    limit: Option<usize>,
+) -> (bool, bool) {
+    merge_by(op, a, b, out, limit, |x, y| x.t.total_cmp(&y.t))
+}
+
+/// [`merge`] with the order of two hits given by `order` (the tree's
+/// traversal orders hits of different leaves exactly where their rounded
+/// `t` cannot tell): hits that compare `Equal` are taken together.
+pub fn merge_by(
+    op: CsgOp,
     (in_a, a): (bool, &[Hit]),
     (in_b, b): (bool, &[Hit]),
     out: &mut Vec<Hit>,
     limit: Option<usize>,
+    mut order: impl FnMut(&Hit, &Hit) -> Ordering,
 ) -> (bool, bool) {
     let x = op.state_x();
     let start = MergeState::from_flags(in_a, in_b);
@@ -155,18 +174,24 @@ pub fn merge(
         if limit.is_some_and(|l| kept >= l) {
             return (op.inout(in_a, in_b), true);
         }
-        let t = match (a.get(i), b.get(j)) {
-            (Some(ha), Some(hb)) => ha.t.min(hb.t),
-            (Some(ha), None) => ha.t,
-            (None, Some(hb)) => hb.t,
+        let head = match (a.get(i), b.get(j)) {
+            (Some(ha), Some(hb)) => {
+                if order(ha, hb) == Ordering::Greater {
+                    *hb
+                } else {
+                    *ha
+                }
+            }
+            (Some(ha), None) => *ha,
+            (None, Some(hb)) => *hb,
             (None, None) => break,
         };
-        // Take every copy of t from both lists together.
+        // Take every copy of the head's t from both lists together.
         let (first_a, first_b) = (i, j);
-        while a.get(i).is_some_and(|h| h.t == t) {
+        while a.get(i).is_some_and(|h| order(h, &head) == Ordering::Equal) {
             i += 1;
         }
-        while b.get(j).is_some_and(|h| h.t == t) {
+        while b.get(j).is_some_and(|h| order(h, &head) == Ordering::Equal) {
             j += 1;
         }
         let cross_a = (i - first_a) % 2 == 1;
@@ -212,6 +237,7 @@ mod tests {
         ts.iter()
             .map(|&t| Hit {
                 t,
+                spread: 0.0,
                 leaf: LeafId(leaf),
                 surface: 0,
             })

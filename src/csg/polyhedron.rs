@@ -3,10 +3,11 @@
 use std::sync::{Arc, OnceLock};
 
 use glam::DVec3;
-use slotmap::SecondaryMap;
 use thiserror::Error;
 
-use super::{CellRelation, Containment, Crossing, LocalPlane, Primitive, Stats, SurfaceId};
+use super::{
+    CellRelation, Containment, Crossing, CrossingPlane, LocalPlane, Primitive, Stats, SurfaceId,
+};
 use crate::geom::polygon::{PolygonLocation, Projection, locate_point_in_polygon};
 use crate::geom::{Aabb, Ray, Sign};
 use crate::mesh::{FaceId, Solid};
@@ -42,14 +43,13 @@ pub enum PolyhedronError {
 ///
 /// # Invariants
 ///
-/// The solid is closed and has faces; `faces[surface]` is the face of a
-/// crossing's surface id.
+/// The solid is closed and has faces; a crossing's surface id is the index
+/// of the accel triangle crossed (see [`Polyhedron::face`]).
 #[derive(Clone, Debug)]
 pub struct Polyhedron {
     solid: Arc<Solid>,
     accel: Arc<Accel>,
     faces: Vec<FaceId>,
-    face_index: SecondaryMap<FaceId, SurfaceId>,
     /// The exact face tiles of box tests, built on first use.
     tiles: Arc<OnceLock<Result<BoundaryTiles, TileError>>>,
 }
@@ -72,15 +72,10 @@ impl Polyhedron {
         }
         let accel = Accel::new(&solid);
         let faces: Vec<FaceId> = solid.faces().map(|(id, _)| id).collect();
-        let mut face_index = SecondaryMap::new();
-        for (i, &f) in faces.iter().enumerate() {
-            face_index.insert(f, i as SurfaceId);
-        }
         Ok(Polyhedron {
             solid: Arc::new(solid),
             accel: Arc::new(accel),
             faces,
-            face_index,
             tiles: Arc::new(OnceLock::new()),
         })
     }
@@ -91,10 +86,11 @@ impl Polyhedron {
         &self.solid
     }
 
-    /// The face a crossing's surface id names.
+    /// The face a crossing's surface id names (the face of the accel
+    /// triangle crossed).
     #[must_use]
     pub fn face(&self, surface: SurfaceId) -> Option<FaceId> {
-        self.faces.get(surface as usize).copied()
+        self.accel.triangle(surface).map(|(_, face)| face)
     }
 
     /// The exact face tiles, built once.
@@ -160,7 +156,7 @@ impl Primitive for Polyhedron {
         };
         crossings.extend(answer.hits.iter().map(|h| Crossing {
             t: h.t,
-            surface: self.face_index.get(h.face).copied().unwrap_or(0),
+            surface: h.triangle,
         }));
         inside
     }
@@ -189,6 +185,13 @@ impl Primitive for Polyhedron {
         }
         // A point on an edge or vertex is in no face strictly: `None`.
         found.map(|f| self.face_normal(f))
+    }
+
+    /// The plane of the accel triangle crossed.
+    fn crossing_plane(&self, surface: SurfaceId) -> Option<CrossingPlane> {
+        self.accel
+            .triangle(surface)
+            .map(|(corners, _)| CrossingPlane::Triangle(corners))
     }
 
     /// The planes of the fan triangles the ray and point queries use that

@@ -5,7 +5,7 @@ use std::fmt::Debug;
 
 use glam::DVec3;
 
-use super::{CellRelation, Containment, LocalPlane, Stats, TessellateError};
+use super::{CellRelation, Containment, CrossingPlane, LocalPlane, Stats, TessellateError};
 use crate::geom::{Aabb, Ray, Sign};
 use crate::query::TileError;
 
@@ -88,6 +88,17 @@ pub trait Primitive: Debug + Send + Sync {
     /// is not on the boundary. Normals of flat faces are the exact input
     /// normals (so coincident faces compare equal); curved ones are rounded.
     fn boundary_normal(&self, p: DVec3) -> Option<DVec3>;
+
+    /// The plane of the flat piece `surface` of the boundary, in the frame
+    /// of the rays this primitive is given, when its crossings are exact
+    /// plane crossings: lets a tree compare crossings of different leaves
+    /// exactly where their rounded `t` are too close to tell (see
+    /// [`CrossingPlane`]). `None` (the default) for curved surfaces and for
+    /// primitives that see a rounded image of the ray.
+    fn crossing_plane(&self, surface: SurfaceId) -> Option<CrossingPlane> {
+        let _ = surface;
+        None
+    }
 
     /// Appends the planes of the flat pieces of the boundary that pass
     /// through the boundary point `p` (a face: one; an edge: two; a corner:

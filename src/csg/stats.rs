@@ -45,6 +45,9 @@ pub struct Stats {
     /// direction per cell of the planes there (see
     /// [`Csg::classify_point`](super::Csg::classify_point)).
     pub direction_analyses: u64,
+    /// Crossings of different leaves whose rounded `t` were too close to
+    /// order, ordered exactly by the planes crossed.
+    pub exact_orders: u64,
 }
 
 impl AddAssign for Stats {
@@ -62,6 +65,7 @@ impl AddAssign for Stats {
         self.normals += o.normals;
         self.shadow_rays += o.shadow_rays;
         self.direction_analyses += o.direction_analyses;
+        self.exact_orders += o.exact_orders;
     }
 }
 
@@ -69,7 +73,7 @@ impl std::fmt::Display for Stats {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "rays {}  primitive ray tests {}  primitive point tests {}  primitive cell tests {}  bounds tests {}  culled subtrees {}  skipped right sides {}  early stops {}  exact fallbacks {}  tie-breaks {}  normals {}  shadow rays {}  direction analyses {}",
+            "rays {}  primitive ray tests {}  primitive point tests {}  primitive cell tests {}  bounds tests {}  culled subtrees {}  skipped right sides {}  early stops {}  exact fallbacks {}  tie-breaks {}  normals {}  shadow rays {}  direction analyses {}  exact orders {}",
             self.rays,
             self.primitive_ray_tests,
             self.primitive_point_tests,
@@ -82,7 +86,8 @@ impl std::fmt::Display for Stats {
             self.tie_breaks,
             self.normals,
             self.shadow_rays,
-            self.direction_analyses
+            self.direction_analyses,
+            self.exact_orders
         )
     }
 }

@@ -1,8 +1,11 @@
 //! Rays through a tree: spans, first hits, normals.
 
+use std::cmp::Ordering;
+
 use glam::DVec3;
 
-use super::merge::{Hit, merge, oriented_normal};
+use super::crossing_order::{certain_order, compare_exactly};
+use super::merge::{Hit, merge_by, oriented_normal};
 use super::stats::counting_fallbacks;
 use super::tree::{NodeIndex, NodeKind};
 use super::{Crossing, Csg, CsgOp, LeafId, Stats, SurfaceId};
@@ -298,6 +301,7 @@ impl Csg {
         };
         let mut hits = [Hit {
             t: hit.t,
+            spread: 0.0,
             leaf: hit.leaf,
             surface: hit.surface,
         }];
@@ -375,13 +379,30 @@ impl Csg {
                 scratch.leaf.clear();
                 let primitive = &self.leaves[id.0 as usize].primitive;
                 let inside = primitive.intersect_ray(ray, &mut scratch.leaf, stats);
-                drop_instants(&mut scratch.leaf);
-                let crossings = scratch.leaf.iter().take(limit.unwrap_or(usize::MAX));
-                out.extend(crossings.map(|c| Hit {
-                    t: c.t,
-                    leaf: id,
-                    surface: c.surface,
+                let start = out.len();
+                out.extend(scratch.leaf.iter().map(|c| {
+                    Hit {
+                        t: c.t,
+                        spread: primitive
+                            .crossing_plane(c.surface)
+                            .map_or(0.0, |plane| plane.spread(ray, c.t)),
+                        leaf: id,
+                        surface: c.surface,
+                    }
                 }));
+                let mine = &mut out[start..];
+                // The leaf's list in exact order (it is sorted by rounded t).
+                for k in 1..mine.len() {
+                    let mut m = k;
+                    while m > 0
+                        && self.order(ray, &mine[m - 1], &mine[m], stats) == Ordering::Greater
+                    {
+                        mine.swap(m - 1, m);
+                        m -= 1;
+                    }
+                }
+                let kept = drop_instants(mine, |x, y| self.order(ray, x, y, stats));
+                out.truncate(start + kept.min(limit.unwrap_or(usize::MAX)));
                 inside
             }
             NodeKind::Op { op, left, right } => {
@@ -402,7 +423,9 @@ impl Csg {
                 }
                 let mut b = scratch.take();
                 let in_b = self.trace_node(right, ray, None, scratch, stats, &mut b);
-                let (inside, stopped) = merge(op, (in_a, &a), (in_b, &b), out, limit);
+                let (inside, stopped) = merge_by(op, (in_a, &a), (in_b, &b), out, limit, |x, y| {
+                    self.order(ray, x, y, stats)
+                });
                 if stopped {
                     stats.early_stops += 1;
                 }
@@ -414,24 +437,52 @@ impl Csg {
     }
 }
 
-/// Removes pairs of consecutive crossings at the same `t`: a leaf may list
-/// two (a ray through a reflex edge of a polyhedron, tangent to a sphere),
-/// an instant inside or outside that a span list, strictly ascending, does
-/// not hold. Parity after each remaining crossing is unchanged. Found by
-/// fuzzing the scene loader (fixtures/fuzz/scene_load/).
-fn drop_instants(crossings: &mut Vec<Crossing>) {
+impl Csg {
+    /// The order of two hits along `ray`: by their rounded `t` when the gap
+    /// exceeds both spreads, else exactly by the planes of the pieces
+    /// crossed (counted in `stats.exact_orders`), else (curved surfaces,
+    /// transformed leaves) by the rounded `t`.
+    fn order(&self, ray: &Ray, x: &Hit, y: &Hit, stats: &mut Stats) -> Ordering {
+        if let Some(order) = certain_order(x.t, x.spread, y.t, y.spread) {
+            return order;
+        }
+        if x.leaf == y.leaf && x.surface == y.surface {
+            return x.t.total_cmp(&y.t);
+        }
+        let plane = |h: &Hit| {
+            self.leaves[h.leaf.0 as usize]
+                .primitive
+                .crossing_plane(h.surface)
+        };
+        if let (Some(p), Some(q)) = (plane(x), plane(y))
+            && let Some(order) = compare_exactly(&p, &q, ray)
+        {
+            stats.exact_orders += 1;
+            return order;
+        }
+        x.t.total_cmp(&y.t)
+    }
+}
+
+/// Removes pairs of consecutive crossings at the same `t` (`Equal` by
+/// `order`): a leaf may list two (a ray through a reflex edge of a
+/// polyhedron, tangent to a sphere), an instant inside or outside that a
+/// span list, strictly ascending, does not hold. Parity after each
+/// remaining crossing is unchanged. Found by fuzzing the scene loader
+/// (fixtures/fuzz/scene_load/). Returns how many are kept, at the front.
+fn drop_instants(hits: &mut [Hit], mut order: impl FnMut(&Hit, &Hit) -> Ordering) -> usize {
     let mut kept = 0;
     let mut i = 0;
-    while i < crossings.len() {
-        if i + 1 < crossings.len() && crossings[i].t == crossings[i + 1].t {
+    while i < hits.len() {
+        if i + 1 < hits.len() && order(&hits[i], &hits[i + 1]) == Ordering::Equal {
             i += 2;
         } else {
-            crossings[kept] = crossings[i];
+            hits[kept] = hits[i];
             kept += 1;
             i += 1;
         }
     }
-    crossings.truncate(kept);
+    kept
 }
 
 thread_local! {

@@ -27,6 +27,9 @@ pub struct Crossing {
     pub face: FaceId,
     /// Entering or leaving, decided exactly (from the face's orientation).
     pub transition: Transition,
+    /// Which triangle of the accel's fan triangulation was crossed (its
+    /// plane gives `t` exactly; see `Accel::triangle`).
+    pub triangle: u32,
 }
 
 /// A ray's answer from one solid: whether its origin is inside, and where it

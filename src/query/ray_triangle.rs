@@ -65,6 +65,7 @@ impl Accel {
         Crossing {
             t,
             face: self.tri_face[i as usize],
+            triangle: i,
             transition: if s == Sign::Positive {
                 Transition::Exit
             } else {

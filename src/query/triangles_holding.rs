@@ -1,13 +1,23 @@
-//! The triangles of an accel that hold a given point: what the CSG layer
-//! asks at a boundary point where several faces meet.
+//! The triangles of an accel by index and by a point they hold: what the
+//! CSG layer asks to compare crossings exactly and to decide a boundary
+//! point where several faces meet.
 
 use glam::{DVec2, DVec3};
 
 use super::Accel;
 use crate::geom::polygon::{PolygonLocation, locate_point_in_polygon};
 use crate::geom::{Aabb, Sign, orient2d, orient3d};
+use crate::mesh::FaceId;
 
 impl Accel {
+    /// The corners of triangle `i` of the accel's fan triangulation (the
+    /// index a [`Crossing`](super::Crossing) names) and the face it is part
+    /// of; `None` past the last triangle.
+    pub(crate) fn triangle(&self, i: u32) -> Option<([DVec3; 3], FaceId)> {
+        let i = i as usize;
+        (i < self.tris.len()).then(|| (self.tris[i].corners(), self.tri_face[i]))
+    }
+
     /// The corners of every triangle of the accel's fan triangulation whose
     /// closed triangle holds `p`: exactly in its plane (`orient3d`) and
     /// inside it or on its rim, decided in a coordinate projection that keeps

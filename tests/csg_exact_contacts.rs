@@ -1,8 +1,9 @@
-//! Points where surfaces of a CSG tree meet at an angle — shared corners
-//! and edges of touching solids, faces of two meshes whose rounded normals
-//! differ — are classified exactly (regularised), checked against an
-//! independent answer: the class of the points a little way off in every
-//! cell around the point.
+//! Where leaves of a CSG tree touch: points where surfaces meet at an
+//! angle — shared corners and edges of touching solids, faces of two meshes
+//! whose rounded normals differ — are classified exactly (regularised),
+//! checked against an independent answer (the class of the points a little
+//! way off in every cell around the point); and rays through a plane two
+//! meshes share cross it once for both, not twice an ulp apart.
 
 #[path = "../src/test_rng.rs"]
 mod test_rng;
@@ -11,7 +12,7 @@ use glam::DVec3;
 use wingedge::csg::{
     AxisBox, Containment, Csg, CsgExpr, HalfSpace, Polyhedron, Primitive, Stats, normal_alignment,
 };
-use wingedge::geom::Sign;
+use wingedge::geom::{Ray, Sign};
 use wingedge::mesh::{PolygonSoup, Solid, builders};
 
 fn boxed(min: [f64; 3], max: [f64; 3]) -> CsgExpr {
@@ -228,4 +229,49 @@ fn meshes_sharing_a_tilted_plane_whose_rounded_normals_differ() {
         assert_eq!(d.classify_point(p, &mut stats), Containment::OnBoundary);
     }
     assert!(found >= 10, "{found}");
+}
+
+#[test]
+fn rays_through_a_tilted_plane_two_meshes_share_cross_it_once() {
+    let mut bits = test_rng::bits(11);
+    let mut coordinate = || 0.5 + ((bits() % (1 << 29)) as f64) * f64::powi(2.0, -30);
+    let (mut rounded_apart, mut stats) = (0, Stats::default());
+    for _ in 0..200 {
+        let [a, b, c] = [0, 1, 2].map(|_| DVec3::new(coordinate(), coordinate(), coordinate()));
+        let n = (b - a).cross(c - a);
+        if n.length() < 1e-3 {
+            continue;
+        }
+        let lower = Polyhedron::try_new(pyramid([a, b, b + c - a, c], a - n)).unwrap();
+        let upper = Polyhedron::try_new(tetrahedron([a, b, c], a + n)).unwrap();
+        let leaf = |p: &Polyhedron| CsgExpr::leaf(p.clone());
+        let u = tree(leaf(&lower).union(leaf(&upper)));
+        let i = tree(leaf(&lower).intersection(leaf(&upper)));
+        let d = tree(leaf(&lower).difference(leaf(&upper)));
+        // From below the lower apex, through a point inside the triangle
+        // (not on an edge of either fan).
+        let target = (a + b + 2.0 * c) / 4.0 + (b - a) * 0.01;
+        let ray = Ray::new(
+            a - 2.0 * n + (c - a) * 0.1,
+            target - (a - 2.0 * n + (c - a) * 0.1),
+        );
+        let mut lower_ts = Vec::new();
+        lower.intersect_ray(&ray, &mut lower_ts, &mut Stats::default());
+        let mut upper_ts = Vec::new();
+        upper.intersect_ray(&ray, &mut upper_ts, &mut Stats::default());
+        if lower_ts.len() != 2 || upper_ts.len() != 2 {
+            continue;
+        }
+        if lower_ts[1].t != upper_ts[0].t {
+            rounded_apart += 1;
+        }
+        let spans = u.spans(&ray, &mut stats);
+        assert_eq!(spans.hits.len(), 2, "{:?}", spans.hits);
+        assert!(i.spans(&ray, &mut stats).hits.is_empty());
+        assert_eq!(d.spans(&ray, &mut stats).hits.len(), 2);
+    }
+    // The case is real: the two meshes rounded the shared crossing apart,
+    // and the exact comparison took them together.
+    assert!(rounded_apart >= 5, "{rounded_apart}");
+    assert!(stats.exact_orders > 0);
 }
