@@ -195,6 +195,7 @@ pub fn compare_exactly(a: &CrossingPlane, b: &CrossingPlane, ray: &Ray) -> Optio
 /// Whether `t₁ ± s₁` and `t₂ ± s₂` are certainly apart, and which way:
 /// the gap, rounded, must exceed the spreads with room for that rounding.
 #[must_use]
+#[inline(always)]
 pub(crate) fn certain_order(t1: f64, s1: f32, t2: f64, s2: f32) -> Option<Ordering> {
     let allowance = (f64::from(s1) + f64::from(s2)) * (1.0 + 4.0 * f64::EPSILON);
     let gap = t1 - t2;

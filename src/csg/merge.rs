@@ -174,25 +174,30 @@ pub fn merge_by(
         if limit.is_some_and(|l| kept >= l) {
             return (op.inout(in_a, in_b), true);
         }
-        let head = match (a.get(i), b.get(j)) {
-            (Some(ha), Some(hb)) => {
-                if order(ha, hb) == Ordering::Greater {
-                    *hb
-                } else {
-                    *ha
-                }
-            }
-            (Some(ha), None) => *ha,
-            (None, Some(hb)) => *hb,
+        let (from_a, from_b) = match (a.get(i), b.get(j)) {
+            (Some(ha), Some(hb)) => match order(ha, hb) {
+                Ordering::Less => (true, false),
+                Ordering::Greater => (false, true),
+                Ordering::Equal => (true, true),
+            },
+            (Some(_), None) => (true, false),
+            (None, Some(_)) => (false, true),
             (None, None) => break,
         };
         // Take every copy of the head's t from both lists together.
+        let head = if from_a { a[i] } else { b[j] };
         let (first_a, first_b) = (i, j);
-        while a.get(i).is_some_and(|h| order(h, &head) == Ordering::Equal) {
+        if from_a {
             i += 1;
+            while a.get(i).is_some_and(|h| order(h, &head) == Ordering::Equal) {
+                i += 1;
+            }
         }
-        while b.get(j).is_some_and(|h| order(h, &head) == Ordering::Equal) {
+        if from_b {
             j += 1;
+            while b.get(j).is_some_and(|h| order(h, &head) == Ordering::Equal) {
+                j += 1;
+            }
         }
         let cross_a = (i - first_a) % 2 == 1;
         let cross_b = (j - first_b) % 2 == 1;

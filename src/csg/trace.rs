@@ -442,10 +442,18 @@ impl Csg {
     /// exceeds both spreads, else exactly by the planes of the pieces
     /// crossed (counted in `stats.exact_orders`), else (curved surfaces,
     /// transformed leaves) by the rounded `t`.
+    #[inline(always)]
     fn order(&self, ray: &Ray, x: &Hit, y: &Hit, stats: &mut Stats) -> Ordering {
-        if let Some(order) = certain_order(x.t, x.spread, y.t, y.spread) {
-            return order;
+        match certain_order(x.t, x.spread, y.t, y.spread) {
+            Some(order) => order,
+            None => self.close_order(ray, x, y, stats),
         }
+    }
+
+    /// [`Csg::order`] of two hits within each other's spreads.
+    #[cold]
+    #[inline(never)]
+    fn close_order(&self, ray: &Ray, x: &Hit, y: &Hit, stats: &mut Stats) -> Ordering {
         if x.leaf == y.leaf && x.surface == y.surface {
             return x.t.total_cmp(&y.t);
         }
