@@ -13,7 +13,7 @@ use crate::csg::{Containment, Spans, Stats};
 use crate::geom::{Ray, Readable};
 use crate::io::{ObjError, read_obj};
 use crate::mesh::{BuildError, Solid};
-use crate::query::{Accel, Method, QueryError, RayCrossings};
+use crate::query::{Accel, Method, QueryError, RayCrossings, SoupWinding};
 
 /// Why a target could not be loaded or could not answer.
 #[derive(Debug, Error)]
@@ -48,8 +48,12 @@ pub enum TargetError {
 ///
 /// A mesh is built as a winged-edge solid but not validated, so that the
 /// winding number can answer an open mesh; parity, normals and rays refuse
-/// what they cannot answer. A scene's mesh leaves are validated closed
-/// solids (see [`Scene`]).
+/// what they cannot answer. A mesh whose polygons cannot be a winged-edge
+/// solid at all (an edge of three faces, faces wound against their
+/// neighbours) still loads: the winding method answers it from its
+/// triangles ([`SoupWinding`]), and everything else returns the build
+/// error ([`Target::build_refusal`]). A scene's mesh leaves are validated
+/// closed solids (see [`Scene`]).
 ///
 /// # Invariants
 ///
@@ -64,6 +68,8 @@ pub struct Target {
 #[derive(Debug)]
 enum Kind {
     Mesh(Box<Accel>),
+    /// A mesh that is no solid: its triangles, and why it did not build.
+    Soup(Box<SoupWinding>, BuildError),
     Scene(Scene),
 }
 
@@ -103,21 +109,32 @@ impl fmt::Display for RayAnswer {
 
 impl Target {
     /// Loads `path`: a scene file when [`is_scene_path`] says so, else an
-    /// OBJ mesh.
+    /// OBJ mesh, as a solid when its polygons build into one, else as a
+    /// soup whose triangles answer the winding method.
     ///
     /// # Errors
     ///
-    /// [`TargetError`] naming the file (and the OBJ line or JSON path).
+    /// [`TargetError`] naming the file (and the OBJ line or JSON path); for
+    /// a mesh whose numbers do not even make triangles (no polygon, a
+    /// polygon of fewer than three corners, an index out of range, a NaN
+    /// coordinate), the build error.
     pub fn try_load(path: &Path) -> Result<Target, TargetError> {
         let kind = if is_scene_path(path) {
             Kind::Scene(Scene::from_file(path)?)
         } else {
             let soup = read_obj(path)?;
-            let solid = Solid::try_from_soup(&soup).map_err(|source| TargetError::Build {
-                file: path.to_path_buf(),
-                source,
-            })?;
-            Kind::Mesh(Box::new(Accel::new(&solid)))
+            match Solid::try_from_soup(&soup) {
+                Ok(solid) => Kind::Mesh(Box::new(Accel::new(&solid))),
+                Err(refused) => match SoupWinding::try_new(&soup) {
+                    Ok(winding) => Kind::Soup(Box::new(winding), refused),
+                    Err(_) => {
+                        return Err(TargetError::Build {
+                            file: path.to_path_buf(),
+                            source: refused,
+                        });
+                    }
+                },
+            }
         };
         Ok(Target {
             file: path.to_path_buf(),
@@ -136,7 +153,25 @@ impl Target {
     pub fn scene(&self) -> Option<&Scene> {
         match &self.kind {
             Kind::Scene(scene) => Some(scene),
-            Kind::Mesh(_) => None,
+            Kind::Mesh(_) | Kind::Soup(..) => None,
+        }
+    }
+
+    /// Why a mesh could not be built into a winged-edge solid, when it
+    /// could not: only [`Method::Winding`] answers it then (parity is
+    /// undefined), from its triangles.
+    #[must_use]
+    pub fn build_refusal(&self) -> Option<&BuildError> {
+        match &self.kind {
+            Kind::Soup(_, refused) => Some(refused),
+            Kind::Mesh(_) | Kind::Scene(_) => None,
+        }
+    }
+
+    fn build_error(&self, refused: &BuildError) -> TargetError {
+        TargetError::Build {
+            file: self.file.clone(),
+            source: refused.clone(),
         }
     }
 
@@ -154,7 +189,8 @@ impl Target {
     ///
     /// [`TargetError::Query`] for a non-finite point (its index) or a
     /// method the mesh does not allow (normals on a non-convex solid,
-    /// parity on an open one).
+    /// parity on an open one); [`TargetError::Build`] for any method but the
+    /// winding number on a mesh that is no solid.
     pub fn classify(
         &self,
         points: &[DVec3],
@@ -165,6 +201,10 @@ impl Target {
             Kind::Mesh(accel) => accel
                 .classify_batch(points, method)
                 .map_err(|e| self.query_error(e)),
+            Kind::Soup(winding, _) if method == Method::Winding => winding
+                .classify_batch(points)
+                .map_err(|e| self.query_error(e)),
+            Kind::Soup(_, refused) => Err(self.build_error(refused)),
             Kind::Scene(scene) => {
                 if let Some(index) = points.iter().position(|p| !p.is_finite()) {
                     let point = points[index];
@@ -185,13 +225,15 @@ impl Target {
     ///
     /// [`TargetError::Query`] for an invalid ray (its index: a non-finite
     /// origin or direction, or a zero direction), a scene's ray whose answer
-    /// `f64` cannot hold ([`crate::csg::Csg::try_spans`]) or an open mesh.
+    /// `f64` cannot hold ([`crate::csg::Csg::try_spans`]) or an open mesh;
+    /// [`TargetError::Build`] for a mesh that is no solid.
     pub fn rays(&self, rays: &[Ray], stats: &mut Stats) -> Result<Vec<RayAnswer>, TargetError> {
         match &self.kind {
             Kind::Mesh(accel) => accel
                 .ray_crossings_batch(rays)
                 .map(|answers| answers.into_iter().map(RayAnswer::Crossings).collect())
                 .map_err(|e| self.query_error(e)),
+            Kind::Soup(_, refused) => Err(self.build_error(refused)),
             Kind::Scene(scene) => rays
                 .iter()
                 .enumerate()

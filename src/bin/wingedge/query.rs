@@ -26,6 +26,14 @@ pub fn classify(target: &Path, source: &str, method: Method, show_stats: bool) -
     let classes = target
         .classify(&points, method, &mut stats)
         .map_err(|e| e.to_string())?;
+    if let Some(refused) = target.build_refusal() {
+        // Only the winding method answers a mesh that is no solid.
+        eprintln!(
+            "note: {}: parity is undefined for this mesh, which is not a solid ({refused}); \
+             answered by the generalized winding number of its triangles",
+            target.file().display()
+        );
+    }
     let mut out = Out::new();
     for c in classes {
         if !out.write(format_args!("{}\n", c.as_word()))? {
