@@ -3,6 +3,7 @@
 
 use std::fmt;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 use glam::DVec3;
 use thiserror::Error;
@@ -12,7 +13,7 @@ use super::{Scene, SceneError};
 use crate::csg::{Containment, Spans, Stats};
 use crate::geom::{Ray, Readable};
 use crate::io::{ObjError, read_obj};
-use crate::mesh::{BuildError, Solid};
+use crate::mesh::{BuildError, PolygonSoup, RepeatedVertices, Solid, check_polygons};
 use crate::query::{Accel, Method, QueryError, RayCrossings, SoupWinding};
 
 /// Why a target could not be loaded or could not answer.
@@ -68,9 +69,18 @@ pub struct Target {
 #[derive(Debug)]
 enum Kind {
     Mesh(Box<Accel>),
-    /// A mesh that is no solid: its triangles, and why it did not build.
-    Soup(Box<SoupWinding>, BuildError),
+    Soup(Box<SoupMesh>),
     Scene(Scene),
+}
+
+/// A mesh that is no solid: why it did not build, its soup, and the soup's
+/// triangles, built by the first winding query (parity, normals and rays
+/// never pay for them).
+#[derive(Debug)]
+struct SoupMesh {
+    refused: BuildError,
+    soup: PolygonSoup,
+    winding: OnceLock<Result<SoupWinding, BuildError>>,
 }
 
 /// A ray's answer from a [`Target`].
@@ -125,15 +135,20 @@ impl Target {
             let soup = read_obj(path)?;
             match Solid::try_from_soup(&soup) {
                 Ok(solid) => Kind::Mesh(Box::new(Accel::new(&solid))),
-                Err(refused) => match SoupWinding::try_new(&soup) {
-                    Ok(winding) => Kind::Soup(Box::new(winding), refused),
-                    Err(_) => {
-                        return Err(TargetError::Build {
-                            file: path.to_path_buf(),
-                            source: refused,
-                        });
-                    }
-                },
+                // Numbers that make triangles: the winding number answers.
+                Err(refused) if check_polygons(&soup, RepeatedVertices::Allow).is_ok() => {
+                    Kind::Soup(Box::new(SoupMesh {
+                        refused,
+                        soup,
+                        winding: OnceLock::new(),
+                    }))
+                }
+                Err(refused) => {
+                    return Err(TargetError::Build {
+                        file: path.to_path_buf(),
+                        source: refused,
+                    });
+                }
             }
         };
         Ok(Target {
@@ -153,7 +168,7 @@ impl Target {
     pub fn scene(&self) -> Option<&Scene> {
         match &self.kind {
             Kind::Scene(scene) => Some(scene),
-            Kind::Mesh(_) | Kind::Soup(..) => None,
+            Kind::Mesh(_) | Kind::Soup(_) => None,
         }
     }
 
@@ -163,7 +178,7 @@ impl Target {
     #[must_use]
     pub fn build_refusal(&self) -> Option<&BuildError> {
         match &self.kind {
-            Kind::Soup(_, refused) => Some(refused),
+            Kind::Soup(mesh) => Some(&mesh.refused),
             Kind::Mesh(_) | Kind::Scene(_) => None,
         }
     }
@@ -201,10 +216,19 @@ impl Target {
             Kind::Mesh(accel) => accel
                 .classify_batch(points, method)
                 .map_err(|e| self.query_error(e)),
-            Kind::Soup(winding, _) if method == Method::Winding => winding
-                .classify_batch(points)
-                .map_err(|e| self.query_error(e)),
-            Kind::Soup(_, refused) => Err(self.build_error(refused)),
+            Kind::Soup(mesh) if method == Method::Winding => {
+                // The numbers were checked at load; should they not make
+                // triangles after all, the build error stands.
+                let winding = mesh
+                    .winding
+                    .get_or_init(|| SoupWinding::try_new(&mesh.soup))
+                    .as_ref()
+                    .map_err(|_| self.build_error(&mesh.refused))?;
+                winding
+                    .classify_batch(points)
+                    .map_err(|e| self.query_error(e))
+            }
+            Kind::Soup(mesh) => Err(self.build_error(&mesh.refused)),
             Kind::Scene(scene) => {
                 if let Some(index) = points.iter().position(|p| !p.is_finite()) {
                     let point = points[index];
@@ -233,7 +257,7 @@ impl Target {
                 .ray_crossings_batch(rays)
                 .map(|answers| answers.into_iter().map(RayAnswer::Crossings).collect())
                 .map_err(|e| self.query_error(e)),
-            Kind::Soup(_, refused) => Err(self.build_error(refused)),
+            Kind::Soup(mesh) => Err(self.build_error(&mesh.refused)),
             Kind::Scene(scene) => rays
                 .iter()
                 .enumerate()
@@ -372,6 +396,39 @@ mod tests {
         assert!(
             e.to_string().contains("hole.obj: the solid is not closed"),
             "{e}"
+        );
+
+        // A mesh that is no solid (three faces on an edge) loads: the
+        // winding number answers it, everything else is its build error.
+        let fin = fixture("fixtures/soups/fin.obj");
+        let target = Target::try_load(&fin).unwrap();
+        assert!(matches!(
+            target.build_refusal(),
+            Some(BuildError::NonManifoldEdge { .. })
+        ));
+        assert_eq!(
+            target
+                .classify(&[DVec3::splat(0.5)], Method::Winding, &mut stats)
+                .unwrap(),
+            [Containment::Inside]
+        );
+        for e in [
+            target
+                .classify(&[DVec3::splat(0.5)], Method::Parity, &mut stats)
+                .unwrap_err(),
+            target
+                .classify(&[DVec3::splat(0.5)], Method::Normals, &mut stats)
+                .unwrap_err(),
+            target.rays(&[x_ray(0.5, 0.5)], &mut stats).unwrap_err(),
+        ] {
+            assert!(matches!(e, TargetError::Build { .. }), "{e}");
+            assert!(e.to_string().contains("fin.obj: edge 1–2"), "{e}");
+        }
+        assert!(
+            Target::try_load(&fixture("fixtures/valid/cube.obj"))
+                .unwrap()
+                .build_refusal()
+                .is_none()
         );
 
         let missing = fixture("tests/bad_inputs/missing.obj");

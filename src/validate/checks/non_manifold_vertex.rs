@@ -44,10 +44,10 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
             // one face: a hole passes the vertex there.
             let mut open: Vec<usize> = Vec::new();
             for &e in ctx.vertex_edges(v) {
-                if let [only] = ctx.uses(e as usize) {
-                    if let Ok(i) = faces.binary_search(&only.face()) {
-                        open.push(root(&mut parent, i));
-                    }
+                if let [only] = ctx.uses(e as usize)
+                    && let Ok(i) = faces.binary_search(&only.face())
+                {
+                    open.push(root(&mut parent, i));
                 }
             }
             open.sort_unstable();
