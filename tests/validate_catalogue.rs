@@ -409,6 +409,22 @@ fn the_teapot_is_open_and_not_a_surface() {
     // The teapot's patches meet at (-2, 0.9, 0) in two fans: welding their
     // corner copies would pinch them, so the weld refuses and says so.
     let import = import_obj(&fixture("real/teapot.obj"), &ObjOptions::default()).unwrap();
+    // It builds, vertex 355 once per fan, and the winding number answers.
+    let solid = wingedge::mesh::Solid::try_from_soup(&import.soup).unwrap();
+    assert_eq!(solid.vertex_count(), import.soup.positions.len() + 1);
+    let accel = wingedge::query::Accel::new(&solid);
+    let classes = accel
+        .classify_batch(
+            &[
+                glam::DVec3::new(0.0, 1.0, 0.0),
+                glam::DVec3::new(5.0, 5.0, 5.0),
+                glam::DVec3::new(-2.0, 0.9, 0.0),
+            ],
+            wingedge::query::Method::Winding,
+        )
+        .unwrap();
+    use wingedge::query::Containment::{Inside, OnBoundary, Outside};
+    assert_eq!(classes, [Inside, Outside, OnBoundary]);
     assert!(import.weld.merged > 0);
     assert!(
         import
