@@ -234,6 +234,12 @@ fn a_mesh_that_is_no_solid_is_answered_by_the_winding_number() {
             "{args:?}: {}",
             stderr(&o)
         );
+        assert_eq!(
+            stderr(&o).contains("--method winding answers a mesh that is no solid"),
+            args[0] == "classify",
+            "{args:?}: {}",
+            stderr(&o)
+        );
     }
     // A NaN coordinate is still an error, not an answer.
     let nan = dir.write("nan.obj", text.replace("v 2 1 -1", "v 2 nan -1"));
