@@ -256,6 +256,21 @@ fn a_mesh_that_is_no_solid_is_answered_by_the_winding_number() {
     assert_eq!(o.code, 2);
     assert!(stdout(&o).is_empty());
     assert!(stderr(&o).contains("nan.obj"), "{}", stderr(&o));
+    // So is a mesh without faces.
+    let empty = dir.write("empty.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    let o = run(
+        &[
+            "classify",
+            empty.to_str().unwrap(),
+            "-",
+            "--method",
+            "winding",
+        ],
+        Some(points),
+    );
+    assert_eq!(o.code, 2);
+    assert!(stdout(&o).is_empty());
+    assert!(stderr(&o).contains("no faces"), "{}", stderr(&o));
 }
 
 /// Two holes touching at a vertex no longer stop the build: the winding
