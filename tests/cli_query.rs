@@ -186,3 +186,110 @@ fn a_pinch_vertex_is_queried_like_the_same_mesh_split_by_hand() {
         stdout(&v)
     );
 }
+
+/// A mesh that cannot be a solid (a cube with a fin: three faces on an
+/// edge) is answered by `--method winding` from its triangles, with a
+/// one-line note that parity is undefined and why; its answers are the
+/// cube's without the fin. Parity, normals and rays still fail with the
+/// located build error.
+#[test]
+fn a_mesh_that_is_no_solid_is_answered_by_the_winding_number() {
+    let fin = "fixtures/soups/fin.obj";
+    let text = std::fs::read_to_string(fin).unwrap();
+    let dir = TempDir::new("soup");
+    let cube = dir.write("cube.obj", text.replace("f 2 3 10 9\n", ""));
+    let cube = cube.to_str().unwrap();
+    let points = "0.5 0.5 0.5\n1.5 0.5 0.5\n0.9 0.1 0.1\n1.2 0.5 -0.1\n3 3 3\n0.5 0.5 1\n";
+    let a = run(&["classify", fin, "-", "--method", "winding"], Some(points));
+    assert_eq!(a.code, 0, "{}", stderr(&a));
+    let b = run(
+        &["classify", cube, "-", "--method", "winding"],
+        Some(points),
+    );
+    assert_eq!(stdout(&a), stdout(&b));
+    assert_eq!(
+        stdout(&a),
+        "inside\noutside\ninside\noutside\noutside\nboundary\n"
+    );
+    assert!(stderr(&b).is_empty(), "{}", stderr(&b));
+    let note = stderr(&a);
+    assert_eq!(note.lines().count(), 1, "{note}");
+    assert!(
+        note.starts_with("note: fixtures/soups/fin.obj: parity is undefined for this mesh")
+            && note.contains("edge 1–2 is used by 3 polygons [0, 3, 6] (lines 12, 15, 18)")
+            && note.contains("generalized winding number"),
+        "{note}"
+    );
+    let rays = "0.5 0.5 0.5 1 0 0\n";
+    for (args, input) in [
+        (&["classify", fin, "-"][..], points),
+        (&["classify", fin, "-", "--method", "normals"], points),
+        (&["raycast", fin, "-"], rays),
+    ] {
+        let o = run(args, Some(input));
+        assert_eq!(o.code, 2, "{args:?}");
+        assert!(stdout(&o).is_empty(), "{args:?}");
+        assert!(
+            stderr(&o).contains("fin.obj: edge 1–2 is used by 3 polygons"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+        assert_eq!(
+            stderr(&o).contains("--method winding answers a mesh that is no solid"),
+            args[0] == "classify",
+            "{args:?}: {}",
+            stderr(&o)
+        );
+    }
+    // A NaN coordinate is still an error, not an answer.
+    let nan = dir.write("nan.obj", text.replace("v 2 1 -1", "v 2 nan -1"));
+    let o = run(
+        &[
+            "classify",
+            nan.to_str().unwrap(),
+            "-",
+            "--method",
+            "winding",
+        ],
+        Some(points),
+    );
+    assert_eq!(o.code, 2);
+    assert!(stdout(&o).is_empty());
+    assert!(stderr(&o).contains("nan.obj"), "{}", stderr(&o));
+    // So is a mesh without faces.
+    let empty = dir.write("empty.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    let o = run(
+        &[
+            "classify",
+            empty.to_str().unwrap(),
+            "-",
+            "--method",
+            "winding",
+        ],
+        Some(points),
+    );
+    assert_eq!(o.code, 2);
+    assert!(stdout(&o).is_empty());
+    assert!(stderr(&o).contains("no faces"), "{}", stderr(&o));
+}
+
+/// Two holes touching at a vertex no longer stop the build: the winding
+/// number answers, parity says the mesh is open.
+#[test]
+fn holes_touching_at_a_vertex_are_queried() {
+    let mesh = "fixtures/soups/touching_holes.obj";
+    let o = run(
+        &["classify", mesh, "-", "--method", "winding"],
+        Some("0 0 0\n0.1 0.2 0.3\n5 5 5\n"),
+    );
+    assert_eq!(o.code, 0, "{}", stderr(&o));
+    assert_eq!(stdout(&o), "inside\ninside\noutside\n");
+    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+    let o = run(&["classify", mesh, "-"], Some("0 0 0\n"));
+    assert_eq!(o.code, 2);
+    assert!(
+        stderr(&o).contains("6 edges have only one face"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -361,3 +361,149 @@ fn a_cone_of_high_valence_builds() {
     // the apex's triangles.
     assert!(solid.vertex_faces(apex).count() == n);
 }
+
+/// The icosahedron's vertices and faces (counter-clockwise from outside).
+fn icosahedron_soup() -> (Vec<DVec3>, Vec<Vec<usize>>) {
+    let solid = builders::icosahedron();
+    let ids: Vec<_> = solid.vertices().map(|(id, _)| id).collect();
+    let positions = ids.iter().map(|&id| solid.position(id)).collect();
+    let polygons = solid
+        .faces()
+        .map(|(f, _)| {
+            solid
+                .face_vertices(f)
+                .map(|v| ids.iter().position(|&id| id == v).unwrap())
+                .collect()
+        })
+        .collect();
+    (positions, polygons)
+}
+
+/// What every solid built from an open soup must be: consistent, with the
+/// soup's one-face edges as its boundary edges, every vertex on at most one
+/// hole (no or two boundary edges), and every hole a loop that visits each
+/// vertex once.
+fn assert_holes_are_simple_loops(solid: &Solid, one_face_edges: usize) {
+    use wingedge::mesh::{EdgeUse, Side};
+    solid.check_consistency().unwrap();
+    assert_eq!(solid.boundary_edges().count(), one_face_edges);
+    for (v, _) in solid.vertices() {
+        let open = solid
+            .vertex_edges(v)
+            .filter(|&e| solid.edge(e).right_face.is_none())
+            .count();
+        assert!(open == 0 || open == 2, "{open} boundary edges at a vertex");
+    }
+    for e in solid.boundary_edges() {
+        let start = EdgeUse {
+            edge: e,
+            side: Side::Right,
+        };
+        let mut seen = std::collections::HashSet::new();
+        let mut u = start;
+        loop {
+            assert!(solid.use_face(u).is_none(), "a hole loop leaves the hole");
+            assert!(
+                seen.insert(solid.use_start(u)),
+                "a hole visits a vertex twice"
+            );
+            u = solid.use_next(u);
+            if u == start {
+                break;
+            }
+        }
+    }
+}
+
+/// How many edges of a soup are used by exactly one polygon.
+fn one_face_edges(polygons: &[Vec<usize>]) -> usize {
+    let mut uses = std::collections::HashMap::new();
+    for p in polygons {
+        for (i, &a) in p.iter().enumerate() {
+            let b = p[(i + 1) % p.len()];
+            *uses.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    uses.values().filter(|&&n| n == 1).count()
+}
+
+/// Two holes touching at one vertex (an icosahedron without two faces
+/// that share only vertex 0): the vertex is split per fan of faces, as a
+/// pinch is, so each copy has one boundary edge in and one out and each
+/// hole stays a loop of three edges.
+#[test]
+fn two_holes_meeting_at_a_vertex_build_with_a_vertex_per_fan() {
+    let (positions, polygons) = icosahedron_soup();
+    let at_0: Vec<usize> = (0..polygons.len())
+        .filter(|&f| polygons[f].contains(&0))
+        .collect();
+    assert_eq!(at_0.len(), 5);
+    // Two faces at vertex 0 that share no edge.
+    let (a, b) = at_0
+        .iter()
+        .flat_map(|&a| at_0.iter().map(move |&b| (a, b)))
+        .find(|&(a, b)| {
+            a < b
+                && polygons[a]
+                    .iter()
+                    .filter(|v| polygons[b].contains(v))
+                    .count()
+                    == 1
+        })
+        .unwrap();
+    let open: Vec<Vec<usize>> = (0..polygons.len())
+        .filter(|&f| f != a && f != b)
+        .map(|f| polygons[f].clone())
+        .collect();
+    let solid = Solid::try_from_polygons(&positions, &open).expect("touching holes build");
+    assert_holes_are_simple_loops(&solid, 6);
+    assert_eq!(
+        (solid.vertex_count(), solid.edge_count(), solid.face_count()),
+        (13, 30, 18)
+    );
+    let at_vertex_0: Vec<_> = solid
+        .vertices()
+        .filter(|(_, v)| v.source_index == Some(0))
+        .map(|(id, _)| solid.vertex_faces(id).count())
+        .collect();
+    let mut fans = at_vertex_0.clone();
+    fans.sort_unstable();
+    assert_eq!(fans, vec![1, 2], "the fans of one and two faces");
+
+    // Two triangles sharing only a corner (a bow tie): two holes, three
+    // vertices each.
+    let bow_tie = Solid::try_from_polygons(
+        &[
+            DVec3::ZERO,
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(-1.0, 0.0, 0.0),
+            DVec3::new(-1.0, -1.0, 0.0),
+        ],
+        [[0, 1, 2], [0, 3, 4]],
+    )
+    .unwrap();
+    assert_holes_are_simple_loops(&bow_tie, 6);
+    assert_eq!(bow_tie.vertex_count(), 6);
+}
+
+proptest::proptest! {
+    /// Any subset of the faces of a closed mesh builds: holes touching at
+    /// vertices however they fall, pinches with closed and open fans mixed.
+    #[test]
+    fn every_subset_of_the_faces_of_a_closed_mesh_builds(keep in proptest::collection::vec(proptest::bool::weighted(0.6), 20)) {
+        let (positions, polygons) = icosahedron_soup();
+        let kept: Vec<Vec<usize>> = polygons
+            .iter()
+            .zip(&keep)
+            .filter(|(_, k)| **k)
+            .map(|(p, _)| p.clone())
+            .collect();
+        if kept.is_empty() {
+            return Ok(());
+        }
+        let solid = Solid::try_from_polygons(&positions, &kept).unwrap();
+        assert_holes_are_simple_loops(&solid, one_face_edges(&kept));
+        proptest::prop_assert_eq!(solid.face_count(), kept.len());
+    }
+}

@@ -393,11 +393,38 @@ fn the_teapot_is_open_and_not_a_surface() {
     assert_eq!(r.validity, Validity::NotASurface);
     assert!(r.count(Rule::EdgeInOneFace) > 0);
     assert!(r.count(Rule::NonManifoldVertex) > 0);
-    assert!(r.not_built.is_some());
+    // Two holes touch at the pinch: the solid builds with a vertex per fan
+    // there, and the pinch is still reported, saying so.
+    assert_eq!(r.not_built, None);
+    assert!(
+        r.violations
+            .iter()
+            .any(|v| v.rule == Rule::NonManifoldVertex
+                && v.message
+                    .contains("2 of them border holes, which touch there")),
+        "{:?}",
+        r.violations
+    );
     assert!(r.violations.iter().all(|v| v.line.is_some()));
     // The teapot's patches meet at (-2, 0.9, 0) in two fans: welding their
     // corner copies would pinch them, so the weld refuses and says so.
     let import = import_obj(&fixture("real/teapot.obj"), &ObjOptions::default()).unwrap();
+    // It builds, vertex 355 once per fan, and the winding number answers.
+    let solid = wingedge::mesh::Solid::try_from_soup(&import.soup).unwrap();
+    assert_eq!(solid.vertex_count(), import.soup.positions.len() + 1);
+    let accel = wingedge::query::Accel::new(&solid);
+    let classes = accel
+        .classify_batch(
+            &[
+                glam::DVec3::new(0.0, 1.0, 0.0),
+                glam::DVec3::new(5.0, 5.0, 5.0),
+                glam::DVec3::new(-2.0, 0.9, 0.0),
+            ],
+            wingedge::query::Method::Winding,
+        )
+        .unwrap();
+    use wingedge::query::Containment::{Inside, OnBoundary, Outside};
+    assert_eq!(classes, [Inside, Outside, OnBoundary]);
     assert!(import.weld.merged > 0);
     assert!(
         import
@@ -467,4 +494,38 @@ fn shell_measures_agree_with_the_winged_edge_solid() {
             }
         }
     }
+}
+
+/// Two holes touching at a vertex (`soups/touching_holes.obj`): the solid
+/// builds (a vertex per fan there), and validation reports every open edge
+/// and the vertex where the holes touch, each with its OBJ line.
+#[test]
+fn holes_touching_at_a_vertex_build_and_are_reported() {
+    let import = import_obj(&fixture("soups/touching_holes.obj"), &ObjOptions::default()).unwrap();
+    let (r, solid) = wingedge::validate::validate_and_build(&import, &Options::default()).unwrap();
+    assert_eq!(r.not_built, None);
+    let solid = solid.expect("the solid builds");
+    assert_eq!(solid.boundary_edges().count(), 6);
+    assert_eq!(solid.vertex_count(), 13, "vertex 0 once per fan");
+    assert_eq!(r.validity, Validity::NotASurface);
+    assert_eq!(r.count(Rule::EdgeInOneFace), 6);
+    assert_eq!(r.count(Rule::NonManifoldVertex), 1);
+    assert_eq!(r.violations.len(), 7, "{:#?}", r.violations);
+    let pinch = r
+        .violations
+        .iter()
+        .find(|v| v.rule == Rule::NonManifoldVertex)
+        .unwrap();
+    assert_eq!(pinch.vertices, vec![0]);
+    assert_eq!(pinch.line, Some(2));
+    assert!(
+        pinch.message.contains(
+            "its 3 faces form 2 separate fans; 2 of them border holes, which touch there"
+        ),
+        "{}",
+        pinch.message
+    );
+    assert!(r.violations.iter().all(|v| v.line.is_some()));
+    // Holes joined through the shared vertex count once.
+    assert_eq!(r.holes, 1);
 }

@@ -12,6 +12,7 @@ mod errors;
 mod report;
 mod scene;
 mod solid;
+mod soup;
 
 use pyo3::prelude::*;
 
@@ -20,6 +21,7 @@ use pyo3::prelude::*;
 fn _wingedge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     m.add_class::<solid::PySolid>()?;
+    m.add_class::<soup::PySoupWinding>()?;
     scene::register(m)?;
     m.add_function(wrap_pyfunction!(solid::load_obj, m)?)?;
     m.add_function(wrap_pyfunction!(solid::builtin, m)?)?;

@@ -26,6 +26,7 @@ __version__ = _wingedge.__version__
 
 __all__ = [
     "Solid",
+    "SoupWinding",
     "Scene",
     "Report",
     "Violation",
@@ -229,6 +230,57 @@ class Solid:
         if status != manifold3d.Error.NoError:
             raise ValidationError(f"manifold3d refused the mesh: {status}")
         return manifold
+
+    def __repr__(self) -> str:
+        return repr(self._native)
+
+
+class SoupWinding:
+    """Inside/outside by the generalized winding number of any polygon soup,
+    also one that cannot be a :class:`Solid` (an edge of three faces, faces
+    wound against their neighbours), the way libigl's winding number works.
+
+    Each polygon is fanned into triangles as a :class:`Solid` fans its
+    faces. Exactly on a triangle is ``0``; when every edge is run as often
+    one way as the other (:attr:`open_edges` is 0) the answer is the exact
+    signed crossing count, otherwise a solid-angle sum above one half is
+    inside. Near a face wound the wrong way that sum may say outside.
+    Parity is undefined on such input and not offered.
+    """
+
+    __slots__ = ("_native",)
+
+    def __init__(self, native: "_wingedge.NativeSoupWinding"):
+        self._native = native
+
+    @classmethod
+    def from_arrays(cls, vertices, faces) -> "SoupWinding":
+        """From ``vertices`` ``(n, 3)`` and ``faces`` (an ``(m, k)`` integer
+        array or a list of index sequences). Raises ``ValidationError`` only
+        for bad numbers: no face, a face of fewer than three corners, an
+        index out of range, a non-finite position."""
+        v = _coords(vertices, "vertices")
+        sizes, indices = _faces_flat(faces)
+        return cls(_wingedge.NativeSoupWinding._from_flat(v, sizes, indices))
+
+    @classmethod
+    def load_obj(cls, path, weld=None) -> "SoupWinding":
+        """Reads an OBJ file (welded as :func:`load_obj` welds)."""
+        return cls(_wingedge.NativeSoupWinding.load_obj(str(path), weld))
+
+    polygon_count = property(lambda self: self._native.polygon_count, doc="Number of polygons.")
+    open_edges = property(
+        lambda self: self._native.open_edges,
+        doc="Edges run more often one way than the other (0: a closed cycle).",
+    )
+
+    def classify(self, points) -> np.ndarray:
+        """int8 per point: ``1`` inside, ``0`` on a triangle, ``-1`` outside."""
+        return self._native._classify(_coords(points, "points"))
+
+    def winding_number(self, points) -> np.ndarray:
+        """The generalized winding number of the soup around each point."""
+        return self._native._winding_number(_coords(points, "points"))
 
     def __repr__(self) -> str:
         return repr(self._native)

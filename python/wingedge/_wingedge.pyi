@@ -73,6 +73,25 @@ class NativeSolid:
     @property
     def path(self) -> Optional[str]: ...
 
+class NativeSoupWinding:
+    """A polygon soup's fanned triangles and their accel (need not be a solid)."""
+
+    @staticmethod
+    def _from_flat(vertices: _F64, sizes: _I64, indices: _I64) -> NativeSoupWinding:
+        """From vertices ``(n, 3)``, face sizes ``(m,)`` and the flat face
+        index array; ``ValidationError`` for bad numbers only."""
+    @staticmethod
+    def load_obj(path: _Path, weld: Optional[object] = None) -> NativeSoupWinding:
+        """Reads an OBJ file into a soup; ``ObjError`` names the file and line."""
+    @property
+    def polygon_count(self) -> int: ...
+    @property
+    def open_edges(self) -> int: ...
+    def _classify(self, points: _F64) -> _I8:
+        """``1`` inside, ``0`` on a triangle, ``-1`` outside, per point."""
+    def _winding_number(self, points: _F64) -> _F64:
+        """Generalized winding number per point."""
+
 class NativeScene:
     """A CSG scene (the JSON scene format) with its leaves' accels."""
 

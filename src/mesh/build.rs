@@ -10,7 +10,6 @@ use glam::DVec3;
 use slotmap::{Key, SlotMap};
 use thiserror::Error;
 
-use crate::disjoint_sets::DisjointSets;
 use crate::geom::Plane;
 use crate::geom::triangulate::TriangulateError;
 
@@ -89,22 +88,6 @@ pub enum BuildError {
         polygons: [usize; 2],
         /// Their OBJ lines, where known.
         lines: [Option<usize>; 2],
-    },
-    /// Two holes of an open surface meet at a vertex, so their boundary
-    /// loops cannot be told apart there. (A pinch where fans of faces meet
-    /// without holes, such as the shared tip of two cones, builds: each fan
-    /// gets a vertex of its own.)
-    #[error(
-        "vertex {vertex} is a pinch point: the polygons around it {} form {fans} separate fans",
-        capped(.polygons)
-    )]
-    NonManifoldVertex {
-        /// The vertex.
-        vertex: usize,
-        /// How many fans meet there.
-        fans: usize,
-        /// Every polygon at the vertex.
-        polygons: Vec<usize>,
     },
     /// A polygon given to a builder encloses no area.
     #[error("the polygon has zero area")]
@@ -200,23 +183,22 @@ impl Solid {
     /// [`BuildError::TooFewVertices`], [`BuildError::IndexOutOfRange`],
     /// [`BuildError::RepeatedVertex`], [`BuildError::NonFinitePosition`],
     /// [`BuildError::NonManifoldEdge`] (three or more polygons on an edge),
-    /// [`BuildError::InconsistentOrientation`] (an edge run twice in one
-    /// direction) and [`BuildError::NonManifoldVertex`] (two holes meeting
-    /// at a vertex). A vertex around which the faces form several fans
-    /// without a hole between them (a pinch) is not an error: each fan after
-    /// the first gets its own vertex at the same position with the same
-    /// soup index ([`Vertex::source_index`](super::Vertex::source_index)),
-    /// so the solid builds and queries answer; validation reports the pinch
-    /// from the soup.
+    /// and [`BuildError::InconsistentOrientation`] (an edge run twice in one
+    /// direction). A vertex around which the faces form several fans (a
+    /// pinch: two cones sharing a tip, or two holes touching at a corner) is
+    /// not an error: each fan after the first gets its own vertex at the same
+    /// position with the same soup index
+    /// ([`Vertex::source_index`](super::Vertex::source_index)), and a hole
+    /// that passes the vertex turns around the fan it borders, so each copy
+    /// has at most one boundary edge in and one out. The solid builds and
+    /// queries answer; validation reports the pinch and the open edges from
+    /// the soup.
     pub fn try_from_soup(soup: &PolygonSoup) -> Result<Solid, BuildError> {
-        if soup.polygons.is_empty() {
-            return Err(BuildError::NoPolygons);
-        }
-        check_polygons(soup)?;
+        check_polygons(soup, RepeatedVertices::Refuse)?;
         let mut halves = corner_half_edges(soup);
         let mut outgoing = Outgoing::new(soup.positions.len(), &halves.from);
         pair_twins(soup, &mut halves, &mut outgoing)?;
-        link_holes(soup, &mut halves, &outgoing)?;
+        link_holes(&mut halves);
         split_pinches(soup, &mut halves, &outgoing);
         // Freed before the solid's tables are allocated (lowers the peak).
         drop(outgoing);
@@ -224,7 +206,34 @@ impl Solid {
     }
 }
 
-fn check_polygons(soup: &PolygonSoup) -> Result<(), BuildError> {
+/// Whether a polygon may visit a vertex twice.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum RepeatedVertices {
+    /// Refused with [`BuildError::RepeatedVertex`]: a face of a solid is a
+    /// simple cycle of edges.
+    Refuse,
+    /// Accepted: a polygon only fanned into triangles (the winding number of
+    /// a soup) may touch itself.
+    Allow,
+}
+
+/// Checks what every use of a soup's polygons needs, polygon by polygon in
+/// order: at least one polygon ([`BuildError::NoPolygons`]), at least three
+/// corners each ([`BuildError::TooFewVertices`]), indices in range
+/// ([`BuildError::IndexOutOfRange`]), no vertex visited twice unless
+/// `repeated` allows it ([`BuildError::RepeatedVertex`]), and finite
+/// positions for every vertex used ([`BuildError::NonFinitePosition`]).
+///
+/// # Errors
+///
+/// The first of those problems found.
+pub(crate) fn check_polygons(
+    soup: &PolygonSoup,
+    repeated: RepeatedVertices,
+) -> Result<(), BuildError> {
+    if soup.polygons.is_empty() {
+        return Err(BuildError::NoPolygons);
+    }
     let len = soup.positions.len();
     let mut seen: Vec<usize> = Vec::new();
     for (polygon, p) in soup.polygons.iter().enumerate() {
@@ -244,15 +253,17 @@ fn check_polygons(soup: &PolygonSoup) -> Result<(), BuildError> {
                 len,
             });
         }
-        seen.clear();
-        seen.extend_from_slice(&p.vertices);
-        seen.sort_unstable();
-        if let Some(w) = seen.windows(2).find(|w| w[0] == w[1]) {
-            return Err(BuildError::RepeatedVertex {
-                polygon,
-                line,
-                vertex: w[0],
-            });
+        if repeated == RepeatedVertices::Refuse {
+            seen.clear();
+            seen.extend_from_slice(&p.vertices);
+            seen.sort_unstable();
+            if let Some(w) = seen.windows(2).find(|w| w[0] == w[1]) {
+                return Err(BuildError::RepeatedVertex {
+                    polygon,
+                    line,
+                    vertex: w[0],
+                });
+            }
         }
         if let Some(&vertex) = p.vertices.iter().find(|&&i| !soup.positions[i].is_finite()) {
             return Err(BuildError::NonFinitePosition {
@@ -384,36 +395,50 @@ fn pair_twins(soup: &PolygonSoup, h: &mut HalfEdges, out: &mut Outgoing) -> Resu
 
 /// Gives every face half-edge without a twin a twin running around its hole,
 /// and links the hole half-edges into loops.
-fn link_holes(soup: &PolygonSoup, h: &mut HalfEdges, out: &Outgoing) -> Result<(), BuildError> {
-    let mut hole_from = vec![usize::MAX; soup.positions.len()];
+///
+/// A hole half-edge arriving at a vertex is followed by the hole half-edge
+/// leaving it on the same fan of faces: the one met by turning around the
+/// vertex from the arriving half-edge's twin, face by face across shared
+/// edges, until a face's incoming edge has no face on its other side. Where
+/// only one hole passes a vertex that is the only hole half-edge leaving it;
+/// where several holes meet at a vertex (open fans touching at one point),
+/// each hole turns around its own fan, so that every fan then has one hole
+/// half-edge in and one out, and [`split_pinches`] gives each fan a vertex
+/// of its own.
+fn link_holes(h: &mut HalfEdges) {
     for e in 0..h.face_count {
         if h.twin[e] != usize::MAX {
             continue;
         }
         let g = h.from.len();
-        let start = h.to[e];
-        if hole_from[start] != usize::MAX {
-            return Err(pinch(h, out, start));
-        }
-        hole_from[start] = g;
-        h.from.push(start);
+        h.from.push(h.to[e]);
         h.to.push(h.from[e]);
         h.twin.push(e);
         h.twin[e] = g;
     }
-    let holes = h.from.len() - h.face_count;
     h.next.resize(h.from.len(), usize::MAX);
     h.prev.resize(h.from.len(), usize::MAX);
-    for g in h.face_count..h.face_count + holes {
-        let next = hole_from[h.to[g]];
+    for g in h.face_count..h.from.len() {
+        // `g` arrives at `from[e]` for its twin `e`. Turning from `e` to the
+        // face half-edge across its incoming edge visits the fan's corners
+        // in order; no corner is visited twice (the turn is one-to-one and
+        // nothing turns into `e`, whose twin is a hole half-edge), so the
+        // walk ends within the vertex's valence, at a hole half-edge.
+        let mut corner = h.twin[g];
+        let next = loop {
+            let across = h.twin[h.prev[corner]];
+            if across >= h.face_count {
+                break across;
+            }
+            corner = across;
+        };
         h.next[g] = next;
         h.prev[next] = g;
     }
-    Ok(())
 }
 
-/// Gives each fan of faces around a pinch vertex (two cones sharing a tip)
-/// a vertex of its own: the first fan keeps the soup's vertex, each other
+/// Gives each fan of faces around a pinch vertex (two cones sharing a tip,
+/// or holes touching at a corner: see [`link_holes`]) a vertex of its own: the first fan keeps the soup's vertex, each other
 /// fan gets a copy at the same position with the same soup index (so
 /// reports still name the OBJ vertex). The solid is then a 2-manifold
 /// whose copies touch; validation reports the pinch from the soup.
@@ -470,31 +495,6 @@ fn walk_fan(h: &HalfEdges, e: usize, seen: &mut [bool]) -> usize {
         if g == e {
             return size;
         }
-    }
-}
-
-/// The error for a vertex where two holes meet (their loops cannot be told
-/// apart there): the polygons at the vertex and how many fans they form.
-fn pinch(h: &HalfEdges, out: &Outgoing, vertex: usize) -> BuildError {
-    let polygons: Vec<usize> = out.of(vertex).iter().map(|&g| h.polygon[g]).collect();
-    // Count fans by grouping the polygons at the vertex through shared edges.
-    let corners = out.of(vertex);
-    let mut fans = DisjointSets::new(corners.len());
-    for (i, &g) in corners.iter().enumerate() {
-        // The corner's incoming half-edge, seen from its other side, is
-        // outgoing in the neighbouring polygon of the same fan.
-        let across = h.twin.get(h.prev[g]).copied().unwrap_or(usize::MAX);
-        if let Some(j) = corners.iter().position(|&c| c == across) {
-            fans.union(i, j);
-        }
-    }
-    let fans = (0..corners.len()).filter(|&i| fans.is_root(i)).count();
-    let mut polygons = polygons;
-    polygons.sort_unstable();
-    BuildError::NonManifoldVertex {
-        vertex,
-        fans: fans.max(2),
-        polygons,
     }
 }
 

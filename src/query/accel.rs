@@ -4,6 +4,7 @@
 
 use std::time::{Duration, Instant};
 
+use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::geom::Aabb;
@@ -61,6 +62,11 @@ pub struct AccelStats {
 /// - Every triangle whose projected `yz` box contains a point `(y, z)` is
 ///   listed in the grid cell of `(y, z)` (cell indices are monotone in the
 ///   coordinates).
+/// - `boundary_edges` counts the edges whose uses by the faces do not
+///   cancel (a solid's edges with one face; for a soup, see
+///   [`SoupWinding::open_edges`](super::SoupWinding::open_edges)). When it
+///   is 0 the triangles form a closed, consistently oriented cycle, and the
+///   signed count of a ray's crossings is the winding number.
 #[derive(Clone, Debug)]
 pub struct Accel {
     pub(super) tris: HugeVec<YzTri>,
@@ -91,6 +97,20 @@ impl Accel {
         let start = Instant::now();
         let boundary_edges = solid.boundary_edges().count();
         let (fan, fan_face) = fan_triangles(solid);
+        Accel::from_triangles(fan, fan_face, boundary_edges, start)
+    }
+
+    /// The accel of the triangles `fan`, `fan_face[i]` the face of
+    /// `fan[i]`, on a surface with `boundary_edges` edges whose uses do not
+    /// cancel (0: a closed surface, on which parity and the exact crossing
+    /// count answer); `start` is when the build began, for
+    /// [`AccelStats::build_time`].
+    pub(super) fn from_triangles(
+        fan: Vec<[DVec3; 3]>,
+        fan_face: Vec<FaceId>,
+        boundary_edges: usize,
+        start: Instant,
+    ) -> Accel {
         let (bvh, order) = Bvh::build_by(fan.len(), |i| Aabb::from_points(fan[i]));
         let bounds = bvh.bounds();
         let tris = HugeVec::from_par_iter(order.par_iter().map(|&i| yz_tri(&fan[i as usize])));
@@ -212,7 +232,6 @@ impl Accel {
 mod tests {
     use super::*;
     use crate::mesh::builders;
-    use glam::DVec3;
 
     #[test]
     fn accel_of_platonic_solids() {

@@ -27,15 +27,7 @@ pub(super) fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
                 for v in solid.face_vertices(id) {
                     corners.push(solid.position(v));
                 }
-                // Canonical fan apex: the triangulation of a face whose
-                // corners are not exactly coplanar must not depend on where
-                // its vertex list starts.
-                let apex = fan_apex(&corners);
-                corners.rotate_left(apex);
-                for k in 1..corners.len().saturating_sub(1) {
-                    tris.push([corners[0], corners[k], corners[k + 1]]);
-                    faces.push(id);
-                }
+                push_fan(&mut corners, id, &mut tris, &mut faces);
             }
             (tris, faces)
         })
@@ -78,6 +70,28 @@ fn push_face_with_rings(
                 }
             }
         }
+    }
+}
+
+/// Appends the fan triangles `(v₀, vₖ, vₖ₊₁)` of the polygon `corners`
+/// (rotated in place so that `v₀` is its [`fan_apex`]), each with `face`.
+///
+/// The canonical apex makes the triangulation of a polygon whose corners
+/// are not exactly coplanar independent of where its vertex list starts.
+/// Whatever the polygon's shape, its fan's boundary (inner diagonals
+/// cancel) is the polygon's own cycle of edges, so the fan has the
+/// polygon's winding number about every point off it.
+pub(super) fn push_fan(
+    corners: &mut [DVec3],
+    face: FaceId,
+    tris: &mut Vec<[DVec3; 3]>,
+    faces: &mut Vec<FaceId>,
+) {
+    let apex = fan_apex(corners);
+    corners.rotate_left(apex);
+    for k in 1..corners.len().saturating_sub(1) {
+        tris.push([corners[0], corners[k], corners[k + 1]]);
+        faces.push(face);
     }
 }
 

@@ -1,5 +1,10 @@
 //! Queries: line–face intersection, ray–solid crossings and point-in-polyhedron.
 //!
+//! A polygon soup that cannot be built into a solid (an edge of three
+//! faces, faces wound against their neighbours) still has a winding number:
+//! [`SoupWinding`] builds the same triangles and answers inside/outside by
+//! it.
+//!
 //! Every query runs against an [`Accel`], built once per solid
 //! ([`Accel::new`]) and shared (it is `Sync`) by any number of queries and
 //! threads. The accel holds a fan triangulation of every face (exact input
@@ -45,6 +50,7 @@ mod ray_scaling;
 mod ray_solid;
 mod ray_stream;
 mod ray_triangle;
+mod soup_winding;
 mod tri_packet;
 mod triangle_records;
 mod triangles_holding;
@@ -56,6 +62,7 @@ pub use convexity::NotConvex;
 pub use line_face::{LineFaceHit, LineKind, intersect_line_face};
 pub use point_in_solid::Method;
 pub use ray_answers::{Crossing, RayCrossings, Transition, TraversalStats};
+pub use soup_winding::SoupWinding;
 
 use thiserror::Error;
 

@@ -3,6 +3,7 @@
 
 use std::fmt;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 use glam::DVec3;
 use thiserror::Error;
@@ -12,8 +13,8 @@ use super::{Scene, SceneError};
 use crate::csg::{Containment, Spans, Stats};
 use crate::geom::{Ray, Readable};
 use crate::io::{ObjError, read_obj};
-use crate::mesh::{BuildError, Solid};
-use crate::query::{Accel, Method, QueryError, RayCrossings};
+use crate::mesh::{BuildError, PolygonSoup, RepeatedVertices, Solid, check_polygons};
+use crate::query::{Accel, Method, QueryError, RayCrossings, SoupWinding};
 
 /// Why a target could not be loaded or could not answer.
 #[derive(Debug, Error)]
@@ -48,8 +49,12 @@ pub enum TargetError {
 ///
 /// A mesh is built as a winged-edge solid but not validated, so that the
 /// winding number can answer an open mesh; parity, normals and rays refuse
-/// what they cannot answer. A scene's mesh leaves are validated closed
-/// solids (see [`Scene`]).
+/// what they cannot answer. A mesh whose polygons cannot be a winged-edge
+/// solid at all (an edge of three faces, faces wound against their
+/// neighbours) still loads: the winding method answers it from its
+/// triangles ([`SoupWinding`]), and everything else returns the build
+/// error ([`Target::build_refusal`]). A scene's mesh leaves are validated
+/// closed solids (see [`Scene`]).
 ///
 /// # Invariants
 ///
@@ -64,7 +69,18 @@ pub struct Target {
 #[derive(Debug)]
 enum Kind {
     Mesh(Box<Accel>),
+    Soup(Box<SoupMesh>),
     Scene(Scene),
+}
+
+/// A mesh that is no solid: why it did not build, its soup, and the soup's
+/// triangles, built by the first winding query (parity, normals and rays
+/// never pay for them).
+#[derive(Debug)]
+struct SoupMesh {
+    refused: BuildError,
+    soup: PolygonSoup,
+    winding: OnceLock<Result<SoupWinding, BuildError>>,
 }
 
 /// A ray's answer from a [`Target`].
@@ -103,21 +119,37 @@ impl fmt::Display for RayAnswer {
 
 impl Target {
     /// Loads `path`: a scene file when [`is_scene_path`] says so, else an
-    /// OBJ mesh.
+    /// OBJ mesh, as a solid when its polygons build into one, else as a
+    /// soup whose triangles answer the winding method.
     ///
     /// # Errors
     ///
-    /// [`TargetError`] naming the file (and the OBJ line or JSON path).
+    /// [`TargetError`] naming the file (and the OBJ line or JSON path); for
+    /// a mesh whose numbers do not even make triangles (no polygon, a
+    /// polygon of fewer than three corners, an index out of range, a NaN
+    /// coordinate), the build error.
     pub fn try_load(path: &Path) -> Result<Target, TargetError> {
         let kind = if is_scene_path(path) {
             Kind::Scene(Scene::from_file(path)?)
         } else {
             let soup = read_obj(path)?;
-            let solid = Solid::try_from_soup(&soup).map_err(|source| TargetError::Build {
-                file: path.to_path_buf(),
-                source,
-            })?;
-            Kind::Mesh(Box::new(Accel::new(&solid)))
+            match Solid::try_from_soup(&soup) {
+                Ok(solid) => Kind::Mesh(Box::new(Accel::new(&solid))),
+                // Numbers that make triangles: the winding number answers.
+                Err(refused) if check_polygons(&soup, RepeatedVertices::Allow).is_ok() => {
+                    Kind::Soup(Box::new(SoupMesh {
+                        refused,
+                        soup,
+                        winding: OnceLock::new(),
+                    }))
+                }
+                Err(refused) => {
+                    return Err(TargetError::Build {
+                        file: path.to_path_buf(),
+                        source: refused,
+                    });
+                }
+            }
         };
         Ok(Target {
             file: path.to_path_buf(),
@@ -136,7 +168,25 @@ impl Target {
     pub fn scene(&self) -> Option<&Scene> {
         match &self.kind {
             Kind::Scene(scene) => Some(scene),
-            Kind::Mesh(_) => None,
+            Kind::Mesh(_) | Kind::Soup(_) => None,
+        }
+    }
+
+    /// Why a mesh could not be built into a winged-edge solid, when it
+    /// could not: only [`Method::Winding`] answers it then (parity is
+    /// undefined), from its triangles.
+    #[must_use]
+    pub fn build_refusal(&self) -> Option<&BuildError> {
+        match &self.kind {
+            Kind::Soup(mesh) => Some(&mesh.refused),
+            Kind::Mesh(_) | Kind::Scene(_) => None,
+        }
+    }
+
+    fn build_error(&self, refused: &BuildError) -> TargetError {
+        TargetError::Build {
+            file: self.file.clone(),
+            source: refused.clone(),
         }
     }
 
@@ -154,7 +204,8 @@ impl Target {
     ///
     /// [`TargetError::Query`] for a non-finite point (its index) or a
     /// method the mesh does not allow (normals on a non-convex solid,
-    /// parity on an open one).
+    /// parity on an open one); [`TargetError::Build`] for any method but the
+    /// winding number on a mesh that is no solid.
     pub fn classify(
         &self,
         points: &[DVec3],
@@ -165,6 +216,19 @@ impl Target {
             Kind::Mesh(accel) => accel
                 .classify_batch(points, method)
                 .map_err(|e| self.query_error(e)),
+            Kind::Soup(mesh) if method == Method::Winding => {
+                // The numbers were checked at load; should they not make
+                // triangles after all, the build error stands.
+                let winding = mesh
+                    .winding
+                    .get_or_init(|| SoupWinding::try_new(&mesh.soup))
+                    .as_ref()
+                    .map_err(|_| self.build_error(&mesh.refused))?;
+                winding
+                    .classify_batch(points)
+                    .map_err(|e| self.query_error(e))
+            }
+            Kind::Soup(mesh) => Err(self.build_error(&mesh.refused)),
             Kind::Scene(scene) => {
                 if let Some(index) = points.iter().position(|p| !p.is_finite()) {
                     let point = points[index];
@@ -185,13 +249,15 @@ impl Target {
     ///
     /// [`TargetError::Query`] for an invalid ray (its index: a non-finite
     /// origin or direction, or a zero direction), a scene's ray whose answer
-    /// `f64` cannot hold ([`crate::csg::Csg::try_spans`]) or an open mesh.
+    /// `f64` cannot hold ([`crate::csg::Csg::try_spans`]) or an open mesh;
+    /// [`TargetError::Build`] for a mesh that is no solid.
     pub fn rays(&self, rays: &[Ray], stats: &mut Stats) -> Result<Vec<RayAnswer>, TargetError> {
         match &self.kind {
             Kind::Mesh(accel) => accel
                 .ray_crossings_batch(rays)
                 .map(|answers| answers.into_iter().map(RayAnswer::Crossings).collect())
                 .map_err(|e| self.query_error(e)),
+            Kind::Soup(mesh) => Err(self.build_error(&mesh.refused)),
             Kind::Scene(scene) => rays
                 .iter()
                 .enumerate()
@@ -330,6 +396,39 @@ mod tests {
         assert!(
             e.to_string().contains("hole.obj: the solid is not closed"),
             "{e}"
+        );
+
+        // A mesh that is no solid (three faces on an edge) loads: the
+        // winding number answers it, everything else is its build error.
+        let fin = fixture("fixtures/soups/fin.obj");
+        let target = Target::try_load(&fin).unwrap();
+        assert!(matches!(
+            target.build_refusal(),
+            Some(BuildError::NonManifoldEdge { .. })
+        ));
+        assert_eq!(
+            target
+                .classify(&[DVec3::splat(0.5)], Method::Winding, &mut stats)
+                .unwrap(),
+            [Containment::Inside]
+        );
+        for e in [
+            target
+                .classify(&[DVec3::splat(0.5)], Method::Parity, &mut stats)
+                .unwrap_err(),
+            target
+                .classify(&[DVec3::splat(0.5)], Method::Normals, &mut stats)
+                .unwrap_err(),
+            target.rays(&[x_ray(0.5, 0.5)], &mut stats).unwrap_err(),
+        ] {
+            assert!(matches!(e, TargetError::Build { .. }), "{e}");
+            assert!(e.to_string().contains("fin.obj: edge 1–2"), "{e}");
+        }
+        assert!(
+            Target::try_load(&fixture("fixtures/valid/cube.obj"))
+                .unwrap()
+                .build_refusal()
+                .is_none()
         );
 
         let missing = fixture("tests/bad_inputs/missing.obj");

@@ -235,7 +235,9 @@ pub struct Report {
     pub faces: usize,
     /// Connected components of the surface.
     pub shells: usize,
-    /// Holes: loops of edges with one face (connected groups of such edges).
+    /// Holes: loops of edges with one face (connected groups of such edges;
+    /// holes that touch at a vertex count as one here, and the vertex is
+    /// reported by [`Rule::NonManifoldVertex`]).
     pub holes: usize,
     /// Summed genus of the shells when every shell is closed.
     pub genus: Option<i64>,

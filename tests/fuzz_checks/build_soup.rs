@@ -1,6 +1,8 @@
 //! The `build_soup` check: bytes → a small polygon soup →
-//! `Solid::try_from_soup` → consistency check and measures. Any panic is a
-//! bug: bad soups must give a `BuildError`.
+//! `Solid::try_from_soup` → consistency check and measures, and the soup's
+//! winding number (`SoupWinding`), which must answer as the solid's accel
+//! where the soup builds. Any panic is a bug: bad soups must give a
+//! `BuildError`.
 //!
 //! Bytes decode into a small soup: the first byte is the vertex count (mod
 //! 24, plus one); then three bytes per vertex, each a coordinate on a coarse
@@ -11,6 +13,7 @@
 
 use wingedge::glam::DVec3;
 use wingedge::mesh::{PolygonSoup, Solid};
+use wingedge::query::{Accel, Method, SoupWinding};
 
 /// Runs the check on one input.
 pub fn run(data: &[u8]) {
@@ -51,7 +54,36 @@ pub fn run(data: &[u8]) {
         rest = tail;
     }
     let soup = PolygonSoup::new(positions, polygons);
-    if let Ok(solid) = Solid::try_from_soup(&soup) {
+    // The winding number of the soup: refused only for bad numbers, which
+    // the build refuses too; on a soup that builds, the same answers as
+    // the solid's accel.
+    let probes = [
+        DVec3::ZERO,
+        DVec3::new(0.5, 0.25, 0.125),
+        DVec3::splat(-1.5),
+    ];
+    let winding = SoupWinding::try_new(&soup);
+    let built = Solid::try_from_soup(&soup);
+    match (&winding, &built) {
+        (Ok(w), Ok(solid)) => {
+            let accel = Accel::new(solid);
+            for p in probes {
+                assert_eq!(
+                    w.classify(p).ok(),
+                    accel.classify_with(p, Method::Winding).ok(),
+                    "{p}"
+                );
+            }
+        }
+        (Ok(w), Err(_)) => {
+            for p in probes {
+                let _ = (w.classify(p), w.winding_number(p));
+            }
+        }
+        (Err(e), Ok(_)) => panic!("the soup builds but its winding number is refused: {e}"),
+        (Err(_), Err(_)) => {}
+    }
+    if let Ok(solid) = built {
         solid
             .check_consistency()
             .expect("a built solid is consistent");

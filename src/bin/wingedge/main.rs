@@ -51,8 +51,10 @@ enum Command {
         /// blank lines and `#` comments are skipped.
         points: String,
         /// parity (+x ray, any closed solid), normals (convex solids only) or
-        /// winding (generalized winding number; open meshes too). Meshes
-        /// only: a scene classifies by its tree.
+        /// winding (generalized winding number; open meshes too, and meshes
+        /// that cannot be a solid, such as an edge of three faces, answered
+        /// from their triangles with a note on standard error). Meshes only:
+        /// a scene classifies by its tree.
         #[arg(long, value_enum, default_value_t = MethodArg::Parity)]
         method: MethodArg,
         /// Scenes: print the CSG work counters to standard error.

@@ -23,9 +23,23 @@ pub fn classify(target: &Path, source: &str, method: Method, show_stats: bool) -
         .collect();
     let target = Target::try_load(target).map_err(|e| e.to_string())?;
     let mut stats = Stats::default();
-    let classes = target
-        .classify(&points, method, &mut stats)
-        .map_err(|e| e.to_string())?;
+    let classes =
+        target
+            .classify(&points, method, &mut stats)
+            .map_err(|e| match target.build_refusal() {
+                // Parity or normals on a mesh that is no solid: the build error,
+                // and what does answer such a mesh.
+                Some(_) => format!("{e} (--method winding answers a mesh that is no solid)"),
+                None => e.to_string(),
+            })?;
+    if let Some(refused) = target.build_refusal() {
+        // Only the winding method answers a mesh that is no solid.
+        eprintln!(
+            "note: {}: parity is undefined for this mesh, which is not a solid ({refused}); \
+             answered by the generalized winding number of its triangles",
+            target.file().display()
+        );
+    }
     let mut out = Out::new();
     for c in classes {
         if !out.write(format_args!("{}\n", c.as_word()))? {

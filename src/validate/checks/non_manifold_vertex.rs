@@ -1,5 +1,5 @@
 //! The faces around a vertex must form a single fan; two cones sharing a tip
-//! do not.
+//! do not, nor two holes touching at a corner.
 
 use rayon::prelude::*;
 
@@ -40,10 +40,27 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
             let fans = (0..faces.len())
                 .filter(|&i| root(&mut parent, i) == i)
                 .count();
+            // A fan is open when one of its edges at the vertex has only
+            // one face: a hole passes the vertex there.
+            let mut open: Vec<usize> = Vec::new();
+            for &e in ctx.vertex_edges(v) {
+                if let [only] = ctx.uses(e as usize)
+                    && let Ok(i) = faces.binary_search(&only.face())
+                {
+                    open.push(root(&mut parent, i));
+                }
+            }
+            open.sort_unstable();
+            open.dedup();
+            let holes = if open.len() > 1 {
+                format!("; {} of them border holes, which touch there", open.len())
+            } else {
+                String::new()
+            };
             (fans > 1).then(|| Violation {
                 rule: Rule::NonManifoldVertex,
                 message: format!(
-                    "{} is a pinch point: its {} faces form {fans} separate fans",
+                    "{} is a pinch point: its {} faces form {fans} separate fans{holes}",
                     ctx.vertex_name(v),
                     faces.len()
                 ),
