@@ -36,6 +36,12 @@ and task, plus a control sample of queries on which everyone agrees.
 The table goes to stdout and OUT/peers.md; everything measured to
 OUT/peers.json. The inputs take about 0.4 GB under OUT and are reused by
 the next run.
+
+With --booleans CASES (default `spheres`; `none` to skip, `spheres,models`
+for the real models too), the boolean table of booleans.py follows: the
+difference of two offset spheres of 131k and 524k triangles through
+wingedge, manifold3d, MeshLib and CGAL's corefinement, each result checked
+by `wingedge validate` (its rows go to OUT/booleans.json).
 """
 import argparse
 import datetime
@@ -61,7 +67,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 EXAMPLES = os.path.join(ROOT, "target", "release", "examples")
 # The parry harness is a workspace member: its binary sits in target/release.
 PEERS_PARRY = os.path.join(ROOT, "target", "release", "peers_parry")
-BUILD_COMMANDS = [["cargo", "build", "--release", "--examples"],
+BUILD_COMMANDS = [["cargo", "build", "--release", "--examples", "--bins"],
                   ["cargo", "build", "--release", "-p", "wingedge-peers-parry"]]
 # The issue's three shared meshes, then the team's real models that fit in
 # the caches (a CAD part and a remeshed scan) when their folder is there.
@@ -289,6 +295,21 @@ def machine():
             "parry3d": parry, "packages": packages, "threads": THREADS}
 
 
+def booleans_table(args):
+    """The boolean benchmark (booleans.py) on --booleans cases, in this
+    Python (its peers must be installed here; a missing one gets a row that
+    says so), as a markdown section."""
+    log("booleans", args.booleans)
+    command = [sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "booleans.py"),
+               "--cases", args.booleans, "--rounds", str(args.rounds),
+               "--workdir", os.path.join(os.path.abspath(args.out), "booleans"),
+               "--json", os.path.join(os.path.abspath(args.out), "booleans.json")]
+    done = subprocess.run(command, cwd=ROOT, capture_output=True, text=True)
+    if done.returncode != 0:
+        return "## Booleans (A − B)\n\nbooleans.py failed:\n\n```\n%s\n```\n" % done.stderr[-2000:]
+    return "## Booleans (A − B)\n\n" + done.stdout
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "--validate-with-python-peers":
         validate_python_peers(sys.argv[2])
@@ -308,6 +329,8 @@ def main():
     ap.add_argument("--rounds", type=int, default=3,
                     help="rounds in which wingedge and open3d take turns (each keeps its best)")
     ap.add_argument("--no-build", action="store_true", help="skip cargo build (examples and parry harness already built)")
+    ap.add_argument("--booleans", default="spheres",
+                    help="boolean cases after the query table: none, or a comma list of spheres, models")
     args = ap.parse_args()
     started = time.perf_counter()
     load_at_start = os.getloadavg()[0]
@@ -337,6 +360,8 @@ def main():
     info["minutes"] = (time.perf_counter() - started) / 60
     info["load"] = (load_at_start, os.getloadavg()[0])
     table = report.markdown(rows, verdicts, validations, info, args)
+    if args.booleans != "none":
+        table += "\n" + booleans_table(args)
     print(table)
     with open(os.path.join(args.out, "peers.md"), "w") as f:
         f.write(table)
