@@ -6,7 +6,7 @@ use crate::geom::Aabb;
 
 use super::error::FieldError;
 use super::falloff::Falloff;
-use super::scalar_field::{Field, ValueRange};
+use super::scalar_field::{Field, NodeBox, ValueRange};
 use super::source::Source;
 use super::source_grid::SourceGrid;
 use super::stats::FieldStats;
@@ -102,6 +102,45 @@ impl Field for Blobs {
             }
         }
         sum
+    }
+
+    /// The sources near the box are found once, from the source grid;
+    /// each node sums those whose ball holds it, in source order — the
+    /// sources its own grid cell lists that reach it, since every source
+    /// that adds at a point is listed in the point's cell and in the
+    /// cells the box meets. So each value is `value_counted`'s, bit for bit.
+    fn sample_nodes(&self, nodes: &NodeBox, values: &mut [f64], stats: &mut FieldStats) {
+        let near: Vec<(DVec3, f64, f64)> = self
+            .grid
+            .sources_meeting(&nodes.region())
+            .into_iter()
+            .map(|s| {
+                let s = &self.sources[s as usize];
+                (s.center, s.radius * s.radius, s.strength)
+            })
+            .collect();
+        let [nx, ny, nz] = nodes.counts;
+        let mut evaluations = 0;
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    let p = nodes.position(i, j, k);
+                    let mut sum = 0.0;
+                    for &(center, radius2, strength) in &near {
+                        let r2 = p.distance_squared(center);
+                        if r2 < radius2 {
+                            evaluations += 1;
+                            sum += strength * self.falloff.value(r2, radius2);
+                        }
+                    }
+                    values[(k * ny + j) * nx + i] = sum;
+                }
+            }
+        }
+        let samples = nodes.len() as u64;
+        stats.samples += samples;
+        stats.candidates += samples * near.len() as u64;
+        stats.source_evaluations += evaluations;
     }
 
     /// Sums, over the sources that may reach the box (from the source

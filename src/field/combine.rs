@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use crate::geom::Aabb;
 
-use super::scalar_field::{Field, ValueRange};
+use super::scalar_field::{Field, NodeBox, ValueRange};
 use super::stats::FieldStats;
 
 /// How a [`FieldCsg`] node combines its two fields `a` and `b`.
@@ -74,6 +74,21 @@ impl Field for FieldCsg {
             FieldOp::Union => a.max(b),
             FieldOp::Intersection => a.min(b),
             FieldOp::Difference => a.min(1.0 - b),
+        }
+    }
+
+    /// Both operands sampled over the box, then combined node by node
+    /// (the same values as node by node).
+    fn sample_nodes(&self, nodes: &NodeBox, values: &mut [f64], stats: &mut FieldStats) {
+        self.a.sample_nodes(nodes, values, stats);
+        let mut other = vec![0.0; values.len()];
+        self.b.sample_nodes(nodes, &mut other, stats);
+        for (a, b) in values.iter_mut().zip(other) {
+            *a = match self.op {
+                FieldOp::Union => a.max(b),
+                FieldOp::Intersection => a.min(b),
+                FieldOp::Difference => a.min(1.0 - b),
+            };
         }
     }
 

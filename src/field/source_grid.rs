@@ -2,6 +2,7 @@
 //! sources whose radius can reach it.
 
 use glam::DVec3;
+use smallvec::SmallVec;
 
 use crate::geom::Aabb;
 
@@ -125,14 +126,14 @@ impl SourceGrid {
 
     /// The sources listed in the cells a closed box meets, in increasing
     /// order: every source that adds to the field at a point of `region`.
-    pub(crate) fn sources_meeting(&self, region: &Aabb) -> Vec<u32> {
+    pub(crate) fn sources_meeting(&self, region: &Aabb) -> SmallVec<[u32; 16]> {
         let clipped = region.intersection(self.bounds);
         if self.entries.is_empty() || clipped.is_empty() {
-            return Vec::new();
+            return SmallVec::new();
         }
         let lo = self.axis_cells(clipped.min);
         let hi = self.axis_cells(clipped.max);
-        let mut found = Vec::new();
+        let mut found = SmallVec::new();
         for k in lo[2]..=hi[2] {
             for j in lo[1]..=hi[1] {
                 for i in lo[0]..=hi[0] {

@@ -26,26 +26,33 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::geom::Aabb;
 use crate::mesh::PolygonSoup;
 
 use super::super::error::FieldError;
-use super::super::scalar_field::{Field, THRESHOLD};
+use super::super::scalar_field::{Field, NodeBox, THRESHOLD, node_position};
 use super::super::stats::FieldStats;
 use super::cube::{EDGES, corner_coords, edge_axis};
 use super::extract::{EdgeKey, EdgeKeys, MarchStats, place_vertex, welded_soup};
-use super::grid::{GridFrame, node_position};
+use super::grid::GridFrame;
 use super::options::MarchingOptions;
 use super::table::case_table;
 
 /// Cells along each side of a block.
 pub(crate) const BLOCK: usize = 8;
 
+/// More than the most triangles a cell's case has (at most 12 crossed
+/// edges, in loops of at least 3: at most 10 triangles).
+const TRIANGLES_PER_CELL: u64 = 16;
+
+/// Blocks along each side of a group, bounded before its blocks are.
+const GROUP: usize = 4;
+
 /// What one marched block found.
 #[derive(Default)]
 struct BlockOutput {
-    /// Triangles as edge keys, each with its cell's rank in the whole
-    /// grid's order.
+    /// Triangles as edge keys, each with its rank in the whole grid's
+    /// order: its cell's rank × [`TRIANGLES_PER_CELL`] + its place in the
+    /// cell's list.
     triangles: Vec<(u64, [EdgeKey; 3])>,
     /// The block's crossed edges and their vertices, sorted by key.
     vertices: Vec<(EdgeKey, DVec3)>,
@@ -70,15 +77,36 @@ pub(crate) fn march_blocks(
     let cells = frame.dims.map(|n| n + 1);
     let blocks = cells.map(|c| c.div_ceil(BLOCK));
     let block_count = blocks[0] * blocks[1] * blocks[2];
-    let outputs: Vec<BlockOutput> = (0..block_count)
+    // Groups of GROUP³ blocks: a group the bound decides is skipped whole.
+    let groups = blocks.map(|b| b.div_ceil(GROUP));
+    let outputs: Vec<BlockOutput> = (0..groups[0] * groups[1] * groups[2])
         .into_par_iter()
-        .filter_map(|b| {
-            let at = [
-                b % blocks[0],
-                b / blocks[0] % blocks[1],
-                b / (blocks[0] * blocks[1]),
+        .flat_map_iter(|g| {
+            let group = [
+                g % groups[0],
+                g / groups[0] % groups[1],
+                g / (groups[0] * groups[1]),
             ];
-            march_block(field, frame, options, at).transpose()
+            let first = group.map(|v| v * GROUP);
+            let lo = first.map(|v| v * BLOCK);
+            let hi: [usize; 3] = std::array::from_fn(|a| (lo[a] + GROUP * BLOCK).min(cells[a]));
+            let (samples, padded) = span(frame, lo, hi);
+            let mut marched = Vec::new();
+            if decided(field, &samples, padded) {
+                return marched.into_iter();
+            }
+            let last: [usize; 3] = std::array::from_fn(|a| (first[a] + GROUP).min(blocks[a]));
+            for z in first[2]..last[2] {
+                for y in first[1]..last[1] {
+                    for x in first[0]..last[0] {
+                        if let Some(out) = march_block(field, frame, options, [x, y, z]).transpose()
+                        {
+                            marched.push(out);
+                        }
+                    }
+                }
+            }
+            marched.into_iter()
         })
         .collect::<Result<_, _>>()?;
     let mut field_stats = FieldStats::default();
@@ -96,18 +124,45 @@ pub(crate) fn march_blocks(
         .iter()
         .flat_map(|o| o.triangles.iter().copied())
         .collect();
-    // Stable: a cell's triangles keep their table order.
-    triangles.par_sort_by_key(|&(rank, _)| rank);
+    // The rank holds the cell and the triangle's place in the cell's list.
+    triangles.par_sort_unstable_by_key(|&(rank, _)| rank);
     let mut vertices: Vec<(EdgeKey, DVec3)> =
         outputs.into_iter().flat_map(|o| o.vertices).collect();
     // An edge shared by two blocks got the same vertex in both.
     vertices.par_sort_unstable_by_key(|&(key, _)| key);
     vertices.dedup_by_key(|&mut (key, _)| key);
     let (keys, positions): (Vec<EdgeKey>, Vec<DVec3>) = vertices.into_iter().unzip();
-    let soup = welded_soup(triangles.iter().map(|&(_, t)| t), &keys, positions);
+    let triangles: Vec<[EdgeKey; 3]> = triangles.into_iter().map(|(_, t)| t).collect();
+    let soup = welded_soup(&triangles, &keys, positions);
     stats.triangles = soup.polygons.len() as u64;
     stats.vertices = keys.len() as u64;
     Ok((soup, field_stats, stats))
+}
+
+/// The samples among the nodes `lo..=hi` of the padded grid (shifted by
+/// +1: 0 is the padding layer at −1, `n + 1` the one beyond the last
+/// sample), and whether the padding layer is among those nodes. The
+/// samples are a non-empty box when `lo ≤ n` and `hi ≥ 1`.
+fn span(frame: &GridFrame, lo: [usize; 3], hi: [usize; 3]) -> (NodeBox, bool) {
+    let n = frame.dims;
+    let padded = (0..3).any(|a| lo[a] == 0 || hi[a] == n[a] + 1);
+    let first: [isize; 3] = std::array::from_fn(|a| lo[a].max(1) as isize - 1);
+    let last: [isize; 3] = std::array::from_fn(|a| hi[a].min(n[a]) as isize - 1);
+    let samples = NodeBox {
+        origin: frame.origin,
+        cell: frame.cell,
+        first,
+        counts: std::array::from_fn(|a| (last[a] - first[a]) as usize + 1),
+    };
+    (samples, padded)
+}
+
+/// Whether the field's bound over `samples` shows that no cell of the
+/// span crosses the surface: all samples below ½ (the padding reads 0,
+/// below too), or all at or above ½ with no padding node.
+fn decided(field: &dyn Field, samples: &NodeBox, padded: bool) -> bool {
+    let range = field.bound(&samples.region());
+    range.all_outside() || (range.all_inside() && !padded)
 }
 
 /// Samples and marches block `at` (block coordinates), or `None` when the
@@ -119,49 +174,38 @@ fn march_block(
     at: [usize; 3],
 ) -> Result<Option<BlockOutput>, FieldError> {
     let n = frame.dims;
-    // Nodes of the block in padded coordinates shifted by +1 (0 is the
-    // padding layer at −1, n + 1 the one beyond the last sample):
-    // lo..=hi, its cells lo..hi.
     let lo: [usize; 3] = std::array::from_fn(|a| at[a] * BLOCK);
     let hi: [usize; 3] = std::array::from_fn(|a| (lo[a] + BLOCK).min(n[a] + 1));
-    let padded = (0..3).any(|a| lo[a] == 0 || hi[a] == n[a] + 1);
-    // The block's real samples, shifted back: a non-empty range, as
-    // lo ≤ n and hi ≥ 1 (the node counts are at least 1).
-    let first: [isize; 3] = std::array::from_fn(|a| lo[a].max(1) as isize - 1);
-    let last: [isize; 3] = std::array::from_fn(|a| hi[a].min(n[a]) as isize - 1);
-    // The position formula is monotone in each index, so this box holds
-    // every sample point of the block.
-    let region = Aabb {
-        min: node_position(frame.origin, frame.cell, first[0], first[1], first[2]),
-        max: node_position(frame.origin, frame.cell, last[0], last[1], last[2]),
-    };
-    let range = field.bound(&region);
-    if range.all_outside() || (range.all_inside() && !padded) {
+    let (samples, padded) = span(frame, lo, hi);
+    if decided(field, &samples, padded) {
         return Ok(None);
     }
-    let m = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
+    let first = samples.first;
     let mut out = BlockOutput::default();
+    let mut sampled = vec![0.0; samples.len()];
+    field.sample_nodes(&samples, &mut sampled, &mut out.field);
+    if let Some(at) = sampled.iter().position(|v| !v.is_finite()) {
+        let [cx, cy, _] = samples.counts;
+        let local = [at % cx, at / cx % cy, at / (cx * cy)];
+        let [i, j, k] = std::array::from_fn(|a| first[a] as usize + local[a]);
+        return Err(FieldError::NonFiniteSample {
+            i,
+            j,
+            k,
+            value: sampled[at],
+        });
+    }
+    // The block's nodes: the samples, and 0 in the padding layer.
+    let m = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
     let mut values = vec![0.0; m[0] * m[1] * m[2]];
-    for z in 0..m[2] {
-        for y in 0..m[1] {
-            for x in 0..m[0] {
-                let s = [lo[0] + x, lo[1] + y, lo[2] + z];
-                if (0..3).all(|a| (1..=n[a]).contains(&s[a])) {
-                    let p = node_position(
-                        frame.origin,
-                        frame.cell,
-                        s[0] as isize - 1,
-                        s[1] as isize - 1,
-                        s[2] as isize - 1,
-                    );
-                    let value = field.value_counted(p, &mut out.field);
-                    if !value.is_finite() {
-                        let [i, j, k] = s.map(|v| v - 1);
-                        return Err(FieldError::NonFiniteSample { i, j, k, value });
-                    }
-                    values[(z * m[1] + y) * m[0] + x] = value;
-                }
-            }
+    // The first sample's place among the block's nodes.
+    let offset: [usize; 3] = std::array::from_fn(|a| (first[a] + 1) as usize - lo[a]);
+    let [cx, cy, cz] = samples.counts;
+    for z in 0..cz {
+        for y in 0..cy {
+            let from = (z * cy + y) * cx;
+            let to = ((z + offset[2]) * m[1] + y + offset[1]) * m[0] + offset[0];
+            values[to..to + cx].copy_from_slice(&sampled[from..from + cx]);
         }
     }
     let inside: Vec<u8> = values.iter().map(|&v| u8::from(v >= THRESHOLD)).collect();
@@ -191,9 +235,9 @@ fn march_block(
                 let rank = (lo[2] + z) as u64 * rank_layer
                     + (lo[1] + y) as u64 * rank_row
                     + (lo[0] + x) as u64;
-                for t in &table.case(config).triangles {
+                for (place, t) in (0u64..).zip(&table.case(config).triangles) {
                     out.triangles.push((
-                        rank,
+                        rank * TRIANGLES_PER_CELL + place,
                         t.map(|e| {
                             let [cx, cy, cz] = corner_coords(EDGES[usize::from(e)][0]);
                             keys.key(
@@ -235,4 +279,18 @@ fn march_block(
         })
         .collect();
     Ok(Some(out))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_case_fits_the_triangle_places_of_a_cell() {
+        let table = case_table();
+        for config in 0..=255u8 {
+            let count = table.case(config).triangles.len() as u64;
+            assert!(count < TRIANGLES_PER_CELL, "case {config}: {count}");
+        }
+    }
 }

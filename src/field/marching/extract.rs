@@ -59,7 +59,7 @@ impl EdgeKeys {
 /// The welded soup of triangles given as edge keys, in order, and the
 /// crossed edges' vertices sorted by key (each once).
 pub(super) fn welded_soup(
-    triangles: impl Iterator<Item = [EdgeKey; 3]>,
+    triangles: &[[EdgeKey; 3]],
     keys: &[EdgeKey],
     positions: Vec<DVec3>,
 ) -> PolygonSoup {
@@ -72,6 +72,7 @@ pub(super) fn welded_soup(
     PolygonSoup {
         positions,
         polygons: triangles
+            .par_iter()
             .map(|t| crate::mesh::Polygon::new(t.map(index)))
             .collect(),
     }
@@ -179,11 +180,8 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
             place_vertex(a, b, grid.position(i, j, k), grid.cell(), axis, options)
         })
         .collect();
-    let soup = welded_soup(
-        slabs.iter().flat_map(|(t, _)| t.iter().copied()),
-        &keys,
-        positions,
-    );
+    let triangles: Vec<[EdgeKey; 3]> = slabs.iter().flat_map(|(t, _)| t.iter().copied()).collect();
+    let soup = welded_soup(&triangles, &keys, positions);
     let stats = MarchStats {
         cells: (nx as u64 + 1) * (ny as u64 + 1) * (nz as u64 + 1),
         surface_cells: slabs.iter().map(|(_, s)| s).sum(),

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use crate::geom::Aabb;
 
 use super::super::error::FieldError;
-use super::super::scalar_field::Field;
+use super::super::scalar_field::{Field, node_position};
 use super::super::stats::FieldStats;
 
 /// The most samples a grid may hold (2²⁵, 256 MiB of values): enough for
@@ -204,13 +204,6 @@ impl GridFrame {
             dims,
         })
     }
-}
-
-/// The position of node `(i, j, k)`: `origin + cell · (i, j, k)`, the one
-/// formula every sampler and the vertex placement use, so that the same
-/// node always gets the same point. Monotone in each index.
-pub(crate) fn node_position(origin: DVec3, cell: f64, i: isize, j: isize, k: isize) -> DVec3 {
-    origin + cell * DVec3::new(i as f64, j as f64, k as f64)
 }
 
 fn check_size(dims: [usize; 3]) -> Result<usize, FieldError> {
