@@ -43,8 +43,9 @@ use rustc_hash::FxHashMap;
 use glam::DVec3;
 use thiserror::Error;
 
-use super::label::Label;
+use super::label::{Cell, Label};
 use super::target::{CellTarget, CsgTarget, Judgement, SolidTarget};
+use super::walk::{Pending, Task};
 use crate::csg::{Csg, LeafTileError, Stats};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Readable};
@@ -62,62 +63,6 @@ pub const MAX_DENSE_DEPTH: u32 = 9;
 /// Down to this depth a solid's octree is walked on one thread; the
 /// subtrees below it (up to 8³ of them) are refined in parallel.
 const PARALLEL_DEPTH: u32 = 3;
-
-/// A cell still to be judged, with what its parent learnt.
-struct Pending<K> {
-    depth: u32,
-    at: [u32; 3],
-    known: K,
-}
-
-impl<K> Pending<K> {
-    /// Its eight children, child `k` at offset `(k & 1, k >> 1 & 1, k >> 2)`,
-    /// in the order they are pushed on a stack.
-    fn children<T: CellTarget<Known = K>>(&self, target: &T) -> impl Iterator<Item = Pending<K>> {
-        let [x, y, z] = self.at;
-        let depth = self.depth + 1;
-        (0u32..)
-            .zip(target.split(&self.known))
-            .map(move |(k, known)| Pending {
-                depth,
-                at: [2 * x + (k & 1), 2 * y + (k >> 1 & 1), 2 * z + (k >> 2)],
-                known,
-            })
-    }
-
-    /// The leaf a judged cell becomes: `Meets` at the finest depth is
-    /// `On`; `Free` is `Out` until its region is labelled.
-    fn leaf(&self, judgement: Judgement) -> Cell {
-        let [x, y, z] = self.at;
-        Cell {
-            depth: self.depth,
-            x,
-            y,
-            z,
-            label: match judgement {
-                Judgement::In => Label::In,
-                Judgement::Out | Judgement::Free => Label::Out,
-                Judgement::Meets => Label::On,
-            },
-        }
-    }
-}
-
-/// A leaf of the octree: cell `(x, y, z)` of the `2^depth` cells along each
-/// side at `depth`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Cell {
-    /// Its depth (0: the root).
-    pub depth: u32,
-    /// Its index along `x` at its depth.
-    pub x: u32,
-    /// Its index along `y`.
-    pub y: u32,
-    /// Its index along `z`.
-    pub z: u32,
-    /// Where it is.
-    pub label: Label,
-}
 
 /// How many leaves of each label one depth holds.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -324,8 +269,7 @@ impl Octree {
         // The walk of the sequential build down to PARALLEL_DEPTH: cells
         // decided on the way become leaves, in order, and the cells reached
         // at that depth become subtrees.
-        // A decided cell is a leaf, with whether it is `Free`.
-        let mut tasks: Vec<Result<(Cell, bool), Pending<T::Known>>> = Vec::new();
+        let mut tasks: Vec<Task<T::Known>> = Vec::new();
         let mut stack = vec![Pending {
             depth: 0,
             at: [0; 3],
@@ -333,21 +277,24 @@ impl Octree {
         }];
         while let Some(mut cell) = stack.pop() {
             if cell.depth == PARALLEL_DEPTH.min(depth) {
-                tasks.push(Err(cell));
+                tasks.push(Task::Subtree(cell));
                 continue;
             }
             let [x, y, z] = cell.at;
             let bounds = tree.cell_box(cell.depth, x, y, z);
             match target.judge(&bounds, &mut cell.known) {
                 Judgement::Meets => stack.extend(cell.children(target)),
-                judgement => tasks.push(Ok((cell.leaf(judgement), judgement == Judgement::Free))),
+                judgement => tasks.push(Task::Leaf {
+                    cell: cell.leaf(judgement),
+                    free: judgement == Judgement::Free,
+                }),
             }
         }
         let parts: Vec<(Vec<Cell>, Vec<usize>)> = tasks
             .into_par_iter()
             .map(|task| match task {
-                Ok((leaf, free)) => (vec![leaf], if free { vec![0] } else { Vec::new() }),
-                Err(cell) => tree.descend(target, cell),
+                Task::Leaf { cell, free } => (vec![cell], if free { vec![0] } else { Vec::new() }),
+                Task::Subtree(cell) => tree.descend(target, cell),
             })
             .collect();
         let mut free = Vec::new();
