@@ -1,22 +1,35 @@
-"""scikit-image's marching cubes on the three-blob field, for comparison with
-`examples/marching_cubes_bench.rs`.
+"""scikit-image's marching cubes on the three-blob field against wingedge's,
+in one run (the speed goal: wingedge's field + march at 256³ at least 10×
+faster than numpy's field + scikit-image's march).
 
 The field (`fixtures/fields/three_blobs.json`, soft-object falloff) is
 sampled by numpy on the grid wingedge uses at the same resolution: the
 bounds are the union of the sources' influence boxes, the cell is the
 longest side / resolution, and the grid is padded by a layer of zeros.
 Then `skimage.measure.marching_cubes` (Lewiner's method, one thread)
-extracts the level 0.5. Prints the sampling and marching times (best of
-three), the triangle count and the mesh's volume.
+extracts the level 0.5. wingedge runs `examples/marching_cubes_bench.rs
+--goal` (`try_mesh`: the field bounded over blocks of the grid, only the
+blocks that may hold the surface sampled and marched; and, for reference,
+the whole grid sampled and marched). Each side in a process of its own
+(its peak memory is its own), 2 threads, best of three; the table gives
+the times, memory, triangles, volumes and the ratio.
 
-    python3 -m pip install scikit-image
+    python3 -m pip install scikit-image numpy
+    cargo build --release --example marching_cubes_bench
     python3 benches/peers/marching_cubes_peer.py [RESOLUTION]     (default 256)
 """
 import json
 import math
+import os
 import pathlib
+import resource
+import subprocess
 import sys
 import time
+
+THREADS = 2
+for _var in ("RAYON_NUM_THREADS", "OMP_NUM_THREADS"):
+    os.environ[_var] = str(THREADS)
 
 import numpy as np
 import skimage
@@ -56,19 +69,51 @@ def volume(verts, faces):
     return abs(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6)
 
 
-def main():
-    resolution = int(sys.argv[1]) if len(sys.argv) > 1 else 256
+def peer(resolution):
     doc = json.loads((ROOT / "fixtures/fields/three_blobs.json").read_text())
     sources = doc["blobs"]
     sample_s, (grid, cell, dims) = best_of_3(lambda: sample(sources, resolution))
     march_s, (verts, faces, _, _) = best_of_3(
         lambda: measure.marching_cubes(grid, level=0.5, spacing=(cell, cell, cell))
     )
-    print(
-        f"scikit-image {skimage.__version__} at resolution {resolution}: grid "
-        f"{'×'.join(map(str, dims))} (+ padding), sample {sample_s:.3f} s (numpy), "
-        f"march {march_s:.3f} s, {len(faces)} triangles, volume {volume(verts, faces):.6f}"
-    )
+    print(json.dumps({
+        "version": skimage.__version__,
+        "grid": dims,
+        "sample_seconds": sample_s,
+        "march_seconds": march_s,
+        "triangles": len(faces),
+        "volume": volume(verts, faces),
+        "peak_rss_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+    }))
+
+
+def run_json(command):
+    out = subprocess.run(command, check=True, capture_output=True, text=True, cwd=ROOT)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main():
+    if len(sys.argv) > 2 and sys.argv[1] == "--peer":
+        peer(int(sys.argv[2]))
+        return
+    resolution = int(sys.argv[1]) if len(sys.argv) > 1 else 256
+    example = str(ROOT / "target/release/examples/marching_cubes_bench")
+    blocks = run_json([example, "--goal", str(resolution)])
+    whole = run_json([example, "--goal", str(resolution), "--whole"])
+    sk = run_json([sys.executable, os.path.abspath(__file__), "--peer", str(resolution)])
+    both = sk["sample_seconds"] + sk["march_seconds"]
+    grid = "×".join(map(str, blocks["grid"]))
+    print(f"three-blob field at resolution {resolution} (grid {grid}), {THREADS} threads\n")
+    print("| method | time (s) | peak memory (MiB) | samples | triangles | volume | valid | ratio |")
+    print("|---|---:|---:|---:|---:|---:|---|---:|")
+    print(f"| numpy field + scikit-image {sk['version']} marching_cubes | "
+          f"{sk['sample_seconds']:.3f} + {sk['march_seconds']:.3f} | {sk['peak_rss_mib']:.0f} | "
+          f"{blocks['whole_grid_samples']:,} | {sk['triangles']:,} | {sk['volume']:.6f} | not checked | 1 |")
+    for w in (whole, blocks):
+        print(f"| wingedge, {w['method']} | {w['seconds']:.3f} | {w['peak_rss_mib']:.0f} | "
+              f"{w['samples']:,} | {w['triangles']:,} | {w['volume']:.6f} | "
+              f"{'valid closed solid' if w['valid'] else 'INVALID'} | {both / w['seconds']:.1f}× |")
+    print(f"\nblocks: {blocks['blocks_marched']:,} of {blocks['blocks']:,} sampled and marched")
 
 
 if __name__ == "__main__":

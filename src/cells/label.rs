@@ -1,4 +1,4 @@
-//! The three places a cell can be.
+//! The three places a cell can be, and a labelled leaf of the octree.
 
 /// Where a cell is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -10,4 +10,20 @@ pub enum Label {
     /// The boundary meets the closed cell (only at the finest depth); for
     /// a CSG tree with curved or transformed leaves, may meet it.
     On,
+}
+
+/// A leaf of the octree: cell `(x, y, z)` of the `2^depth` cells along each
+/// side at `depth`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Cell {
+    /// Its depth (0: the root).
+    pub depth: u32,
+    /// Its index along `x` at its depth.
+    pub x: u32,
+    /// Its index along `y`.
+    pub y: u32,
+    /// Its index along `z`.
+    pub z: u32,
+    /// Where it is.
+    pub label: Label,
 }

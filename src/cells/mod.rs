@@ -13,9 +13,10 @@ mod label;
 mod npy;
 mod octree;
 mod target;
+mod walk;
 
 pub use crate::geom::box_meets_triangle;
 pub use in_shell::{InShell, SUBDIVISION};
-pub use label::Label;
+pub use label::{Cell, Label};
 pub use npy::write_npy;
-pub use octree::{Cell, CellsError, LevelCounts, MAX_DENSE_DEPTH, MAX_DEPTH, Octree};
+pub use octree::{CellsError, LevelCounts, MAX_DENSE_DEPTH, MAX_DEPTH, Octree};

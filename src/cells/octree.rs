@@ -36,13 +36,16 @@
 //! interval is certified.
 
 use std::cell::RefCell;
-use std::collections::HashMap;
+
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 use glam::DVec3;
 use thiserror::Error;
 
-use super::label::Label;
+use super::label::{Cell, Label};
 use super::target::{CellTarget, CsgTarget, Judgement, SolidTarget};
+use super::walk::{Pending, Task};
 use crate::csg::{Csg, LeafTileError, Stats};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Readable};
@@ -57,21 +60,9 @@ pub const MAX_DEPTH: u32 = 16;
 /// `2^9 = 512` cells along a side, 128 MiB.
 pub const MAX_DENSE_DEPTH: u32 = 9;
 
-/// A leaf of the octree: cell `(x, y, z)` of the `2^depth` cells along each
-/// side at `depth`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Cell {
-    /// Its depth (0: the root).
-    pub depth: u32,
-    /// Its index along `x` at its depth.
-    pub x: u32,
-    /// Its index along `y`.
-    pub y: u32,
-    /// Its index along `z`.
-    pub z: u32,
-    /// Where it is.
-    pub label: Label,
-}
+/// Down to this depth a solid's octree is walked on one thread; the
+/// subtrees below it (up to 8³ of them) are refined in parallel.
+const PARALLEL_DEPTH: u32 = 3;
 
 /// How many leaves of each label one depth holds.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -184,7 +175,7 @@ impl Octree {
             face: e.face,
             message: e.source.to_string(),
         })?;
-        Ok(Octree::build(
+        Ok(Octree::build_parallel(
             &SolidTarget { accel, tiles },
             origin,
             side,
@@ -237,69 +228,131 @@ impl Octree {
         Ok(tree)
     }
 
-    /// Refines the cells the target's boundary may meet, labels the rest,
-    /// and counts.
-    fn build<T: CellTarget>(target: &T, origin: DVec3, side: f64, depth: u32) -> Octree {
-        let mut tree = Octree {
+    /// An unlabelled tree over the root cube.
+    fn empty(origin: DVec3, side: f64, depth: u32) -> Octree {
+        Octree {
             origin,
             side,
             depth,
             leaves: Vec::new(),
             counts: vec![LevelCounts::default(); depth as usize + 1],
             regions: 0,
+        }
+    }
+
+    /// Refines the cells the target's boundary may meet, labels the rest,
+    /// and counts.
+    fn build<T: CellTarget>(target: &T, origin: DVec3, side: f64, depth: u32) -> Octree {
+        let mut tree = Octree::empty(origin, side, depth);
+        let root = Pending {
+            depth: 0,
+            at: [0; 3],
+            known: target.root_known(),
         };
-        let mut stack = vec![(0u32, 0u32, 0u32, 0u32, target.root_known())];
+        let (leaves, free) = tree.descend(target, root);
+        tree.leaves = leaves;
+        tree.finish(target, &free);
+        tree
+    }
+
+    /// [`Octree::build`] with the subtrees below [`PARALLEL_DEPTH`] refined
+    /// on all threads. The leaves come out in the same order as from the
+    /// sequential build: the subtrees are those the sequential walk would
+    /// visit one after the other, and their leaves are joined in that
+    /// order.
+    fn build_parallel<T>(target: &T, origin: DVec3, side: f64, depth: u32) -> Octree
+    where
+        T: CellTarget + Sync,
+        T::Known: Send,
+    {
+        let mut tree = Octree::empty(origin, side, depth);
+        // The walk of the sequential build down to PARALLEL_DEPTH: cells
+        // decided on the way become leaves, in order, and the cells reached
+        // at that depth become subtrees.
+        let mut tasks: Vec<Task<T::Known>> = Vec::new();
+        let mut stack = vec![Pending {
+            depth: 0,
+            at: [0; 3],
+            known: target.root_known(),
+        }];
+        while let Some(mut cell) = stack.pop() {
+            if cell.depth == PARALLEL_DEPTH.min(depth) {
+                tasks.push(Task::Subtree(cell));
+                continue;
+            }
+            let [x, y, z] = cell.at;
+            let bounds = tree.cell_box(cell.depth, x, y, z);
+            match target.judge(&bounds, &mut cell.known) {
+                Judgement::Meets => stack.extend(cell.children(target)),
+                judgement => tasks.push(Task::Leaf {
+                    cell: cell.leaf(judgement),
+                    free: judgement == Judgement::Free,
+                }),
+            }
+        }
+        let parts: Vec<(Vec<Cell>, Vec<usize>)> = tasks
+            .into_par_iter()
+            .map(|task| match task {
+                Task::Leaf { cell, free } => (vec![cell], if free { vec![0] } else { Vec::new() }),
+                Task::Subtree(cell) => tree.descend(target, cell),
+            })
+            .collect();
         let mut free = Vec::new();
-        while let Some((d, x, y, z, mut known)) = stack.pop() {
-            let cell = tree.cell_box(d, x, y, z);
-            let label = match target.judge(&cell, &mut known) {
-                Judgement::In => Label::In,
-                Judgement::Out => Label::Out,
-                Judgement::Free => {
-                    free.push(tree.leaves.len());
-                    // Replaced by the region's label.
-                    Label::Out
-                }
-                Judgement::Meets if d == depth => Label::On,
-                Judgement::Meets => {
-                    for (k, child) in (0u32..).zip(target.split(&known)) {
-                        stack.push((
-                            d + 1,
-                            2 * x + (k & 1),
-                            2 * y + (k >> 1 & 1),
-                            2 * z + (k >> 2),
-                            child,
-                        ));
-                    }
-                    continue;
-                }
-            };
-            tree.leaves.push(Cell {
-                depth: d,
-                x,
-                y,
-                z,
-                label,
-            });
+        for (leaves, part_free) in parts {
+            let offset = tree.leaves.len();
+            free.extend(part_free.into_iter().map(|i| i + offset));
+            tree.leaves.extend(leaves);
         }
+        tree.finish(target, &free);
+        tree
+    }
+
+    /// The leaves below `start` in the sequential walk's order (the last
+    /// child first), and the indices of the `Free` ones among them, whose
+    /// label is `Out` until their region is labelled.
+    fn descend<T: CellTarget>(
+        &self,
+        target: &T,
+        start: Pending<T::Known>,
+    ) -> (Vec<Cell>, Vec<usize>) {
+        let mut leaves = Vec::new();
+        let mut free = Vec::new();
+        let mut stack = vec![start];
+        while let Some(mut cell) = stack.pop() {
+            let [x, y, z] = cell.at;
+            let bounds = self.cell_box(cell.depth, x, y, z);
+            let judgement = target.judge(&bounds, &mut cell.known);
+            if judgement == Judgement::Meets && cell.depth < self.depth {
+                stack.extend(cell.children(target));
+                continue;
+            }
+            if judgement == Judgement::Free {
+                free.push(leaves.len());
+            }
+            leaves.push(cell.leaf(judgement));
+        }
+        (leaves, free)
+    }
+
+    /// Labels the free regions and counts the leaves.
+    fn finish<T: CellTarget>(&mut self, target: &T, free: &[usize]) {
         if !free.is_empty() {
-            tree.label_regions(&free, target);
+            self.label_regions(free, target);
         }
-        for c in &tree.leaves {
-            let counts = &mut tree.counts[c.depth as usize];
+        for c in &self.leaves {
+            let counts = &mut self.counts[c.depth as usize];
             match c.label {
                 Label::In => counts.inside += 1,
                 Label::Out => counts.outside += 1,
                 Label::On => counts.on += 1,
             }
         }
-        tree
     }
 
     /// Joins face-adjacent undecided leaves and labels each region by one
     /// exact point classification.
     fn label_regions<T: CellTarget>(&mut self, undecided: &[usize], target: &T) {
-        let index: HashMap<(u32, u32, u32, u32), usize> = self
+        let index: FxHashMap<(u32, u32, u32, u32), usize> = self
             .leaves
             .iter()
             .enumerate()
@@ -333,7 +386,7 @@ impl Octree {
                 }
             }
         }
-        let mut region_label: HashMap<usize, Label> = HashMap::new();
+        let mut region_label: FxHashMap<usize, Label> = FxHashMap::default();
         for &i in undecided {
             let root = sets.find(i);
             let label = *region_label.entry(root).or_insert_with(|| {
@@ -492,4 +545,42 @@ fn root_cube(bounds: &Aabb, depth: u32) -> Result<(DVec3, f64), CellsError> {
         side *= 2.0;
     }
     Err(out_of_range())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::builders::{cube, icosahedron, l_prism, tetrahedron};
+
+    /// The parallel build of a solid's octree gives the sequential build's
+    /// leaves, in the same order, and the same counts and regions — also
+    /// where cells are decided above the depth the parallel part starts at.
+    #[test]
+    fn the_parallel_build_gives_the_sequential_leaves() {
+        for (name, solid) in [
+            ("tetrahedron", tetrahedron()),
+            ("cube", cube()),
+            ("icosahedron", icosahedron()),
+            ("L-prism", l_prism()),
+        ] {
+            for depth in 0..=6 {
+                let (origin, side) = root_cube(&solid.bounding_box(), depth).unwrap();
+                let target = SolidTarget {
+                    accel: Accel::new(&solid),
+                    tiles: BoundaryTiles::try_new(&solid).unwrap(),
+                };
+                let one = Octree::build(&target, origin, side, depth);
+                let all = Octree::build_parallel(&target, origin, side, depth);
+                assert_eq!(one.leaves, all.leaves, "{name} at depth {depth}");
+                assert_eq!(one.counts, all.counts, "{name} at depth {depth}");
+                assert_eq!(one.regions, all.regions, "{name} at depth {depth}");
+                let (low, high) = all.volume_bounds();
+                let v = solid.volume();
+                assert!(
+                    low <= v && v <= high,
+                    "{name} at depth {depth}: {v} not in [{low}, {high}]"
+                );
+            }
+        }
+    }
 }

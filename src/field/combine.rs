@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use crate::geom::Aabb;
 
-use super::scalar_field::Field;
+use super::scalar_field::{Field, NodeBox, ValueRange};
 use super::stats::FieldStats;
 
 /// How a [`FieldCsg`] node combines its two fields `a` and `b`.
@@ -74,6 +74,42 @@ impl Field for FieldCsg {
             FieldOp::Union => a.max(b),
             FieldOp::Intersection => a.min(b),
             FieldOp::Difference => a.min(1.0 - b),
+        }
+    }
+
+    /// Both operands sampled over the box, then combined node by node
+    /// (the same values as node by node).
+    fn sample_nodes(&self, nodes: &NodeBox, values: &mut [f64], stats: &mut FieldStats) {
+        self.a.sample_nodes(nodes, values, stats);
+        let mut other = vec![0.0; values.len()];
+        self.b.sample_nodes(nodes, &mut other, stats);
+        for (a, b) in values.iter_mut().zip(other) {
+            *a = match self.op {
+                FieldOp::Union => a.max(b),
+                FieldOp::Intersection => a.min(b),
+                FieldOp::Difference => a.min(1.0 - b),
+            };
+        }
+    }
+
+    /// The operator applied to the ends of the operands' ranges: `max` and
+    /// `min` are exact and monotone, and so is the rounded `1 − b`, so the
+    /// ends bound the computed values.
+    fn bound(&self, region: &Aabb) -> ValueRange {
+        let (a, b) = (self.a.bound(region), self.b.bound(region));
+        match self.op {
+            FieldOp::Union => ValueRange {
+                low: a.low.max(b.low),
+                high: a.high.max(b.high),
+            },
+            FieldOp::Intersection => ValueRange {
+                low: a.low.min(b.low),
+                high: a.high.min(b.high),
+            },
+            FieldOp::Difference => ValueRange {
+                low: a.low.min(1.0 - b.high),
+                high: a.high.min(1.0 - b.low),
+            },
         }
     }
 

@@ -37,6 +37,6 @@ pub use json::{
 pub use marching::{
     MAX_SAMPLES, MarchingOptions, Meshed, Placement, SampleGrid, try_mesh, try_mesh_solid,
 };
-pub use scalar_field::{Field, THRESHOLD};
+pub use scalar_field::{Field, NodeBox, THRESHOLD, ValueRange};
 pub use source::{SOURCE_RANGE, Source};
 pub use stats::FieldStats;

@@ -98,6 +98,28 @@ impl Source {
         Ok(())
     }
 
+    /// A box holding every point `p` at which the field's rounded squared
+    /// distance `|p − center|²` is below the rounded `radius²`, that is,
+    /// every point this source adds to.
+    ///
+    /// The influence box widened by a rounding allowance: with
+    /// `u = 2⁻⁵³`, a rounded squared distance below the rounded `radius²`
+    /// implies `|p_a − center_a| < radius · (1 + 4u)` along each axis; the
+    /// box's half-side `radius · (1 + 2⁻⁴⁰)` exceeds that, and its sides
+    /// are rounded outward by one ulp.
+    #[must_use]
+    pub fn reach_box(&self) -> Aabb {
+        let reach = self.radius * (1.0 + f64::from_bits((1023 - 40) << 52));
+        let (lo, hi) = (
+            self.center - DVec3::splat(reach),
+            self.center + DVec3::splat(reach),
+        );
+        Aabb {
+            min: DVec3::new(lo.x.next_down(), lo.y.next_down(), lo.z.next_down()),
+            max: DVec3::new(hi.x.next_up(), hi.y.next_up(), hi.z.next_up()),
+        }
+    }
+
     /// The box of the ball of influence.
     #[must_use]
     pub fn influence_box(&self) -> Aabb {

@@ -2,6 +2,7 @@
 //! sources whose radius can reach it.
 
 use glam::DVec3;
+use smallvec::SmallVec;
 
 use crate::geom::Aabb;
 
@@ -10,16 +11,19 @@ use super::source::Source;
 /// At most this many cells along one axis.
 const MAX_CELLS_PER_AXIS: usize = 128;
 
-/// A uniform grid of cells over the union of the sources' influence boxes;
-/// each cell lists (compressed, row by row) the sources whose box meets it.
+/// A uniform grid of cells over the union of the sources' reach boxes
+/// ([`Source::reach_box`]); each cell lists (compressed, row by row, in
+/// increasing source order) the sources whose reach box meets it.
 ///
 /// # Invariants
 ///
-/// A point `p` inside a source's influence box maps (by [`SourceGrid::cell_of`])
+/// A point `p` inside a source's reach box maps (by [`SourceGrid::cell_of`])
 /// to a cell that lists the source: registration and lookup use the same
 /// monotone map `x ↦ ⌊(x − min) / cell⌋`, so `box.min ≤ p ≤ box.max` implies
 /// the source's cell range holds `p`'s cell. Points outside the grid's box are
-/// outside every influence box and get no sources.
+/// outside every reach box and get no sources. So every source that adds
+/// to the field at `p` (rounded squared distance below the rounded squared
+/// radius) is listed in `p`'s cell.
 #[derive(Clone, Debug)]
 pub(crate) struct SourceGrid {
     bounds: Aabb,
@@ -34,7 +38,7 @@ impl SourceGrid {
     /// The grid over `sources` (checked sources; may be empty).
     pub(crate) fn new(sources: &[Source]) -> SourceGrid {
         let bounds = Aabb::from_points(sources.iter().flat_map(|s| {
-            let b = s.influence_box();
+            let b = s.reach_box();
             [b.min, b.max]
         }));
         if sources.is_empty() {
@@ -83,7 +87,7 @@ impl SourceGrid {
     /// Calls `visit(cell, source)` for every cell each source's box meets.
     fn for_each_cell_of(&self, sources: &[Source], mut visit: impl FnMut(usize, usize)) {
         for (s, source) in sources.iter().enumerate() {
-            let b = source.influence_box();
+            let b = source.reach_box();
             let lo = self.axis_cells(b.min);
             let hi = self.axis_cells(b.max);
             for k in lo[2]..=hi[2] {
@@ -120,7 +124,29 @@ impl SourceGrid {
         &self.entries[self.starts[cell] as usize..self.starts[cell + 1] as usize]
     }
 
-    /// The grid's box: the union of the sources' influence boxes.
+    /// The sources listed in the cells a closed box meets, in increasing
+    /// order: every source that adds to the field at a point of `region`.
+    pub(crate) fn sources_meeting(&self, region: &Aabb) -> SmallVec<[u32; 16]> {
+        let clipped = region.intersection(self.bounds);
+        if self.entries.is_empty() || clipped.is_empty() {
+            return SmallVec::new();
+        }
+        let lo = self.axis_cells(clipped.min);
+        let hi = self.axis_cells(clipped.max);
+        let mut found = SmallVec::new();
+        for k in lo[2]..=hi[2] {
+            for j in lo[1]..=hi[1] {
+                for i in lo[0]..=hi[0] {
+                    found.extend_from_slice(self.sources_in(self.index([i, j, k])));
+                }
+            }
+        }
+        found.sort_unstable();
+        found.dedup();
+        found
+    }
+
+    /// The grid's box: the union of the sources' reach boxes.
     pub(crate) fn bounds(&self) -> Aabb {
         self.bounds
     }

@@ -13,8 +13,10 @@ pub struct FieldStats {
     /// Points at which a field was evaluated (each node of a CSG tree
     /// counts its own).
     pub samples: u64,
-    /// Sources whose list entry was looked at (their box holds the sample's
-    /// grid cell).
+    /// Sources whose list entry was looked at: those the source grid lists
+    /// for the sample's cell or, when a block of samples is taken at once
+    /// ([`Field::sample_nodes`](super::Field::sample_nodes)), for the
+    /// block.
     pub candidates: u64,
     /// Falloff evaluations: candidates whose ball actually holds the sample.
     pub source_evaluations: u64,

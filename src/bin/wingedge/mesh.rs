@@ -82,10 +82,12 @@ pub fn run(
         let f = meshed.field;
         eprintln!(
             "field: {f}; per sample: {:.2} candidates, {:.2} source evaluations of {} sources\n\
-             march: {} cells, {} cut by the surface",
+             march: {} of {} blocks sampled and marched ({} cells), {} cells cut by the surface",
             f.candidates as f64 / f.samples.max(1) as f64,
             f.source_evaluations as f64 / f.samples.max(1) as f64,
             doc.sources,
+            meshed.march.blocks_marched,
+            meshed.march.blocks,
             meshed.march.cells,
             meshed.march.surface_cells,
         );

@@ -15,13 +15,82 @@ use super::table::case_table;
 /// A grid edge: its lower node in padded coordinates (each shifted by +1,
 /// so the padding layer at −1 is 0) and its axis, packed as
 /// `((k · ny + j) · nx + i) · 3 + axis` over the padded sizes.
-type EdgeKey = u64;
+pub(super) type EdgeKey = u64;
+
+/// The packing of grid edges into [`EdgeKey`]s for a grid of `dims`
+/// samples: keys increase with `k`, then `j`, then `i`, then the axis.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct EdgeKeys {
+    /// Padded node counts along x and y.
+    px: u64,
+    py: u64,
+}
+
+impl EdgeKeys {
+    pub(super) fn new(dims: [usize; 3]) -> EdgeKeys {
+        EdgeKeys {
+            px: dims[0] as u64 + 2,
+            py: dims[1] as u64 + 2,
+        }
+    }
+
+    /// The key of the edge from node `(i, j, k)` (padded grid, from −1)
+    /// along `axis`.
+    pub(super) fn key(self, i: isize, j: isize, k: isize, axis: usize) -> EdgeKey {
+        let (i, j, k) = ((i + 1) as u64, (j + 1) as u64, (k + 1) as u64);
+        ((k * self.py + j) * self.px + i) * 3 + axis as u64
+    }
+
+    /// The edge's lower node `(i, j, k)` and its axis.
+    pub(super) fn edge(self, key: EdgeKey) -> ([isize; 3], usize) {
+        let axis = (key % 3) as usize;
+        let node = key / 3;
+        (
+            [
+                (node % self.px) as isize - 1,
+                (node / self.px % self.py) as isize - 1,
+                (node / (self.px * self.py)) as isize - 1,
+            ],
+            axis,
+        )
+    }
+}
+
+/// The welded soup of triangles given as edge keys, in order, and the
+/// crossed edges' vertices sorted by key (each once).
+pub(super) fn welded_soup(
+    triangles: &[[EdgeKey; 3]],
+    keys: &[EdgeKey],
+    positions: Vec<DVec3>,
+) -> PolygonSoup {
+    // Every key of a triangle is in `keys`, which was made from them.
+    let index = |k: EdgeKey| {
+        let found = keys.binary_search(&k);
+        debug_assert!(found.is_ok());
+        found.unwrap_or(0)
+    };
+    PolygonSoup {
+        positions,
+        polygons: triangles
+            .par_iter()
+            .map(|t| crate::mesh::Polygon::new(t.map(index)))
+            .collect(),
+    }
+}
 
 /// What the march found.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct MarchStats {
-    /// Cells of the padded grid visited.
+    /// Cells of the padded grid visited: all of them on a whole grid
+    /// ([`march_grid`](super::march_grid)), those of the marched blocks in
+    /// [`try_mesh`](super::try_mesh).
     pub cells: u64,
+    /// Blocks of cells the padded grid was cut into ([`try_mesh`](super::try_mesh);
+    /// 0 for a whole grid).
+    pub blocks: u64,
+    /// Blocks that may hold the surface, sampled and marched; the others
+    /// were decided all inside or all outside from a bound of the field.
+    pub blocks_marched: u64,
     /// Cells the surface passes through (neither all inside nor all
     /// outside).
     pub surface_cells: u64,
@@ -37,10 +106,7 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
     let [nx, ny, nz] = grid.dims();
     // Padded node counts: one extra layer on each side.
     let (px, py) = (nx as u64 + 2, ny as u64 + 2);
-    let key = |i: isize, j: isize, k: isize, axis: usize| -> EdgeKey {
-        let (i, j, k) = ((i + 1) as u64, (j + 1) as u64, (k + 1) as u64);
-        ((k * py + j) * px + i) * 3 + axis as u64
-    };
+    let edge_keys = EdgeKeys::new(grid.dims());
     let table = case_table();
     // Each node of the padded grid classified once: 1 inside (F ≥ ½).
     let pz = nz as u64 + 2;
@@ -84,7 +150,12 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
                     for t in &case.triangles {
                         triangles.push(t.map(|e| {
                             let [x, y, z] = corner_coords(EDGES[usize::from(e)][0]);
-                            key(i + x as isize, j + y as isize, k + z as isize, edge_axis(e))
+                            edge_keys.key(
+                                i + x as isize,
+                                j + y as isize,
+                                k + z as isize,
+                                edge_axis(e),
+                            )
                         }));
                     }
                 }
@@ -100,47 +171,38 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
     keys.dedup();
     let positions: Vec<DVec3> = keys
         .par_iter()
-        .map(|&key| vertex(grid, options, key, px, py))
+        .map(|&key| {
+            let ([i, j, k], axis) = edge_keys.edge(key);
+            let mut step = [0isize; 3];
+            step[axis] = 1;
+            let a = grid.value(i, j, k);
+            let b = grid.value(i + step[0], j + step[1], k + step[2]);
+            place_vertex(a, b, grid.position(i, j, k), grid.cell(), axis, options)
+        })
         .collect();
-    // Every key of a triangle is in `keys`, which was made from them.
-    let index = |k: EdgeKey| {
-        let found = keys.binary_search(&k);
-        debug_assert!(found.is_ok());
-        found.unwrap_or(0)
-    };
-    let mut soup = PolygonSoup {
-        positions,
-        polygons: Vec::new(),
-    };
-    let mut stats = MarchStats {
+    let triangles: Vec<[EdgeKey; 3]> = slabs.iter().flat_map(|(t, _)| t.iter().copied()).collect();
+    let soup = welded_soup(&triangles, &keys, positions);
+    let stats = MarchStats {
         cells: (nx as u64 + 1) * (ny as u64 + 1) * (nz as u64 + 1),
+        surface_cells: slabs.iter().map(|(_, s)| s).sum(),
+        triangles: soup.polygons.len() as u64,
         vertices: keys.len() as u64,
         ..MarchStats::default()
     };
-    for (triangles, surface_cells) in &slabs {
-        stats.surface_cells += surface_cells;
-        for t in triangles {
-            soup.polygons.push(crate::mesh::Polygon::new(t.map(index)));
-        }
-    }
-    stats.triangles = soup.polygons.len() as u64;
     (soup, stats)
 }
 
-/// The surface's vertex on a grid edge: interpolated linearly between the
+/// The surface's vertex on the grid edge from `node` (sample `a`) along
+/// `axis` to the next node (sample `b`): interpolated linearly between the
 /// two samples (kept `edge_margin` away from the nodes) or at the midpoint.
-fn vertex(grid: &SampleGrid, options: &MarchingOptions, key: EdgeKey, px: u64, py: u64) -> DVec3 {
-    let axis = (key % 3) as usize;
-    let node = key / 3;
-    let (i, j, k) = (
-        (node % px) as isize - 1,
-        (node / px % py) as isize - 1,
-        (node / (px * py)) as isize - 1,
-    );
-    let mut step = [0isize; 3];
-    step[axis] = 1;
-    let a = grid.value(i, j, k);
-    let b = grid.value(i + step[0], j + step[1], k + step[2]);
+pub(super) fn place_vertex(
+    a: f64,
+    b: f64,
+    node: DVec3,
+    cell: f64,
+    axis: usize,
+    options: &MarchingOptions,
+) -> DVec3 {
     let t = match options.placement {
         Placement::Midpoint => 0.5,
         Placement::Interpolated => {
@@ -151,5 +213,5 @@ fn vertex(grid: &SampleGrid, options: &MarchingOptions, key: EdgeKey, px: u64, p
     };
     let mut offset = DVec3::ZERO;
     offset[axis] = t;
-    grid.position(i, j, k) + grid.cell() * offset
+    node + cell * offset
 }

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use crate::geom::Aabb;
 
 use super::super::error::FieldError;
-use super::super::scalar_field::Field;
+use super::super::scalar_field::{Field, node_position};
 use super::super::stats::FieldStats;
 
 /// The most samples a grid may hold (2²⁵, 256 MiB of values): enough for
@@ -86,34 +86,8 @@ impl SampleGrid {
         field: &dyn Field,
         resolution: usize,
     ) -> Result<(SampleGrid, FieldStats), FieldError> {
-        if resolution == 0 {
-            return Err(FieldError::ZeroResolution);
-        }
-        let bounds: Aabb = field.bounds();
-        let size = bounds.size();
-        // `F < ½` outside the box and on its faces: a box flat along an axis
-        // is all faces, so the solid is empty.
-        if bounds.is_empty() || size.min_element() <= 0.0 {
-            return Err(FieldError::Empty);
-        }
-        let cell = size.max_element() / resolution as f64;
-        if !(cell.is_finite() && cell > 0.0) {
-            return Err(FieldError::BadGridFrame {
-                origin: bounds.min,
-                cell,
-            });
-        }
-        let dims = [size.x, size.y, size.z].map(|s| {
-            let n = (s / cell).ceil();
-            // Saturate: check_size refuses it below.
-            if n < (MAX_SAMPLES as f64) {
-                n as usize + 1
-            } else {
-                MAX_SAMPLES + 1
-            }
-        });
+        let GridFrame { origin, cell, dims } = GridFrame::try_new(field, resolution)?;
         let total = check_size(dims)?;
-        let origin = bounds.min;
         let slab = dims[0] * dims[1];
         let mut values = vec![0.0; total];
         let stats: Vec<FieldStats> = values
@@ -123,7 +97,7 @@ impl SampleGrid {
                 let mut stats = FieldStats::default();
                 for j in 0..dims[1] {
                     for i in 0..dims[0] {
-                        let p = origin + cell * DVec3::new(i as f64, j as f64, k as f64);
+                        let p = node_position(origin, cell, i as isize, j as isize, k as isize);
                         slab_values[j * dims[0] + i] = field.value_counted(p, &mut stats);
                     }
                 }
@@ -180,7 +154,55 @@ impl SampleGrid {
     /// The position of a node of the padded grid.
     #[must_use]
     pub fn position(&self, i: isize, j: isize, k: isize) -> DVec3 {
-        self.origin + self.cell * DVec3::new(i as f64, j as f64, k as f64)
+        node_position(self.origin, self.cell, i, j, k)
+    }
+}
+
+/// Where the grid over a field lies: its first node, its cell and its
+/// node counts (without the padding).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct GridFrame {
+    pub(crate) origin: DVec3,
+    pub(crate) cell: f64,
+    pub(crate) dims: [usize; 3],
+}
+
+impl GridFrame {
+    /// The frame over `field`'s bounds with `resolution` cells along the
+    /// longest side, its size checked against [`MAX_SAMPLES`].
+    pub(crate) fn try_new(field: &dyn Field, resolution: usize) -> Result<GridFrame, FieldError> {
+        if resolution == 0 {
+            return Err(FieldError::ZeroResolution);
+        }
+        let bounds: Aabb = field.bounds();
+        let size = bounds.size();
+        // `F < ½` outside the box and on its faces: a box flat along an axis
+        // is all faces, so the solid is empty.
+        if bounds.is_empty() || size.min_element() <= 0.0 {
+            return Err(FieldError::Empty);
+        }
+        let cell = size.max_element() / resolution as f64;
+        if !(cell.is_finite() && cell > 0.0) {
+            return Err(FieldError::BadGridFrame {
+                origin: bounds.min,
+                cell,
+            });
+        }
+        let dims = [size.x, size.y, size.z].map(|s| {
+            let n = (s / cell).ceil();
+            // Saturate: check_size refuses it below.
+            if n < (MAX_SAMPLES as f64) {
+                n as usize + 1
+            } else {
+                MAX_SAMPLES + 1
+            }
+        });
+        check_size(dims)?;
+        Ok(GridFrame {
+            origin: bounds.min,
+            cell,
+            dims,
+        })
     }
 }
 

@@ -20,6 +20,7 @@
 //! [`Solid::try_from_soup`].
 
 mod base_cases;
+mod blocks;
 mod cube;
 mod extract;
 mod grid;
@@ -33,6 +34,7 @@ use super::scalar_field::Field;
 use super::stats::FieldStats;
 
 pub use extract::MarchStats;
+use grid::GridFrame;
 pub use grid::{MAX_SAMPLES, SampleGrid};
 pub use options::{MarchingOptions, Placement};
 
@@ -52,21 +54,30 @@ pub struct Meshed {
     pub march: MarchStats,
 }
 
-/// Samples `field` over its bounds and marches the grid.
+/// Samples `field` over its bounds and marches the grid, doing only the
+/// work the surface calls for.
+///
+/// The grid is the one [`SampleGrid::try_sample`] lays over the field, cut
+/// into blocks of 8³ cells; a block that the field's
+/// [`bound`](Field::bound) shows to be all inside or all outside is
+/// neither sampled nor marched, and the others are. The soup is the one
+/// [`march_grid`] makes of the whole sampled grid, bit for bit; only the
+/// work counters differ.
 ///
 /// # Errors
 ///
 /// Bad options ([`MarchingOptions::check`]), [`FieldError::Empty`] when the
 /// field's bounds are empty, [`FieldError::GridTooLarge`] beyond
-/// [`MAX_SAMPLES`].
+/// [`MAX_SAMPLES`], [`FieldError::NonFiniteSample`] when the field returns
+/// a value that is not finite.
 pub fn try_mesh(field: &dyn Field, options: &MarchingOptions) -> Result<Meshed, FieldError> {
     options.check()?;
-    let (grid, field_stats) = SampleGrid::try_sample(field, options.resolution)?;
-    let (soup, march) = march_grid(&grid, options);
+    let frame = GridFrame::try_new(field, options.resolution)?;
+    let (soup, field_stats, march) = blocks::march_blocks(field, &frame, options)?;
     Ok(Meshed {
         soup,
-        dims: grid.dims(),
-        cell: grid.cell(),
+        dims: frame.dims,
+        cell: frame.cell,
         field: field_stats,
         march,
     })
