@@ -1,5 +1,5 @@
-//! The outer faces of the `In` cells as a valid closed solid of volume
-//! exactly `V_in`.
+//! The outer faces of the `In` cells as a valid closed solid whose volume
+//! lies in the certified interval `[V_in, V_in + V_on]`.
 //!
 //! # The surface
 //!
@@ -25,15 +25,19 @@
 //!    opposite empty corners. Every fill is checked again around the
 //!    filled sub-cell until no critical configuration is left (fills only
 //!    add, so this ends).
-//! 2. The volume added is taken out again exactly as cavities: blocks of
-//!    sub-cells in the centre of `In` cells (at most 2 × 2 × 2 sub-cells
-//!    a cell, a prefix of the block in `x, y, z` order), each wrapped by a
-//!    layer of its cell's sub-cells, so it touches nothing. A cavity is a
-//!    closed shell facing inward, which the validator accepts.
+//! 2. The filled sub-cells stay: every cell around a contact that is not
+//!    `In` is `On` (an `In` cell and an `Out` cell never share even a
+//!    corner, since the boundary would pass through it), so what is added
+//!    lies in `On` cells and the solid's volume, `V_in` plus the filled
+//!    sub-cells, stays within `[V_in, V_in + V_on]`. The solid has no
+//!    hidden parts: its shells are those of the `In` set (keeping `V_in`
+//!    exactly would mean carving the added volume out again as internal
+//!    cavities, extra shells no reader of the OBJ expects).
 //!
 //! All corners are multiples of the sub-cell side from the root corner:
-//! exact `f64`, so the solid's volume is `V_in` exactly where the sums of
-//! its divergence-theorem terms are exact, and to rounding otherwise.
+//! exact `f64`, so the solid's volume is [`InShell::volume`] exactly where
+//! the sums of its divergence-theorem terms are exact, and to rounding
+//! otherwise.
 //! Faces made of sub-cells meet whole squares along their edges: the whole
 //! squares get the sub-cell corners that lie on their edges as extra
 //! (collinear) vertices, so every edge has exactly two faces.
@@ -60,12 +64,13 @@ type Lattice = [i64; 3];
 #[derive(Clone, Debug)]
 pub struct InShell {
     /// The faces: quads (with extra collinear corners where sub-cell faces
-    /// meet them) oriented outward, cavities inward.
+    /// meet them) oriented outward.
     pub soup: PolygonSoup,
     /// Sub-cells filled to remove contacts along edges and at corners.
     pub filled: usize,
-    /// Cavities carved to take that volume out again.
-    pub cavities: usize,
+    /// The volume the faces bound: `V_in` plus the filled sub-cells (each
+    /// `1 / SUBDIVISION³` of a finest cell), within `[V_in, V_in + V_on]`.
+    pub volume: f64,
 }
 
 /// The labels of the finest cells and the sub-cells the repair changed.
@@ -73,8 +78,7 @@ struct SubGrid<'a> {
     tree: &'a Octree,
     index: HashMap<(u32, u32, u32, u32), Label>,
     filled: HashSet<Lattice>,
-    carved: HashSet<Lattice>,
-    /// Finest cells that hold filled or carved sub-cells.
+    /// Finest cells that hold filled sub-cells.
     touched: HashSet<Lattice>,
 }
 
@@ -103,9 +107,6 @@ impl SubGrid<'_> {
     fn full(&self, v: Lattice) -> bool {
         if self.filled.contains(&v) {
             return true;
-        }
-        if self.carved.contains(&v) {
-            return false;
         }
         self.label(Self::cell_of(v)) == Label::In
     }
@@ -167,15 +168,14 @@ fn corners(c: Lattice) -> impl Iterator<Item = Lattice> {
 
 impl Octree {
     /// The outer faces of the `In` cells as a closed, oriented, manifold
-    /// surface of volume `V_in` (see the module documentation of
-    /// `in_shell` for how contacts along edges and at corners are
-    /// removed).
+    /// surface whose volume lies in `[V_in, V_in + V_on]` (see the module
+    /// documentation of `in_shell` for how contacts along edges and at
+    /// corners are removed).
     ///
     /// # Errors
     ///
     /// [`CellsError::Repair`] if removing the contacts would fill more than
-    /// a bounded number of sub-cells or there is no room for the cavities
-    /// that take the filled volume out again.
+    /// a bounded number of sub-cells.
     pub fn in_shell(&self) -> Result<InShell, CellsError> {
         let mut grid = SubGrid {
             tree: self,
@@ -185,7 +185,6 @@ impl Octree {
                 .map(|c| ((c.depth, c.x, c.y, c.z), c.label))
                 .collect(),
             filled: HashSet::new(),
-            carved: HashSet::new(),
             touched: HashSet::new(),
         };
         let finest = self.depth();
@@ -196,12 +195,14 @@ impl Octree {
             .map(|c| [i64::from(c.x), i64::from(c.y), i64::from(c.z)])
             .collect();
         self.fill_contacts(&mut grid, &on)?;
-        let cavities = self.carve_cavities(&mut grid)?;
         let soup = self.faces(&grid, &on);
+        let (_, side) = self.root();
+        let finest_side = side / f64::from(1u32 << finest.min(31));
+        let sub_cell = (finest_side / SUBDIVISION as f64).powi(3);
         Ok(InShell {
             soup,
             filled: grid.filled.len(),
-            cavities,
+            volume: self.volume_bounds().0 + grid.filled.len() as f64 * sub_cell,
         })
     }
 
@@ -252,44 +253,6 @@ impl Octree {
             work.push(p);
         }
         Ok(())
-    }
-
-    /// Carves cavities of the filled volume in the centres of `In` cells;
-    /// returns how many.
-    fn carve_cavities(&self, grid: &mut SubGrid<'_>) -> Result<usize, CellsError> {
-        let mut left = grid.filled.len();
-        let mut cavities = 0;
-        let finest = self.depth();
-        'leaves: for c in self.leaves().iter().filter(|c| c.label == Label::In) {
-            let span = 1i64 << (finest - c.depth);
-            let base = [c.x, c.y, c.z].map(|v| i64::from(v) * span);
-            for i in 0..span * span * span {
-                if left == 0 {
-                    break 'leaves;
-                }
-                let cell = [
-                    base[0] + i / (span * span),
-                    base[1] + i / span % span,
-                    base[2] + i % span,
-                ];
-                let take = left.min(8);
-                for k in 0..take {
-                    let sub: Lattice = std::array::from_fn(|a| {
-                        cell[a] * SUBDIVISION + 1 + ((k >> (2 - a)) & 1) as i64
-                    });
-                    grid.carved.insert(sub);
-                }
-                grid.touched.insert(cell);
-                left -= take;
-                cavities += 1;
-            }
-        }
-        if left > 0 {
-            return Err(CellsError::Repair {
-                message: format!("no room for cavities of {left} sub-cells"),
-            });
-        }
-        Ok(cavities)
     }
 
     /// The faces between full and empty sub-cells, whole squares where a

@@ -109,12 +109,11 @@ fn write_shell(tree: &Octree, path: &Path) -> Result<(), String> {
     let solid = Solid::try_from_soup(&shell.soup).map_err(|e| named(&e))?;
     write_obj(&solid, path).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
     eprintln!(
-        "wrote {} ({} faces, volume {}; {} sub-cells filled at contacts along edges or at corners, {} cavities)",
+        "wrote {} ({} faces, volume {}; {} sub-cells of On cells filled at contacts along edges or at corners)",
         path.display(),
         solid.face_count(),
         solid.volume(),
         shell.filled,
-        shell.cavities
     );
     Ok(())
 }
