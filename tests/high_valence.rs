@@ -54,6 +54,34 @@ fn a_cone_lists_each_triangle_in_few_grid_cells() {
 }
 
 #[test]
+fn a_cone_grid_holds_a_bounded_number_of_entries_per_triangle() {
+    // 40,000 triangles: at one cell per triangle (a 283-cell side) each
+    // sliver would take a side's worth of entries, over a hundred. The
+    // grid's sides are halved until the expected entries are at most 32 per
+    // triangle; a UV sphere keeps one cell per triangle (its poles' slivers
+    // take a few entries more than its other triangles).
+    for base in [ConeBase::CentreFan, ConeBase::CornerFan] {
+        for axis in 0..3 {
+            let soup = turned(&cone_soup(20_000, base), axis);
+            let accel = Accel::new(&Solid::try_from_soup(&soup).unwrap());
+            accel.classify(DVec3::new(0.1, 0.2, 0.3)).unwrap();
+            let stats = accel.stats();
+            let per_triangle = stats.grid_entries as f64 / stats.triangles as f64;
+            assert!(per_triangle <= 40.0, "{base:?} axis {axis}: {per_triangle}");
+            assert!(
+                stats.grid_cells * 16 < stats.triangles,
+                "{base:?} axis {axis}"
+            );
+        }
+    }
+    let sphere = Accel::new(&Solid::try_from_soup(&sphere_soup(100)).unwrap());
+    sphere.classify(DVec3::new(0.1, 0.2, 0.3)).unwrap();
+    let stats = sphere.stats();
+    assert!(stats.grid_cells * 2 > stats.triangles, "{stats:?}");
+    assert!(stats.grid_entries < 8 * stats.triangles, "{stats:?}");
+}
+
+#[test]
 fn a_cone_classifies_as_the_normals_method_does() {
     // The cone is convex, so the normals method (no grid) is a reference:
     // random points, points on the rim, on the base and on the axis.
