@@ -4,7 +4,7 @@
 //! the answers are those of the exact methods that do not use the grid.
 
 use glam::DVec3;
-use wingedge::mesh::builders::{ConeBase, cone_soup, edge_fan_soup, sphere_soup};
+use wingedge::mesh::builders::{ConeBase, cone_soup, edge_fan_soup, sphere_soup, uv_sphere_soup};
 use wingedge::mesh::{PolygonSoup, Solid};
 use wingedge::query::{Accel, Containment, Method};
 use wingedge::validate::{Options, Rule, validate_soup};
@@ -130,6 +130,23 @@ fn cones_poles_and_edge_fans_validate() {
     // Poles of valence 600.
     let report = validate_soup(&sphere_soup(300), None, &Options::default()).unwrap();
     assert!(report.is_valid());
+    // Poles of valence 3,000 on a sphere of 5 rings: bands of long slivers.
+    let poles = uv_sphere_soup(5, 3000);
+    assert_eq!(poles.polygons.len(), 24_000);
+    let report = validate_soup(&poles, None, &Options::default()).unwrap();
+    assert!(report.is_valid());
+    let accel = Accel::new(&Solid::try_from_soup(&poles).unwrap());
+    // Not exactly convex (rounded sines): answers known from the geometry.
+    for (p, want) in [
+        (DVec3::ZERO, Containment::Inside),
+        (DVec3::new(0.3, 0.2, 0.8), Containment::Inside),
+        (DVec3::new(0.0, 0.0, 1.0), Containment::OnBoundary),
+        (DVec3::new(0.0, 0.0, -1.0), Containment::OnBoundary),
+        (DVec3::new(0.0, 0.0, 1.2), Containment::Outside),
+        (DVec3::new(0.5, 0.5, 0.9), Containment::Outside),
+    ] {
+        assert_eq!(accel.classify(p).unwrap(), want, "{p}");
+    }
     // 3,000 faces on one edge: reported as such, and no two of them cross.
     let report = validate_soup(&edge_fan_soup(3000), None, &Options::default()).unwrap();
     assert_eq!(report.count(Rule::EdgeInMoreThanTwoFaces), 1);
