@@ -1,7 +1,9 @@
 //! Time and peak memory of `info`, `validate` and the classification of
 //! one point, end to end from OBJ text, on inputs whose faces meet at one
-//! vertex (closed cones with a centre or a corner fan), on a UV sphere of
-//! the same triangle count, and on a fan of faces on one edge.
+//! vertex (closed cones with a centre or a corner fan, a UV sphere of 4,000
+//! segments whose poles join 4,000 slivers each), on a UV sphere of the
+//! same triangle count with ordinary poles, and on a fan of faces on one
+//! edge.
 //!
 //! ```text
 //! cargo run --release --example high_valence_bench
@@ -18,7 +20,7 @@ use std::time::Instant;
 
 use wingedge::glam::DVec3;
 use wingedge::io::{ObjOptions, import_obj_bytes};
-use wingedge::mesh::builders::{ConeBase, cone_soup, edge_fan_soup, sphere_soup};
+use wingedge::mesh::builders::{ConeBase, cone_soup, edge_fan_soup, sphere_soup, uv_sphere_soup};
 use wingedge::mesh::{PolygonSoup, Solid};
 use wingedge::query::Accel;
 use wingedge::validate::{Options, validate_and_build};
@@ -37,16 +39,18 @@ fn case(name: &str) -> Option<PolygonSoup> {
         "cone-20k" => cone_soup(10_000, ConeBase::CentreFan),
         "cone-80k" => cone_soup(40_000, ConeBase::CentreFan),
         "cone-corner-80k" => cone_soup(40_001, ConeBase::CornerFan),
+        "poles-80k" => uv_sphere_soup(11, 4_000),
         "edge-fan-100k" => edge_fan_soup(100_000),
         _ => return None,
     })
 }
 
-const CASES: [&str; 5] = [
+const CASES: [&str; 6] = [
     "sphere-80k",
     "cone-20k",
     "cone-80k",
     "cone-corner-80k",
+    "poles-80k",
     "edge-fan-100k",
 ];
 const COMMANDS: [&str; 3] = ["info", "validate", "classify"];

@@ -4,7 +4,7 @@
 //! the answers are those of the exact methods that do not use the grid.
 
 use glam::DVec3;
-use wingedge::mesh::builders::{ConeBase, cone_soup, edge_fan_soup, sphere_soup};
+use wingedge::mesh::builders::{ConeBase, cone_soup, edge_fan_soup, sphere_soup, uv_sphere_soup};
 use wingedge::mesh::{PolygonSoup, Solid};
 use wingedge::query::{Accel, Containment, Method};
 use wingedge::validate::{Options, Rule, validate_soup};
@@ -51,6 +51,34 @@ fn a_cone_lists_each_triangle_in_few_grid_cells() {
     let sphere = Accel::new(&Solid::try_from_soup(&sphere_soup(32)).unwrap());
     let per_triangle = grid_entries_per_triangle(&sphere);
     assert!(per_triangle < 0.2, "{per_triangle}");
+}
+
+#[test]
+fn a_cone_grid_holds_a_bounded_number_of_entries_per_triangle() {
+    // 40,000 triangles: at one cell per triangle (a 283-cell side) each
+    // sliver would take a side's worth of entries, over a hundred. The
+    // grid's sides are halved until the expected entries are at most 32 per
+    // triangle; a UV sphere keeps one cell per triangle (its poles' slivers
+    // take a few entries more than its other triangles).
+    for base in [ConeBase::CentreFan, ConeBase::CornerFan] {
+        for axis in 0..3 {
+            let soup = turned(&cone_soup(20_000, base), axis);
+            let accel = Accel::new(&Solid::try_from_soup(&soup).unwrap());
+            accel.classify(DVec3::new(0.1, 0.2, 0.3)).unwrap();
+            let stats = accel.stats();
+            let per_triangle = stats.grid_entries as f64 / stats.triangles as f64;
+            assert!(per_triangle <= 40.0, "{base:?} axis {axis}: {per_triangle}");
+            assert!(
+                stats.grid_cells * 16 < stats.triangles,
+                "{base:?} axis {axis}"
+            );
+        }
+    }
+    let sphere = Accel::new(&Solid::try_from_soup(&sphere_soup(100)).unwrap());
+    sphere.classify(DVec3::new(0.1, 0.2, 0.3)).unwrap();
+    let stats = sphere.stats();
+    assert!(stats.grid_cells * 2 > stats.triangles, "{stats:?}");
+    assert!(stats.grid_entries < 8 * stats.triangles, "{stats:?}");
 }
 
 #[test]
@@ -102,6 +130,23 @@ fn cones_poles_and_edge_fans_validate() {
     // Poles of valence 600.
     let report = validate_soup(&sphere_soup(300), None, &Options::default()).unwrap();
     assert!(report.is_valid());
+    // Poles of valence 3,000 on a sphere of 5 rings: bands of long slivers.
+    let poles = uv_sphere_soup(5, 3000);
+    assert_eq!(poles.polygons.len(), 24_000);
+    let report = validate_soup(&poles, None, &Options::default()).unwrap();
+    assert!(report.is_valid());
+    let accel = Accel::new(&Solid::try_from_soup(&poles).unwrap());
+    // Not exactly convex (rounded sines): answers known from the geometry.
+    for (p, want) in [
+        (DVec3::ZERO, Containment::Inside),
+        (DVec3::new(0.3, 0.2, 0.8), Containment::Inside),
+        (DVec3::new(0.0, 0.0, 1.0), Containment::OnBoundary),
+        (DVec3::new(0.0, 0.0, -1.0), Containment::OnBoundary),
+        (DVec3::new(0.0, 0.0, 1.2), Containment::Outside),
+        (DVec3::new(0.5, 0.5, 0.9), Containment::Outside),
+    ] {
+        assert_eq!(accel.classify(p).unwrap(), want, "{p}");
+    }
     // 3,000 faces on one edge: reported as such, and no two of them cross.
     let report = validate_soup(&edge_fan_soup(3000), None, &Options::default()).unwrap();
     assert_eq!(report.count(Rule::EdgeInMoreThanTwoFaces), 1);

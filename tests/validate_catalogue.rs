@@ -354,7 +354,18 @@ fn non_planar_face() {
 
 #[test]
 fn degenerate_face() {
-    check_broken("degenerate_face", &[Expect(Rule::DegenerateFace, &[5], 12)]);
+    // Vertex 5 lies on the edge 1–2 of face 0, closed only by the sliver
+    // (face 5): faces 1 (1 5 4) and 2 (5 2 4) each share one vertex with
+    // face 0 and lie along its edge beyond it (segments 1–5 and 5–2), a
+    // contact the sliver causes and the self-intersection rule reports.
+    check_broken(
+        "degenerate_face",
+        &[
+            Expect(Rule::DegenerateFace, &[5], 12),
+            Expect(Rule::SelfIntersection, &[0, 1], 7),
+            Expect(Rule::SelfIntersection, &[0, 2], 7),
+        ],
+    );
 }
 
 #[test]

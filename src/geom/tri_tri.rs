@@ -63,6 +63,14 @@ impl TriTriContact {
 /// answer, never a panic.
 #[must_use]
 pub fn triangles_intersect(p: [DVec3; 3], q: [DVec3; 3]) -> bool {
+    // Most pairs a broad phase hands over lie apart, one strictly on one
+    // side of the other's plane: answered before the degeneracy tests. (A
+    // degenerate triangle's "plane" gives only zeros, never a strict side.)
+    if same_strict_side(q.map(|x| orient3d(p[0], p[1], p[2], x)))
+        || same_strict_side(p.map(|x| orient3d(q[0], q[1], q[2], x)))
+    {
+        return false;
+    }
     triangle_contact(p, q).meets()
 }
 

@@ -226,7 +226,23 @@ pub fn pyramid(base: &[DVec3], apex: DVec3) -> Result<Solid, BuildError> {
 #[must_use]
 pub fn sphere_soup(rings: usize) -> PolygonSoup {
     let rings = rings.max(2);
-    let segments = 2 * rings;
+    uv_sphere_soup(rings, 2 * rings)
+}
+
+/// A closed triangulated unit sphere (a UV sphere) as a soup with any
+/// number of longitude `segments` (at least 3) and `rings` latitude bands
+/// (at least 2): `2 · segments · (rings − 1)` triangles wound outward, with
+/// poles at `±z` of valence `segments`. Few rings and many segments make
+/// the poles' fans of slivers that revolved parts have; benchmarks and
+/// tests use it so.
+///
+/// # Panics
+///
+/// As for [`sphere_soup`].
+#[must_use]
+pub fn uv_sphere_soup(rings: usize, segments: usize) -> PolygonSoup {
+    let rings = rings.max(2);
+    let segments = segments.max(3);
     let mut positions = vec![DVec3::Z, -DVec3::Z];
     for i in 1..rings {
         let theta = std::f64::consts::PI * i as f64 / rings as f64;
@@ -240,7 +256,7 @@ pub fn sphere_soup(rings: usize) -> PolygonSoup {
         }
     }
     let at = |i: usize, j: usize| 2 + (i - 1) * segments + j % segments;
-    let mut polygons: Vec<[usize; 3]> = Vec::with_capacity(4 * rings * (rings - 1));
+    let mut polygons: Vec<[usize; 3]> = Vec::with_capacity(2 * segments * (rings - 1));
     for j in 0..segments {
         polygons.push([0, at(1, j), at(1, j + 1)]);
         polygons.push([1, at(rings - 1, j + 1), at(rings - 1, j)]);

@@ -105,6 +105,51 @@ const CELLS_PER_TRIANGLE: f64 = 1.0;
 /// choice, not a tolerance: it decides no answer.
 const MAX_GRID_ASPECT: f64 = 1e6;
 
+/// The most grid entries per triangle, on average, that a grid of the
+/// first-chosen size may hold before its sides are halved (see
+/// [`coarsening`]). A layout choice, not a tolerance: it decides no answer.
+const MAX_ENTRIES_PER_TRIANGLE: f64 = 32.0;
+
+/// How many times to halve both sides of a grid of `inv_h` cells per unit
+/// (`y`, `z`), whose origin is `origin`, so that the triangles `yz` are
+/// expected to take at most [`MAX_ENTRIES_PER_TRIANGLE`] entries each on
+/// average.
+///
+/// A triangle whose projection spans `r` rows, `c` columns and `a` cells of
+/// area meets about `r + c + a + 1` cells: a long sliver (a cone's side from
+/// apex to rim, a pole's, a cap's fan seen edge-on) takes one grid side's
+/// worth, and thousands of them around one vertex fill a grid of one cell
+/// per triangle with a hundred entries per triangle and more. Halving the
+/// sides halves `r + c` and quarters `a`, so the estimate is summed once and
+/// the smallest number of halvings that brings it within the budget is
+/// taken: the cells then hold more triangles each (a point's ray tests more
+/// candidates) but the grid's size, and its build time, stay a bounded
+/// multiple of the triangle count. A mesh of evenly sized triangles (a
+/// sphere, a scanned model) takes a few entries per triangle and keeps the
+/// first size.
+fn coarsening(yz: &[YzTri], origin: (f64, f64), inv_h: (f64, f64)) -> u32 {
+    let (lines, area) = yz
+        .par_iter()
+        .with_min_len(4096)
+        .map(|t| {
+            let u = t.y.map(|y| (y - origin.0) * inv_h.0);
+            let w = t.z.map(|z| (z - origin.1) * inv_h.1);
+            let span = |x: [f64; 3]| x[0].max(x[1]).max(x[2]) - x[0].min(x[1]).min(x[2]);
+            let area = ((u[1] - u[0]) * (w[2] - w[0]) - (u[2] - u[0]) * (w[1] - w[0])).abs() / 2.0;
+            (span(u) + span(w), area)
+        })
+        .filter(|(l, a)| l.is_finite() && a.is_finite())
+        .reduce(|| (0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1));
+    let budget = MAX_ENTRIES_PER_TRIANGLE * yz.len() as f64;
+    let mut halvings = 0;
+    let mut scale = 1.0;
+    while halvings < 14 && lines * scale + area * scale * scale + yz.len() as f64 > budget {
+        halvings += 1;
+        scale /= 2.0;
+    }
+    halvings
+}
+
 /// The grid of the triangles `yz` (in accel order) over the box `bounds`.
 pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
     let (y0, z0, y1, z1) = if bounds.is_empty() {
@@ -121,6 +166,8 @@ pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
     // At most 2¹⁴ cells either way (so a cell index fits `u16`).
     let ny = ((cells * aspect).sqrt().round() as usize).clamp(1, 1 << 14);
     let nz = ((cells / ny as f64).round() as usize).clamp(1, 1 << 14);
+    let halvings = coarsening(yz, (y0, z0), (ny as f64 / wy, nz as f64 / wz));
+    let (ny, nz) = ((ny >> halvings).max(1), (nz >> halvings).max(1));
     let mut grid = YzGrid {
         y0,
         z0,

@@ -26,8 +26,8 @@ use crate::spatial::Bvh;
 /// The most hubs that get a group of their own (those of highest valence).
 const MAX_HUBS: usize = 8;
 
-/// The most halvings of a triangle towards each end.
-const MAX_HALVINGS: u32 = 10;
+/// The most halvings of a triangle towards its far edge.
+const MAX_HALVINGS: u8 = 10;
 
 /// What [`pairs_apart`] found and how many pairs it tested.
 pub(super) struct Apart<T> {
@@ -58,8 +58,10 @@ pub(super) fn pairs_apart<T: Send>(
         test(a.min(b), a.max(b))
     };
     let (hub_of, hubs) = hubs(ctx.soup.positions.len(), triangles, min_hub_valence);
-    // Group 0: triangles of no hub, one piece each (its own box).
-    let mut pieces: Vec<Vec<(Aabb, u32)>> = vec![Vec::new(); hubs.len() + 1];
+    // Group 0: triangles of no hub, one piece each (its own box). A piece
+    // is its triangle and its index along it; its box is made when asked.
+    let mut pieces: Vec<Vec<(u32, u8)>> = vec![Vec::new(); hubs.len() + 1];
+    let mut halvings_of = vec![0u8; triangles.len()];
     for (i, t) in triangles.iter().enumerate() {
         let group = t
             .vertices
@@ -68,16 +70,44 @@ pub(super) fn pairs_apart<T: Send>(
             .min()
             .map_or(0, |h| h + 1);
         if group == 0 {
-            pieces[0].push((boxes[i], i as u32));
+            pieces[0].push((i as u32, 0));
+        } else {
+            let cuts = halvings(ctx, t, hubs[group - 1]);
+            halvings_of[i] = cuts;
+            pieces[group].extend((0..piece_count(cuts)).map(|k| (i as u32, k)));
+        }
+    }
+    let box_of = |group: usize, (i, piece): (u32, u8)| {
+        let i = i as usize;
+        if group == 0 {
+            boxes[i]
         } else {
             let hub = hubs[group - 1];
-            cut_into_pieces(ctx, t, hub, boxes[i], |b| pieces[group].push((b, i as u32)));
+            piece_box(ctx, &triangles[i], hub, boxes[i], halvings_of[i], piece)
         }
+    };
+    // A hub's group is walked only against the other groups, so its pieces
+    // whose boxes miss every other group's bounds pair with nothing (a
+    // cone's side above its base's plane): they are left out of its tree.
+    let bounds: Vec<Aabb> = pieces
+        .iter()
+        .map(|p| {
+            p.iter()
+                .filter(|piece| piece.1 == 0)
+                .fold(Aabb::EMPTY, |b, piece| b.union(boxes[piece.0 as usize]))
+        })
+        .collect();
+    for (group, p) in pieces.iter_mut().enumerate().skip(1) {
+        let others = (0..bounds.len())
+            .filter(|&h| h != group)
+            .fold(Aabb::EMPTY, |b, h| b.union(bounds[h]));
+        p.retain(|&piece| overlap(&box_of(group, piece), &others));
     }
     let trees: Vec<PieceTree> = pieces
         .iter()
-        .map(|p| {
-            let (bvh, order) = Bvh::build_by(p.len(), |k| p[k].0);
+        .enumerate()
+        .map(|(group, p)| {
+            let (bvh, order) = Bvh::build_by(p.len(), |k| box_of(group, p[k]));
             PieceTree {
                 bvh,
                 order,
@@ -130,18 +160,19 @@ pub(super) fn pairs_apart<T: Send>(
     }
 }
 
-/// The BVH of one group's pieces: a box and its triangle each.
+/// The BVH of one group's pieces: a triangle and the piece's index along
+/// it each.
 struct PieceTree<'a> {
     bvh: Bvh,
     order: Vec<u32>,
-    pieces: &'a [(Aabb, u32)],
+    pieces: &'a [(u32, u8)],
 }
 
 impl PieceTree<'_> {
     /// The triangles of the pieces of one leaf.
     fn triangles(&self, leaf: u32) -> impl Iterator<Item = usize> + '_ {
         let range = self.bvh.leaf(leaf).unwrap_or_default().range();
-        range.map(|slot| self.pieces[self.order[slot] as usize].1 as usize)
+        range.map(|slot| self.pieces[self.order[slot] as usize].0 as usize)
     }
 }
 
@@ -171,47 +202,83 @@ fn hubs(
     (hub_of, hubs)
 }
 
-/// Cuts the triangle `t` with corner `hub` across, by lines parallel to its
-/// edge opposite the hub, at the fractions `2⁻ʲ` and `1 − 2⁻ʲ` of the way
-/// from the hub (`j` up to the halvings that make a piece about as long as
-/// the triangle is wide), and gives each piece's box to `push`.
+/// How many times the triangle `t` with corner `hub` is cut towards its far
+/// edge (see [`piece_box`]): `h` with `2^h` at least its length over its
+/// width, at most [`MAX_HALVINGS`]; 0 for a triangle kept whole.
+fn halvings(ctx: &Context, t: &Triangle, hub: usize) -> u8 {
+    let [v, a, b] = around(ctx, t, hub);
+    let length = (a - v).abs().max_element().max((b - v).abs().max_element());
+    let width = (a - b).abs().max_element();
+    let ratio = length / width;
+    if !(width > 0.0 && ratio.is_finite()) || ratio <= 2.0 {
+        return 0;
+    }
+    ratio.log2().ceil().clamp(2.0, f64::from(MAX_HALVINGS)) as u8
+}
+
+/// The cuts towards the hub of a triangle of `halvings` (see
+/// [`piece_box`]).
+fn quarterings(halvings: u8) -> u8 {
+    halvings.div_ceil(2).max(1)
+}
+
+/// The pieces of a triangle of `halvings` (see [`piece_box`]).
+fn piece_count(halvings: u8) -> u8 {
+    if halvings == 0 {
+        1
+    } else {
+        quarterings(halvings) + halvings + 1
+    }
+}
+
+/// The corners of `t` from `hub` on, in the triangle's order.
+fn around(ctx: &Context, t: &Triangle, hub: usize) -> [DVec3; 3] {
+    let i = t.vertices.iter().position(|&x| x == hub).unwrap_or(0);
+    [0, 1, 2].map(|k| ctx.position(t.vertices[(i + k) % 3]))
+}
+
+/// The box of piece `piece` of the triangle `t` with corner `hub`, cut
+/// across by lines parallel to its edge opposite the hub: towards the hub
+/// at the fractions `4⁻ʲ` of the way from it (`j` from 1 to
+/// [`quarterings`]), towards the far edge at `1 − 2⁻ʲ` (`j` from 1 to
+/// `halvings`): pieces that shrink geometrically towards both ends, the
+/// last about as long as the triangle is wide. Near the far edge, where
+/// the groups of two hubs meet (a cone's side and its base), the pieces
+/// halve; near the hub, where only the hub's own group is (never walked
+/// against itself), they quarter, so fewer pieces are built. `whole` is the
+/// triangle's exact box.
 ///
 /// A piece's corners are rounded constructions; each box is widened by a
 /// bound on their rounding (below: coordinates of magnitude at most `m`
 /// give a corner `hub + (a − hub)·s`, with `s` exact, within a few units of
 /// `2⁻⁵²·m` of the exact point; the boxes are widened by `2⁻⁴⁸·m`) and cut
-/// to the triangle's exact box, so it holds the exact piece. A triangle
-/// whose cut would not be finite stays whole.
-fn cut_into_pieces(
+/// to the triangle's exact box, so it holds the exact piece. A piece whose
+/// box would not be finite takes the whole box.
+fn piece_box(
     ctx: &Context,
     t: &Triangle,
     hub: usize,
     whole: Aabb,
-    mut push: impl FnMut(Aabb),
-) {
-    let i = t.vertices.iter().position(|&x| x == hub).unwrap_or(0);
-    let v = ctx.position(t.vertices[i]);
-    let a = ctx.position(t.vertices[(i + 1) % 3]);
-    let b = ctx.position(t.vertices[(i + 2) % 3]);
-    let length = (a - v).abs().max_element().max((b - v).abs().max_element());
-    let width = (a - b).abs().max_element();
-    let halvings = if width > 0.0 && (length / width).is_finite() {
-        ((length / width).log2().ceil().max(0.0) as u32).min(MAX_HALVINGS)
-    } else {
-        0
-    };
-    if halvings <= 1 {
-        return push(whole);
+    halvings: u8,
+    piece: u8,
+) -> Aabb {
+    if halvings == 0 {
+        return whole;
     }
-    let magnitude = v.abs().max(a.abs()).max(b.abs()).max_element();
-    let margin = DVec3::splat(magnitude * (1.0 / (1u64 << 48) as f64));
-    let toward_hub = (1..=halvings).rev().map(|j| 0.5f64.powi(j as i32));
-    let toward_edge = (2..=halvings).map(|j| 1.0 - 0.5f64.powi(j as i32));
-    let cuts: Vec<f64> = std::iter::once(0.0)
-        .chain(toward_hub)
-        .chain(toward_edge)
-        .chain(std::iter::once(1.0))
-        .collect();
+    let [v, a, b] = around(ctx, t, hub);
+    let (q, h) = (i32::from(quarterings(halvings)), i32::from(halvings));
+    // Cut k of q + h + 2 (0 and 1 included), by exact powers of two.
+    let cut = |k: i32| -> f64 {
+        if k == 0 {
+            0.0
+        } else if k <= q {
+            0.25f64.powi(q + 1 - k)
+        } else if k <= q + h {
+            1.0 - 0.5f64.powi(k - q)
+        } else {
+            1.0
+        }
+    };
     let at = |s: f64| -> [DVec3; 2] {
         if s == 0.0 {
             [v, v]
@@ -221,22 +288,20 @@ fn cut_into_pieces(
             [v + (a - v) * s, v + (b - v) * s]
         }
     };
-    let boxes: Vec<Aabb> = cuts
-        .windows(2)
-        .map(|w| {
-            let [p, q] = at(w[0]);
-            let [r, s] = at(w[1]);
-            let b = Aabb::from_points([p, q, r, s]);
-            Aabb {
-                min: (b.min - margin).max(whole.min),
-                max: (b.max + margin).min(whole.max),
-            }
-        })
-        .collect();
-    if boxes.iter().all(|b| b.min.is_finite() && b.max.is_finite()) {
-        boxes.into_iter().for_each(push);
+    let k = i32::from(piece);
+    let [p, r] = at(cut(k));
+    let [s, u] = at(cut(k + 1));
+    let magnitude = v.abs().max(a.abs()).max(b.abs()).max_element();
+    let margin = DVec3::splat(magnitude * (1.0 / (1u64 << 48) as f64));
+    let b = Aabb::from_points([p, r, s, u]);
+    let piece = Aabb {
+        min: (b.min - margin).max(whole.min),
+        max: (b.max + margin).min(whole.max),
+    };
+    if piece.min.is_finite() && piece.max.is_finite() {
+        piece
     } else {
-        push(whole);
+        whole
     }
 }
 

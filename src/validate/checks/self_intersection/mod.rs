@@ -14,17 +14,14 @@
 //! parallel; the defects found are sorted, so their order depends on
 //! neither the trees nor the threads.
 //!
-//! How a pair is tested depends on the vertices its triangles share:
+//! How a pair is tested depends on the vertices its triangles share
+//! ([`pair`] derives each rule):
 //!
 //! - none: any common point is a defect (crossing or touching);
-//! - one vertex `v`, triangles `(v, a, b)` and `(v, c, d)`: reported when
-//!   they cross, that is when segment `ab` passes strictly through the
-//!   interior of the second triangle or `cd` through the first (a fin
-//!   through a neighbour), or, when the two are coplanar, when their
-//!   corners at `v` overlap (a flat fan that wraps over itself). Contacts
-//!   only along boundaries beyond `v` (a vertex on a neighbour's edge, as a
-//!   zero-area sliver produces) are not reported: the degenerate face that
-//!   causes them is;
+//! - one vertex `v`: any common point other than `v` is a defect, that is
+//!   when the two closed corners at `v` share a direction (a fin through a
+//!   neighbour, far edges that cross, a far vertex on the other face, a flat
+//!   fan that wraps over itself or two corners of one plane along one ray);
 //! - an edge `uw`, triangles `(u, w, a)` and `(u, w, b)`: when not coplanar
 //!   they meet only along `uw`; when coplanar they overlap (a fold) iff `a`
 //!   and `b` lie on the same side of `uw`.
@@ -34,16 +31,16 @@
 
 mod apart;
 mod around_axis;
+mod pair;
 mod sharing;
 mod triangles;
 
-use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::super::context::Context;
 use super::super::report::{Rule, Violation};
-use crate::geom::polygon::Projection;
-use crate::geom::{Aabb, Sign, orient2d, orient3d, triangles_intersect};
+use crate::geom::Aabb;
+use pair::triangles_meet_beyond_shared;
 use triangles::{Triangle, triangulate};
 
 /// Every pair of faces that cross or touch without sharing a vertex.
@@ -123,104 +120,11 @@ fn faces_share_a_vertex(ctx: &Context, a: usize, b: usize) -> bool {
     ca.iter().any(|v| cb.contains(v))
 }
 
-/// Whether two triangles of different faces meet anywhere but at the
-/// vertices (or the edge) they share; see the module documentation.
-fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Triangle) -> bool {
-    let pa = a.vertices.map(|v| ctx.position(v));
-    let pb = b.vertices.map(|v| ctx.position(v));
-    let shared: smallvec::SmallVec<[(usize, usize); 3]> = (0..3)
-        .filter_map(|i| {
-            (0..3)
-                .find(|&j| b.vertices[j] == a.vertices[i])
-                .map(|j| (i, j))
-        })
-        .collect();
-    match shared[..] {
-        [] => triangles_intersect(pa, pb),
-        [(i, j)] => {
-            let (a1, a2) = (pa[(i + 1) % 3], pa[(i + 2) % 3]);
-            let (b1, b2) = (pb[(j + 1) % 3], pb[(j + 2) % 3]);
-            let v = pa[i];
-            let side_a = |p: DVec3| orient3d(pa[0], pa[1], pa[2], p);
-            let (s1, s2) = (side_a(b1), side_a(b2));
-            if s1 == Sign::Zero && s2 == Sign::Zero {
-                // Coplanar. Near v each triangle is its corner: interiors
-                // overlap iff the two corners do.
-                let projection = projection_of(pa);
-                let p = |x: DVec3| projection.apply(x);
-                return corners_overlap(p(v), [p(a1), p(a2)], [p(b1), p(b2)]);
-            }
-            let side_b = |p: DVec3| orient3d(pb[0], pb[1], pb[2], p);
-            (s1 != Sign::Zero && s2 == -s1 && crosses_inside(b1, b2, pa)) || {
-                let (t1, t2) = (side_b(a1), side_b(a2));
-                t1 != Sign::Zero && t2 == -t1 && crosses_inside(a1, a2, pb)
-            }
-        }
-        [(i0, _), (i1, _)] => {
-            let (u, w) = (pa[i0], pa[i1]);
-            let a_far = pa[3 - i0 - i1];
-            let b_far = pb[(0..3)
-                .find(|&k| !a.vertices.contains(&b.vertices[k]))
-                .unwrap_or(0)];
-            if orient3d(u, w, a_far, b_far) != Sign::Zero {
-                return false;
-            }
-            let projection = projection_of(pa);
-            let (u2, w2) = (projection.apply(u), projection.apply(w));
-            let sa = orient2d(u2, w2, projection.apply(a_far));
-            sa != Sign::Zero && sa == orient2d(u2, w2, projection.apply(b_far))
-        }
-        // The same three vertices: a duplicate, reported as such.
-        _ => false,
-    }
-}
-
-/// Whether the corners at `v` of two coplanar triangles `(v, a…)` and
-/// `(v, b…)` (each less than a half-turn) share an open set of directions:
-/// a side ray of one strictly inside the other, or the same two side rays.
-/// Exact (2-D orientations and coordinate comparisons).
-fn corners_overlap(v: DVec2, a: [DVec2; 2], b: [DVec2; 2]) -> bool {
-    let ccw = |[p, q]: [DVec2; 2]| {
-        if orient2d(v, p, q) == Sign::Negative {
-            [q, p]
-        } else {
-            [p, q]
-        }
-    };
-    let (a, b) = (ccw(a), ccw(b));
-    let strictly_inside = |[p, q]: [DVec2; 2], r: DVec2| {
-        orient2d(v, p, r) == Sign::Positive && orient2d(v, r, q) == Sign::Positive
-    };
-    // Same ray from v: collinear and every coordinate on the same side of v.
-    let same_ray = |p: DVec2, q: DVec2| {
-        let side = |x: f64, o: f64| Sign::of(x - o);
-        orient2d(v, p, q) == Sign::Zero
-            && side(p.x, v.x) == side(q.x, v.x)
-            && side(p.y, v.y) == side(q.y, v.y)
-    };
-    b.iter().any(|&r| strictly_inside(a, r))
-        || a.iter().any(|&r| strictly_inside(b, r))
-        || (same_ray(a[0], b[0]) && same_ray(a[1], b[1]))
-}
-
-/// For a segment `ab` whose ends lie strictly on opposite sides of the
-/// plane of triangle `t`: whether it crosses that plane strictly inside `t`
-/// (the line passes all three edges on the same side). Exact.
-fn crosses_inside(a: DVec3, b: DVec3, t: [DVec3; 3]) -> bool {
-    let s = orient3d(a, b, t[0], t[1]);
-    s != Sign::Zero && orient3d(a, b, t[1], t[2]) == s && orient3d(a, b, t[2], t[0]) == s
-}
-
-/// An axis projection under which `t` keeps a non-zero area (checked
-/// exactly), or the one along its rounded normal for a degenerate `t`.
-fn projection_of(t: [DVec3; 3]) -> Projection {
-    Projection::of_triangle(t)
-        .unwrap_or_else(|| Projection::along((t[1] - t[0]).cross(t[2] - t[0])))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::triangles_intersect;
+    use glam::DVec3;
 
     fn report_for(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> Vec<Vec<usize>> {
         let soup = crate::mesh::PolygonSoup::new(positions, polygons);
@@ -434,6 +338,67 @@ mod tests {
                 "{found:?}"
             );
         }
+    }
+
+    #[test]
+    fn an_apex_face_folded_in_the_rim_plane_meets_the_faces_it_folds_over() {
+        // Rim vertex 10 pulled past the rim within the rim's plane: the far
+        // edges of apex faces 9 and 10 each cross the far edge of one other
+        // apex face exactly (in that plane, where they pass the rim), so
+        // those faces meet along a segment from the apex; no edge passes
+        // strictly through a face. A rule that asks for a strict crossing
+        // misses these pairs.
+        let n = 200;
+        for centre_fan in [true, false] {
+            let (mut p, f) = cone(n, centre_fan);
+            let a = std::f64::consts::TAU / 3.0;
+            let rim = if centre_fan { 2 } else { 1 };
+            p[rim + 10] = v(1.5 * a.cos(), 1.5 * a.sin(), 0.);
+            let want = every_pair(p.clone(), f.clone());
+            let (found, _) = counted(p.clone(), f.clone());
+            assert_eq!(found, want);
+            // Apex faces (0..n) that share only the apex with face 9 or 10.
+            let apex_only = |&&(a, b): &&(usize, usize)| (9..=10).contains(&a) && b > 11 && b < n;
+            let folded_over: Vec<(usize, usize)> =
+                found.iter().filter(apex_only).copied().collect();
+            // Each of the two far edges crosses the rim once more.
+            assert_eq!(folded_over.len(), 2, "{found:?}");
+            let reported: Vec<(usize, usize)> = report_for(p, f)
+                .iter()
+                .map(|pair| (pair[0], pair[1]))
+                .collect();
+            assert!(folded_over.iter().all(|pair| reported.contains(pair)));
+        }
+    }
+
+    #[test]
+    fn faces_on_one_vertex_whose_far_edges_cross_are_reported() {
+        // Two upright triangles on the apex (0, 0, 1), far edges crossing at
+        // the origin: they meet along the segment from the apex down.
+        let p = vec![
+            v(0., 0., 1.),
+            v(-1., 0., 0.),
+            v(1., 0., 0.),
+            v(0., -1., 0.),
+            v(0., 1., 0.),
+        ];
+        assert_eq!(
+            report_for(p, vec![vec![0, 1, 2], vec![0, 3, 4]]),
+            [vec![0, 1]]
+        );
+        // Two faces of one plane on one vertex, one's side along the other's
+        // (a vertex on an edge it is not joined to): they share a segment.
+        let q = vec![
+            v(0., 0., 0.),
+            v(2., 0., 0.),
+            v(0., 2., 0.),
+            v(0., 1., 0.),
+            v(-2., 0., 0.),
+        ];
+        assert_eq!(
+            report_for(q, vec![vec![0, 1, 2], vec![0, 3, 4]]),
+            [vec![0, 1]]
+        );
     }
 
     #[test]
