@@ -156,11 +156,8 @@ fn random_box_trees_agree_with_the_octants_at_every_grid_point() {
     assert!(analyses > 1000, "{analyses}");
 }
 
-/// The tetrahedron on the triangle `base` with its apex at `apex`,
-/// outward-facing.
-fn tetrahedron(base: [DVec3; 3], apex: DVec3) -> Solid {
-    let positions = vec![base[0], base[1], base[2], apex];
-    let mut faces = vec![[0, 1, 2], [1, 0, 3], [2, 1, 3], [0, 2, 3]];
+/// The solid of these polygons, wound outward (turned if they were not).
+fn outward(positions: Vec<DVec3>, mut faces: Vec<Vec<usize>>) -> Solid {
     let solid = Solid::try_from_soup(&PolygonSoup::new(positions.clone(), &faces)).unwrap();
     if solid.volume() > 0.0 {
         return solid;
@@ -171,21 +168,20 @@ fn tetrahedron(base: [DVec3; 3], apex: DVec3) -> Solid {
     Solid::try_from_soup(&PolygonSoup::new(positions, &faces)).unwrap()
 }
 
+/// The tetrahedron on the triangle `base` with its apex at `apex`.
+fn tetrahedron(base: [DVec3; 3], apex: DVec3) -> Solid {
+    let faces = vec![vec![0, 1, 2], vec![1, 0, 3], vec![2, 1, 3], vec![0, 2, 3]];
+    outward(vec![base[0], base[1], base[2], apex], faces)
+}
+
 /// A pyramid on the parallelogram `base` (in boundary order) with its apex
-/// at `apex`, outward-facing.
+/// at `apex`.
 fn pyramid(base: [DVec3; 4], apex: DVec3) -> Solid {
-    let mut positions = base.to_vec();
-    positions.push(apex);
     let mut faces = vec![vec![0, 1, 2, 3]];
     faces.extend((0..4).map(|k| vec![(k + 1) % 4, k, 4]));
-    let solid = Solid::try_from_soup(&PolygonSoup::new(positions.clone(), &faces)).unwrap();
-    if solid.volume() > 0.0 {
-        return solid;
-    }
-    for f in &mut faces {
-        f.reverse();
-    }
-    Solid::try_from_soup(&PolygonSoup::new(positions, &faces)).unwrap()
+    let mut positions = base.to_vec();
+    positions.push(apex);
+    outward(positions, faces)
 }
 
 #[test]

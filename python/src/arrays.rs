@@ -13,6 +13,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use wingedge::geom::Ray;
 use wingedge::glam::DVec3;
+use wingedge::mesh::PolygonSoup;
 
 /// The rows of an `(n, 3)` array as points, copied (any memory layout).
 ///
@@ -113,4 +114,35 @@ pub(crate) fn indices(array: &PyReadonlyArray1<'_, i64>, what: &str) -> PyResult
             })
         })
         .collect()
+}
+
+/// A polygon soup from vertices `(n, 3)`, face sizes `(m,)` and the flat
+/// index array of all faces in order.
+///
+/// # Errors
+///
+/// `ValueError` for a wrong shape, a negative index or size, or sizes that
+/// do not add up to the number of indices.
+pub(crate) fn soup(
+    vertices: &PyReadonlyArray2<'_, f64>,
+    sizes: &PyReadonlyArray1<'_, i64>,
+    indices: &PyReadonlyArray1<'_, i64>,
+) -> PyResult<PolygonSoup> {
+    let positions = points(vertices, "vertices")?;
+    let sizes = self::indices(sizes, "face sizes")?;
+    let indices = self::indices(indices, "faces")?;
+    let total: usize = sizes.iter().sum();
+    if total != indices.len() {
+        return Err(PyValueError::new_err(format!(
+            "face sizes add up to {total} but {} indices were given",
+            indices.len()
+        )));
+    }
+    let mut polygons = Vec::with_capacity(sizes.len());
+    let mut at = 0;
+    for &n in &sizes {
+        polygons.push(&indices[at..at + n]);
+        at += n;
+    }
+    Ok(PolygonSoup::new(positions, polygons))
 }

@@ -168,23 +168,7 @@ impl PySolid {
         sizes: PyReadonlyArray1<'_, i64>,
         indices: PyReadonlyArray1<'_, i64>,
     ) -> PyResult<PySolid> {
-        let positions = arrays::points(&vertices, "vertices")?;
-        let sizes = arrays::indices(&sizes, "face sizes")?;
-        let indices = arrays::indices(&indices, "faces")?;
-        if sizes.iter().sum::<usize>() != indices.len() {
-            return Err(PyValueError::new_err(format!(
-                "face sizes add up to {} but {} indices were given",
-                sizes.iter().sum::<usize>(),
-                indices.len()
-            )));
-        }
-        let mut polygons = Vec::with_capacity(sizes.len());
-        let mut at = 0;
-        for &n in &sizes {
-            polygons.push(&indices[at..at + n]);
-            at += n;
-        }
-        let soup = PolygonSoup::new(positions, polygons);
+        let soup = arrays::soup(&vertices, &sizes, &indices)?;
         let inner = py.detach(|| Inner::from_soup(soup))?;
         Ok(PySolid {
             inner: Arc::new(inner),

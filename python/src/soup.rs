@@ -6,7 +6,6 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadonlyArray2};
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use wingedge::io::{ObjOptions, import_obj};
 use wingedge::mesh::PolygonSoup;
@@ -42,23 +41,7 @@ impl PySoupWinding {
         sizes: PyReadonlyArray1<'_, i64>,
         indices: PyReadonlyArray1<'_, i64>,
     ) -> PyResult<PySoupWinding> {
-        let positions = arrays::points(&vertices, "vertices")?;
-        let sizes = arrays::indices(&sizes, "face sizes")?;
-        let indices = arrays::indices(&indices, "faces")?;
-        if sizes.iter().sum::<usize>() != indices.len() {
-            return Err(PyValueError::new_err(format!(
-                "face sizes add up to {} but {} indices were given",
-                sizes.iter().sum::<usize>(),
-                indices.len()
-            )));
-        }
-        let mut polygons = Vec::with_capacity(sizes.len());
-        let mut at = 0;
-        for &n in &sizes {
-            polygons.push(&indices[at..at + n]);
-            at += n;
-        }
-        let soup = PolygonSoup::new(positions, polygons);
+        let soup = arrays::soup(&vertices, &sizes, &indices)?;
         py.detach(|| built(&soup))
     }
 

@@ -11,7 +11,7 @@ use super::{
 use crate::geom::polygon::{PolygonLocation, Projection, locate_point_in_polygon};
 use crate::geom::{Aabb, Ray, Sign};
 use crate::mesh::{FaceId, Solid};
-use crate::query::{Accel, BoundaryTiles, TileError, Transition};
+use crate::query::{Accel, BoundaryTiles, RayCrossings, TileError, Transition};
 
 /// Why a solid cannot be a CSG leaf.
 #[derive(Clone, Debug, Error, PartialEq)]
@@ -133,6 +133,19 @@ impl Polyhedron {
     }
 }
 
+/// Whether a ray is inside just after its origin: the origin's class, or
+/// for an origin on the boundary, whether the first transition leaves.
+fn inside_after_origin(answer: &RayCrossings) -> bool {
+    match answer.origin {
+        Containment::Inside => true,
+        Containment::Outside => false,
+        Containment::OnBoundary => answer
+            .hits
+            .first()
+            .is_some_and(|h| h.transition == Transition::Exit),
+    }
+}
+
 impl Primitive for Polyhedron {
     fn intersect_ray(&self, ray: &Ray, crossings: &mut Vec<Crossing>, _stats: &mut Stats) -> bool {
         let Ok(answer) = self.accel.ray_crossings(ray) else {
@@ -144,16 +157,7 @@ impl Primitive for Polyhedron {
             );
             return false;
         };
-        let inside = match answer.origin {
-            Containment::Inside => true,
-            Containment::Outside => false,
-            // On the boundary: the first transition tells which way the
-            // ray leaves the origin.
-            Containment::OnBoundary => answer
-                .hits
-                .first()
-                .is_some_and(|h| h.transition == Transition::Exit),
-        };
+        let inside = inside_after_origin(&answer);
         crossings.extend(answer.hits.iter().map(|h| Crossing {
             t: h.t,
             surface: h.triangle,
@@ -211,14 +215,7 @@ impl Primitive for Polyhedron {
     /// first crossing after `p` leaves the solid.
     fn inside_along(&self, p: DVec3, d: DVec3) -> Option<bool> {
         let answer = self.accel.ray_crossings(&Ray::new(p, d)).ok()?;
-        Some(match answer.origin {
-            Containment::Inside => true,
-            Containment::Outside => false,
-            Containment::OnBoundary => answer
-                .hits
-                .first()
-                .is_some_and(|h| h.transition == Transition::Exit),
-        })
+        Some(inside_after_origin(&answer))
     }
 
     fn normal(&self, _p: DVec3, surface: SurfaceId) -> DVec3 {
