@@ -51,10 +51,15 @@ mod ray_solid;
 mod ray_stream;
 mod ray_triangle;
 mod soup_winding;
+#[cfg(test)]
+mod stress_points;
 mod tri_packet;
 mod triangle_records;
 mod triangles_holding;
 mod winding;
+mod x_direction;
+mod x_ray;
+mod x_ray_triangle;
 
 pub use accel::{Accel, AccelStats};
 pub use boundary_tiles::{BoundaryTiles, TileError};

@@ -7,7 +7,8 @@ use rayon::prelude::*;
 
 use super::Accel;
 use super::Containment;
-use super::point_in_solid::{RayChoice, XRay};
+use super::x_direction::RayChoice;
+use super::x_ray::XRay;
 
 /// Points per rayon task (and per gathered buffer, 96 KiB).
 const POINTS_PER_TASK: usize = 4096;
