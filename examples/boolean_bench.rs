@@ -84,16 +84,11 @@ fn run() -> Result<()> {
         "seconds": seconds,
         "repeats": repeats.max(1),
         "threads": rayon::current_num_threads(),
-        "stages": {
-            "check": s.check_seconds,
-            "prepare": s.prepare_seconds,
-            "intersect": s.intersect_seconds,
-            "points": s.points_seconds,
-            "split": s.split_seconds,
-            "classify": s.classify_seconds,
-            "output": s.output_seconds,
-            "proof": s.proof_seconds,
-        },
+        "stages": s
+            .stages()
+            .iter()
+            .map(|&(name, seconds)| (name.to_string(), json!(seconds)))
+            .collect::<serde_json::Map<_, _>>(),
         "contacts": s.contacts,
         "new_points": s.new_points,
         "cut_triangles": s.cut_triangles,

@@ -31,16 +31,9 @@ fn main() {
         .expect("a valid difference");
         let s = &r.stats;
         println!(
-            "check {check}: {:.3} s total; check {:.3} prepare {:.3} intersect {:.3} points {:.3} split {:.3} classify {:.3} output {:.3} proof {:.3}; {} contacts, {} new points, {} faces",
+            "check {check}: {:.3} s total; {}; {} contacts, {} new points, {} faces",
             start.elapsed().as_secs_f64(),
-            s.check_seconds,
-            s.prepare_seconds,
-            s.intersect_seconds,
-            s.points_seconds,
-            s.split_seconds,
-            s.classify_seconds,
-            s.output_seconds,
-            s.proof_seconds,
+            s.stages_text(),
             s.contacts,
             s.new_points,
             r.solid.face_count()

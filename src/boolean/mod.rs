@@ -91,6 +91,35 @@ pub struct BooleanStats {
     pub cut_triangles: usize,
 }
 
+impl BooleanStats {
+    /// The time of each stage, in pipeline order, named as in reports
+    /// (`check`, `prepare`, `intersect`, `points`, `split`, `classify`,
+    /// `output`, `proof`).
+    #[must_use]
+    pub fn stages(&self) -> [(&'static str, f64); 8] {
+        [
+            ("check", self.check_seconds),
+            ("prepare", self.prepare_seconds),
+            ("intersect", self.intersect_seconds),
+            ("points", self.points_seconds),
+            ("split", self.split_seconds),
+            ("classify", self.classify_seconds),
+            ("output", self.output_seconds),
+            ("proof", self.proof_seconds),
+        ]
+    }
+
+    /// The stages' times as `name 0.123, …`, in pipeline order.
+    #[must_use]
+    pub fn stages_text(&self) -> String {
+        self.stages()
+            .iter()
+            .map(|(name, seconds)| format!("{name} {seconds:.3}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
 impl std::ops::AddAssign<&BooleanStats> for BooleanStats {
     /// Sums the time and work of several booleans (a tree's).
     fn add_assign(&mut self, one: &BooleanStats) {

@@ -37,6 +37,14 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
     let s = &evaluated.stats;
     let mut out = Out::new();
     if json {
+        let seconds_by_stage: serde_json::Map<String, serde_json::Value> = [
+            ("total", seconds),
+            ("tessellate", evaluated.tessellate_seconds),
+        ]
+        .into_iter()
+        .chain(s.stages())
+        .map(|(name, t)| (name.to_string(), serde_json::json!(t)))
+        .collect();
         let value = serde_json::json!({
             "scene": name.to_string(),
             "output": output.display().to_string(),
@@ -50,17 +58,7 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
             "genus": report.genus,
             "volume": solid.volume(),
             "validity": report.validity,
-            "seconds": {
-                "total": seconds,
-                "tessellate": evaluated.tessellate_seconds,
-                "prepare": s.prepare_seconds,
-                "intersect": s.intersect_seconds,
-                "points": s.points_seconds,
-                "split": s.split_seconds,
-                "classify": s.classify_seconds,
-                "output": s.output_seconds,
-                "proof": s.proof_seconds,
-            },
+            "seconds": seconds_by_stage,
         });
         out.write(format!("{value:#}\n"))?;
     } else {
@@ -71,8 +69,7 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
             "{name}: {} booleans (chord tolerance {})\n  \
              faces {}  rings {}  vertices {}  edges {}  shells {}  genus {genus}  volume {}\n  \
              {} (checked by the validator)\n  \
-             {seconds:.3} s: tessellate {:.3}, prepare {:.3}, intersect {:.3}, points {:.3}, \
-             split {:.3}, classify {:.3}, output {:.3}, proof {:.3}\n  wrote {}\n",
+             {seconds:.3} s: tessellate {:.3}, {}\n  wrote {}\n",
             evaluated.booleans,
             options.tolerance,
             solid.face_count(),
@@ -83,13 +80,7 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
             measure(solid.volume(), 6),
             report.validity.describe(),
             evaluated.tessellate_seconds,
-            s.prepare_seconds,
-            s.intersect_seconds,
-            s.points_seconds,
-            s.split_seconds,
-            s.classify_seconds,
-            s.output_seconds,
-            s.proof_seconds,
+            s.stages_text(),
             output.display(),
         ))?;
     }

@@ -153,9 +153,9 @@ mod tests {
             .collect()
     }
 
-    #[test]
-    fn a_straight_sweep_with_two_holes_is_a_block_with_two_tunnels() {
-        let path = BSpline::try_open_uniform(
+    /// A quadratic B-spline along z from 0 to 2 (a straight line).
+    fn straight_path() -> BSpline {
+        BSpline::try_open_uniform(
             vec![
                 DVec3::ZERO,
                 DVec3::new(0.0, 0.0, 1.0),
@@ -163,7 +163,12 @@ mod tests {
             ],
             2,
         )
-        .unwrap();
+        .unwrap()
+    }
+
+    #[test]
+    fn a_straight_sweep_with_two_holes_is_a_block_with_two_tunnels() {
+        let path = straight_path();
         let holes = vec![
             square(0.25, DVec2::new(-0.5, 0.0)),
             square(0.25, DVec2::new(0.5, 0.0)),
@@ -180,15 +185,7 @@ mod tests {
 
     #[test]
     fn a_hole_outside_the_profile_is_refused() {
-        let path = BSpline::try_open_uniform(
-            vec![
-                DVec3::ZERO,
-                DVec3::new(0.0, 0.0, 1.0),
-                DVec3::new(0.0, 0.0, 2.0),
-            ],
-            2,
-        )
-        .unwrap();
+        let path = straight_path();
         let holes = vec![square(0.25, DVec2::new(2.0, 0.0))];
         assert!(try_sweep_with_holes(&square(1.0, DVec2::ZERO), &holes, &path, 1e-3).is_err());
         let bad = vec![vec![DVec2::ZERO, DVec2::X]];
