@@ -13,14 +13,15 @@ use crate::validate::{Options, Report, Validity, check_rings, validate_soup};
 
 use super::BooleanError;
 use super::merge::{PieceSource, merge_faces};
-use super::operand::{FaceOrigin, Operand, Prepared};
+use super::operand::{FaceOrigin, Prepared};
 use super::points::PointTable;
 
 /// A piece that bounds the result, wound as it faces out of the result.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct KeptPiece {
     pub corners: [u32; 3],
-    pub side: Operand,
+    /// The operand's slot in the operands' list.
+    pub operand: usize,
     pub face: FaceId,
     /// The operand triangle the piece lies in, wound as the piece.
     pub plane: [DVec3; 3],
@@ -31,7 +32,7 @@ pub(crate) struct KeptPiece {
 pub(crate) fn soup_of(
     table: &PointTable,
     pieces: &[KeptPiece],
-    operands: [&Prepared; 2],
+    operands: &[Prepared],
 ) -> (PolygonSoup, Vec<PieceSource>) {
     let mut index: HashMap<u32, usize> = HashMap::default();
     let mut positions: Vec<DVec3> = Vec::new();
@@ -66,17 +67,14 @@ pub(crate) fn soup_of(
             continue;
         }
         seen.insert(rotated_to_smallest(corners), kept.len());
-        let operand = match piece.side {
-            Operand::First => operands[0],
-            Operand::Second => operands[1],
-        };
+        let operand = &operands[piece.operand];
         let mut polygon = Polygon::new(corners);
         let face = operand.solid.face(piece.face);
         polygon.attributes.group = face.attributes.group.clone();
         polygon.attributes.material = face.attributes.material.clone();
         let source = PieceSource {
             origin: FaceOrigin {
-                side: piece.side,
+                operand: operand.index,
                 face: piece.face,
             },
             plane: piece.plane,

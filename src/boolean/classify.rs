@@ -11,7 +11,8 @@
 //! exact `+x` ray from a piece's centroid, an implicit point, against the
 //! other operand's triangles.
 
-use rustc_hash::FxHashMap as HashMap;
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
+use smallvec::SmallVec;
 
 use glam::DVec3;
 
@@ -22,9 +23,11 @@ use crate::geom::implicit::{
 use crate::geom::{Aabb, Sign};
 
 use super::BooleanError;
+use super::expression::Expression;
 use super::intersect::projection;
 use super::operand::Prepared;
 use super::points::{PointTable, PointView};
+use super::select::{covered, keep};
 
 /// Where a patch lies against the other operand.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,19 +51,24 @@ pub(crate) struct Piece {
     pub triangle: u32,
 }
 
-/// A coplanar triangle of the other operand, and whether it faces the same
-/// way.
-pub(crate) type Partner = (u32, bool);
+/// A coplanar triangle of another operand (by operand slot and triangle),
+/// and whether it faces the same way.
+pub(crate) type Partner = (usize, u32, bool);
 
-/// Labels every piece of `mine` against `other`.
-pub(crate) fn label_pieces(
+/// What every piece of operand `mine` becomes in the result of
+/// `expression`: `None` when it does not bound it, `Some(flip)` when it
+/// does (turned over when `flip`). Pieces are grouped into patches across
+/// unconstrained edges; each patch is labelled against the other operands
+/// only as far as the expression asks ([`keep`]).
+pub(crate) fn keep_pieces(
     table: &PointTable,
-    mine: &Prepared,
+    operands: &[Prepared],
+    mine: usize,
     pieces: &[Piece],
-    constrained: &rustc_hash::FxHashSet<(u32, u32)>,
+    constrained: &HashSet<(u32, u32)>,
     partners: &HashMap<u32, Vec<Partner>>,
-    other: &Prepared,
-) -> Result<Vec<Label>, BooleanError> {
+    expression: &Expression,
+) -> Result<Vec<Option<bool>>, BooleanError> {
     let mut sets = DisjointSets::new(pieces.len());
     let mut by_edge: HashMap<(u32, u32), u32> =
         HashMap::with_capacity_and_hasher(pieces.len() * 2, Default::default());
@@ -82,68 +90,126 @@ pub(crate) fn label_pieces(
     for i in 0..pieces.len() {
         patches.entry(sets.find(i)).or_default().push(i as u32);
     }
-    let mut labels = vec![Label::Outside; pieces.len()];
+    let mut decisions = vec![None; pieces.len()];
     let mut roots: Vec<usize> = patches.keys().copied().collect();
     roots.sort_unstable();
     for root in roots {
         let members = &patches[&root];
-        let label = label_patch(table, mine, pieces, members, partners, other)?;
+        let patch = Patch {
+            table,
+            operands,
+            mine,
+            pieces,
+            members,
+            partners,
+        };
+        let decision = patch.decide(expression)?;
         for &m in members {
-            labels[m as usize] = label;
+            decisions[m as usize] = decision;
         }
     }
-    Ok(labels)
+    Ok(decisions)
 }
 
-fn label_patch(
-    table: &PointTable,
-    mine: &Prepared,
-    pieces: &[Piece],
-    members: &[u32],
-    partners: &HashMap<u32, Vec<Partner>>,
-    other: &Prepared,
-) -> Result<Label, BooleanError> {
-    // On the other surface?
-    if let Some(&m) = members
-        .iter()
-        .find(|&&m| partners.contains_key(&pieces[m as usize].triangle))
-    {
-        let piece = pieces[m as usize];
-        let centroid = Centroid(piece.corners.map(|c| table.get(c)));
-        for &(t, same) in &partners[&piece.triangle] {
-            if strictly_inside(&centroid, other.corners(t)) {
-                return Ok(if same {
-                    Label::OnSame
-                } else {
-                    Label::OnOpposite
-                });
+/// One patch of an operand's pieces, with what labelling it needs.
+struct Patch<'p> {
+    table: &'p PointTable,
+    operands: &'p [Prepared<'p>],
+    /// The slot of the patch's operand in `operands`.
+    mine: usize,
+    pieces: &'p [Piece],
+    members: &'p [u32],
+    partners: &'p HashMap<u32, Vec<Partner>>,
+}
+
+impl Patch<'_> {
+    /// The patch's fate in the result (see [`keep_pieces`]).
+    fn decide(&self, expression: &Expression) -> Result<Option<bool>, BooleanError> {
+        let mine = self.mine;
+        let mut known: SmallVec<[(usize, Label); 8]> = SmallVec::new();
+        let mut label = |k: usize| -> Result<Label, BooleanError> {
+            if let Some(&(_, l)) = known.iter().find(|(o, _)| *o == k) {
+                return Ok(l);
+            }
+            let l = self.label(k, &self.operands[k])?;
+            known.push((k, l));
+            Ok(l)
+        };
+        // On the surface of an operand that comes first: its patch stands
+        // for this one.
+        let mut coplanar: SmallVec<[usize; 4]> = self
+            .members
+            .iter()
+            .filter_map(|&m| self.partners.get(&self.pieces[m as usize].triangle))
+            .flatten()
+            .map(|&(k, _, _)| k)
+            .filter(|&k| k < mine)
+            .collect();
+        coplanar.sort_unstable();
+        coplanar.dedup();
+        for k in coplanar {
+            if covered(mine, k, label(k)?) {
+                return Ok(None);
             }
         }
+        keep(expression, mine, &mut label)
     }
-    // A corner off the other surface.
-    for &m in members {
-        for c in pieces[m as usize].corners {
-            let Some(p) = table.explicit(c) else {
-                continue;
-            };
-            match ray_parity(&ImplicitPoint::Explicit(p), other) {
-                Some(true) => return Ok(Label::Inside),
-                Some(false) => return Ok(Label::Outside),
-                None => {}
+
+    /// Where the patch lies against operand `k` (`other`).
+    fn label(&self, k: usize, other: &Prepared) -> Result<Label, BooleanError> {
+        let (table, pieces, members) = (self.table, self.pieces, self.members);
+        // On the other surface?
+        let on_partner = |m: &u32| {
+            self.partners
+                .get(&pieces[*m as usize].triangle)
+                .is_some_and(|list| list.iter().any(|&(o, _, _)| o == k))
+        };
+        if let Some(&m) = members.iter().find(|m| on_partner(m)) {
+            let piece = pieces[m as usize];
+            let centroid = Centroid(piece.corners.map(|c| table.get(c)));
+            for &(o, t, same) in &self.partners[&piece.triangle] {
+                if o == k && strictly_inside(&centroid, other.corners(t)) {
+                    return Ok(if same {
+                        Label::OnSame
+                    } else {
+                        Label::OnOpposite
+                    });
+                }
             }
         }
-    }
-    // A ray from an implicit centroid.
-    let piece = pieces[members[0] as usize];
-    let centroid = Centroid(piece.corners.map(|c| table.get(c)));
-    let _ = mine;
-    match ray_parity(&centroid, other) {
-        Some(true) => Ok(Label::Inside),
-        Some(false) => Ok(Label::Outside),
-        None => Err(BooleanError::Inconsistent(format!(
-            "a piece of the {:?} operand has its centroid on the other operand's surface",
-            mine.side
-        ))),
+        // Off the other operand's box: outside (the patch does not cross
+        // its surface, so one piece's box decides).
+        let first = pieces[members[0] as usize];
+        let mut piece_box = Aabb::EMPTY;
+        for c in first.corners {
+            piece_box = piece_box.union(bounds_of(&table.get(c)));
+        }
+        if piece_box.intersection(other.bvh.bounds()).is_empty() {
+            return Ok(Label::Outside);
+        }
+        // A corner off the other surface.
+        for &m in members {
+            for c in pieces[m as usize].corners {
+                let Some(p) = table.explicit(c) else {
+                    continue;
+                };
+                match ray_parity(&ImplicitPoint::Explicit(p), other) {
+                    Some(true) => return Ok(Label::Inside),
+                    Some(false) => return Ok(Label::Outside),
+                    None => {}
+                }
+            }
+        }
+        // A ray from an implicit centroid.
+        let centroid = Centroid(first.corners.map(|c| table.get(c)));
+        match ray_parity(&centroid, other) {
+            Some(true) => Ok(Label::Inside),
+            Some(false) => Ok(Label::Outside),
+            None => Err(BooleanError::Inconsistent(format!(
+                "a piece of operand {} has its centroid on the surface of operand {}",
+                self.operands[self.mine].index, other.index
+            ))),
+        }
     }
 }
 
@@ -157,9 +223,9 @@ fn strictly_inside(p: &Centroid<PointView>, tri: [DVec3; 3]) -> bool {
     (0..3).all(|k| orient2d_projected(&corners[k], &corners[(k + 1) % 3], p, axis) == facing)
 }
 
-/// The parity of the `+x` ray from `p` through `other`'s triangles
-/// (`true`: inside), or `None` when `p` lies on one.
-fn ray_parity(p: &impl HasHomogeneous, other: &Prepared) -> Option<bool> {
+/// A box that surely holds `p` (its interval coordinates, widened by two
+/// units in the last place for the division).
+fn bounds_of(p: &impl HasHomogeneous) -> Aabb {
     let filter = p.filter();
     let bound = |i: usize| -> (f64, f64) {
         let (x, w) = (filter.xyz[i], filter.w);
@@ -172,11 +238,17 @@ fn ray_parity(p: &impl HasHomogeneous, other: &Prepared) -> Option<bool> {
         (lo.next_down().next_down(), hi.next_up().next_up())
     };
     let (x, y, z) = (bound(0), bound(1), bound(2));
-    let far = other.bvh.bounds().max.x.max(x.1);
-    let query = Aabb {
+    Aabb {
         min: DVec3::new(x.0, y.0, z.0),
-        max: DVec3::new(far, y.1, z.1),
-    };
+        max: DVec3::new(x.1, y.1, z.1),
+    }
+}
+
+/// The parity of the `+x` ray from `p` through `other`'s triangles
+/// (`true`: inside), or `None` when `p` lies on one.
+fn ray_parity(p: &impl HasHomogeneous, other: &Prepared) -> Option<bool> {
+    let mut query = bounds_of(p);
+    query.max.x = other.bvh.bounds().max.x.max(query.max.x);
     let mut crossings = 0usize;
     let mut on_surface = false;
     other.triangles_overlapping(&query, |t| match x_ray_crossing(p, other.corners(t)) {

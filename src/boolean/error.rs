@@ -4,31 +4,37 @@ use thiserror::Error;
 
 use crate::mesh::FaceId;
 
-use super::operand::Operand;
-
 /// Why a boolean produced no solid.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum BooleanError {
     /// An operand is not a valid closed solid; `report` lists the located
     /// defects the validator found.
-    #[error("the {side:?} operand is not a valid solid ({validity}): {report}")]
+    #[error("operand {operand} is not a valid solid ({validity}): {report}")]
     InvalidOperand {
-        /// Which operand.
-        side: Operand,
+        /// Which operand, by its index (0 is the first).
+        operand: usize,
         /// The validator's verdict in words.
         validity: String,
         /// The first defects, with their faces.
         report: String,
     },
     /// A face of an operand could not be triangulated.
-    #[error("face {face:?} of the {side:?} operand cannot be triangulated: {reason}")]
+    #[error("face {face:?} of operand {operand} cannot be triangulated: {reason}")]
     Face {
-        /// Which operand.
-        side: Operand,
+        /// Which operand, by its index (0 is the first).
+        operand: usize,
         /// The face.
         face: FaceId,
         /// The triangulator's reason.
         reason: String,
+    },
+    /// The set expression names an operand that is not in the list.
+    #[error("the expression names operand {operand}, but there are only {count} operands")]
+    UnknownOperand {
+        /// The index named.
+        operand: usize,
+        /// How many operands were given.
+        count: usize,
     },
     /// The operands touch in more pairs of triangles than the boolean's
     /// limit allows (the memory it would take).

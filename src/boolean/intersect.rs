@@ -21,13 +21,27 @@ use crate::geom::{Sign, orient2d, orient3d};
 
 /// A point found by a pair: an operand vertex (by its global index) or a
 /// constructed point.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub(crate) enum PointRef {
     /// A corner of one of the two triangles.
     Vertex(u32),
     /// A point made by the intersection.
     New(ImplicitPoint),
 }
+
+/// The line a cut runs along besides the cut triangle's own plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Carrier {
+    /// Where the two triangles' planes meet (a crossing pair).
+    PlanesMeet,
+    /// Along edge `k` (corner `k` to corner `k + 1`) of the other triangle
+    /// (a coplanar pair).
+    OtherEdge(u8),
+}
+
+/// A segment cutting one triangle of a pair: its ends (indices into the
+/// contact's points) and its line.
+pub(crate) type Cut = (u8, u8, Carrier);
 
 /// What one pair of triangles contributes.
 #[derive(Clone, Debug, Default)]
@@ -36,9 +50,9 @@ pub(crate) struct Contact {
     /// overlap (distinct).
     pub points: SmallVec<[PointRef; 4]>,
     /// Segments (indices into `points`) that cut the first triangle.
-    pub first_cuts: SmallVec<[(u8, u8); 3]>,
+    pub first_cuts: SmallVec<[Cut; 3]>,
     /// Segments that cut the second triangle.
-    pub second_cuts: SmallVec<[(u8, u8); 3]>,
+    pub second_cuts: SmallVec<[Cut; 3]>,
     /// For a coplanar pair: whether the two normals point the same way.
     pub coplanar_same: Option<bool>,
     /// Every corner found on the other triangle, also those equal to
@@ -86,7 +100,7 @@ pub(crate) fn contact(a: &Tri, b: &Tri) -> Option<Contact> {
         return None;
     }
     let mut contact = Contact {
-        points: points.iter().map(|(_, r)| *r).collect(),
+        points: points.iter().map(|(_, r)| r.clone()).collect(),
         touched,
         ..Contact::default()
     };
@@ -94,8 +108,8 @@ pub(crate) fn contact(a: &Tri, b: &Tri) -> Option<Contact> {
         // The points lie on one line; the lexicographic extremes are the
         // segment's ends.
         let last = (points.len() - 1) as u8;
-        contact.first_cuts.push((0, last));
-        contact.second_cuts.push((0, last));
+        contact.first_cuts.push((0, last, Carrier::PlanesMeet));
+        contact.second_cuts.push((0, last, Carrier::PlanesMeet));
     }
     Some(contact)
 }
@@ -166,7 +180,7 @@ fn edges_through(
                 plane: other.corners,
             }
             .simplified();
-            found.push((point, PointRef::New(point)));
+            found.push((point.clone(), PointRef::New(point)));
         }
     }
 }
@@ -228,12 +242,12 @@ fn coplanar(a: &Tri, b: &Tri) -> Option<Contact> {
                 // A corner lies on both of its edges, and on every edge of
                 // the other triangle whose line passes through it.
                 let point = ImplicitPoint::Explicit(p);
-                found.push((point, r, base + i as u8));
-                found.push((point, r, base + ((i + 2) % 3) as u8));
+                found.push((point.clone(), r.clone(), base + i as u8));
+                found.push((point.clone(), r.clone(), base + ((i + 2) % 3) as u8));
                 for k in 0..3 {
                     let o = &other.corners;
                     if orient2d_axis(o[k], o[(k + 1) % 3], p, axis) == Sign::Zero {
-                        found.push((point, r, other_base + k as u8));
+                        found.push((point.clone(), r.clone(), other_base + k as u8));
                     }
                 }
             }
@@ -257,8 +271,8 @@ fn coplanar(a: &Tri, b: &Tri) -> Option<Contact> {
                     drop_axis: axis,
                 }
                 .simplified();
-                found.push((point, PointRef::New(point), i as u8));
-                found.push((point, PointRef::New(point), 3 + k as u8));
+                found.push((point.clone(), PointRef::New(point.clone()), i as u8));
+                found.push((point.clone(), PointRef::New(point), 3 + k as u8));
             }
         }
     }
@@ -266,8 +280,10 @@ fn coplanar(a: &Tri, b: &Tri) -> Option<Contact> {
         return None;
     }
     let touched = vertices_of(found.iter().map(|f| &f.1));
-    let mut all: SmallVec<[(ImplicitPoint, PointRef); 8]> =
-        found.iter().map(|(p, r, _)| (*p, *r)).collect();
+    let mut all: SmallVec<[(ImplicitPoint, PointRef); 8]> = found
+        .iter()
+        .map(|(p, r, _)| (p.clone(), r.clone()))
+        .collect();
     all = distinct(all);
     let index_of = |p: &ImplicitPoint| -> u8 {
         all.iter()
@@ -275,7 +291,7 @@ fn coplanar(a: &Tri, b: &Tri) -> Option<Contact> {
             .unwrap_or(0) as u8
     };
     let mut contact = Contact {
-        points: all.iter().map(|(_, r)| *r).collect(),
+        points: all.iter().map(|(_, r)| r.clone()).collect(),
         coplanar_same: Some(a_facing == b_facing),
         touched,
         ..Contact::default()
@@ -291,12 +307,14 @@ fn coplanar(a: &Tri, b: &Tri) -> Option<Contact> {
         on.sort_unstable();
         on.dedup();
         if on.len() >= 2 {
-            let cut = (on[0], on[on.len() - 1]);
+            let (from, to) = (on[0], on[on.len() - 1]);
             // Edges of b cut a; edges of a cut b.
             if edge >= 3 {
-                contact.first_cuts.push(cut);
+                let along = Carrier::OtherEdge(edge - 3);
+                contact.first_cuts.push((from, to, along));
             } else {
-                contact.second_cuts.push(cut);
+                let along = Carrier::OtherEdge(edge);
+                contact.second_cuts.push((from, to, along));
             }
         }
     }

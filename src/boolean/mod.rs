@@ -28,7 +28,9 @@
 
 mod assemble;
 mod classify;
+mod crossings;
 mod error;
+mod expression;
 mod intersect;
 mod merge;
 mod operand;
@@ -46,10 +48,12 @@ use crate::mesh::Solid;
 use crate::validate::Report;
 
 pub use error::BooleanError;
-pub use operand::{FaceOrigin, Operand};
+pub use expression::Expression;
+pub use operand::FaceOrigin;
 
 use classify::{Partner, Piece};
-use intersect::{Contact, PointRef, Tri};
+use crossings::{Line, Segment};
+use intersect::{Carrier, Contact, PointRef, Tri};
 use operand::Prepared;
 use points::PointTable;
 
@@ -89,6 +93,10 @@ pub struct BooleanStats {
     pub new_points: usize,
     /// Triangles that were cut.
     pub cut_triangles: usize,
+    /// Points where the segments of two different operands cross inside a
+    /// triangle of a third (only with three or more operands; each counted
+    /// once per triangle it lies in).
+    pub segment_crossings: usize,
 }
 
 impl BooleanStats {
@@ -134,6 +142,7 @@ impl std::ops::AddAssign<&BooleanStats> for BooleanStats {
         self.contacts += one.contacts;
         self.new_points += one.new_points;
         self.cut_triangles += one.cut_triangles;
+        self.segment_crossings += one.segment_crossings;
     }
 }
 
@@ -218,154 +227,208 @@ impl Solid {
 }
 
 /// The regularized boolean `a op b` of two closed solids, as a valid
-/// winged-edge solid.
+/// winged-edge solid: [`combine`] with the expression `0 op 1`.
 ///
 /// # Errors
 ///
-/// [`BooleanError::InvalidOperand`] when an operand is not a valid closed
-/// solid (with the validator's located defects);
-/// [`BooleanError::NotBuilt`] when the result is not a 2-manifold (solids
-/// touching only along an edge or at a vertex);
-/// [`BooleanError::InvalidResult`] when rounding the result's constructed
-/// points to `f64` broke it (located); [`BooleanError::Inconsistent`]
-/// never, unless wingedge has a defect.
+/// As for [`combine`].
 pub fn boolean(
     a: &Solid,
     b: &Solid,
     operation: Operation,
     options: BooleanOptions,
 ) -> Result<Boolean, BooleanError> {
+    let expression = Expression::of(operation, Expression::Operand(0), Expression::Operand(1));
+    combine(&[a, b], &expression, options)
+}
+
+/// The regularized set `expression` of closed solids (`operands`, named
+/// in the expression by index), evaluated in one pass as a valid
+/// winged-edge solid: every operand's surface is cut by every other's, and
+/// every point made — an edge through a face, two coplanar edges crossing,
+/// three faces meeting — stays implicit until the result is written, so a
+/// whole CSG tree is as exact as one boolean.
+///
+/// # Errors
+///
+/// [`BooleanError::UnknownOperand`] when the expression names an index
+/// past the list; [`BooleanError::InvalidOperand`] when an operand is not
+/// a valid closed solid (with the validator's located defects);
+/// [`BooleanError::NotBuilt`] when the result is not a 2-manifold (solids
+/// touching only along an edge or at a vertex);
+/// [`BooleanError::InvalidResult`] when rounding the result's constructed
+/// points to `f64` broke it (located); [`BooleanError::Inconsistent`]
+/// never, unless wingedge has a defect.
+pub fn combine(
+    operands: &[&Solid],
+    expression: &Expression,
+    options: BooleanOptions,
+) -> Result<Boolean, BooleanError> {
     let mut stats = BooleanStats::default();
+    let named = expression.operands();
+    if let Some(&operand) = named.iter().find(|&&k| k >= operands.len()) {
+        return Err(BooleanError::UnknownOperand {
+            operand,
+            count: operands.len(),
+        });
+    }
     let clock = Instant::now();
     if options.check_operands {
-        check_operand(a, Operand::First)?;
-        check_operand(b, Operand::Second)?;
+        named
+            .par_iter()
+            .map(|&k| check_operand(operands[k], k))
+            .collect::<Result<Vec<()>, _>>()?;
     }
     stats.check_seconds = clock.elapsed().as_secs_f64();
-    if a.face_count() == 0 || b.face_count() == 0 {
-        return with_empty_operand(a, b, operation, stats);
+    let Some(expression) = expression.without_empty(&|k| operands[k].face_count() == 0) else {
+        return as_is(None, stats);
+    };
+    if let Expression::Operand(k) = expression {
+        return as_is(Some((operands[k], k)), stats);
     }
+    let named = expression.operands();
+    let expression = expression.renumbered(&|k| named.binary_search(&k).unwrap_or(0));
 
     let clock = Instant::now();
-    let (first, second) = rayon::join(
-        || Prepared::new(a, Operand::First),
-        || Prepared::new(b, Operand::Second),
-    );
-    let (first, second) = (first?, second?);
+    let prepared: Vec<Prepared> = named
+        .par_iter()
+        .map(|&k| Prepared::new(operands[k], k))
+        .collect::<Result<_, _>>()?;
+    let mut offsets = Vec::with_capacity(prepared.len());
+    let mut base = 0u32;
+    for p in &prepared {
+        offsets.push(base);
+        base += p.positions.len() as u32;
+    }
     stats.prepare_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    let offset = first.positions.len() as u32;
-    let contacts = contacts(&first, &second, offset);
-    stats.contacts = contacts.len();
-    if contacts.len() > options.max_contacts {
-        return Err(BooleanError::TooLarge {
-            contacts: contacts.len(),
-            limit: options.max_contacts,
-        });
+    let mut all_contacts = Vec::new();
+    for i in 0..prepared.len() {
+        for j in i + 1..prepared.len() {
+            let (a, b) = (&prepared[i], &prepared[j]);
+            if a.bvh.bounds().intersection(b.bvh.bounds()).is_empty() {
+                continue;
+            }
+            let found = contacts(a, b, offsets[i], offsets[j]);
+            stats.contacts += found.len();
+            if stats.contacts > options.max_contacts {
+                return Err(BooleanError::TooLarge {
+                    contacts: stats.contacts,
+                    limit: options.max_contacts,
+                });
+            }
+            all_contacts.push((i, j, found));
+        }
     }
     stats.intersect_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    let vertices: Vec<glam::DVec3> = first
-        .positions
+    let vertices: Vec<glam::DVec3> = prepared
         .iter()
-        .chain(&second.positions)
-        .copied()
+        .flat_map(|p| p.positions.iter().copied())
         .collect();
     let base = vertices.len();
     let mut made: Vec<ImplicitPoint> = Vec::new();
-    let mut cuts: [HashMap<u32, Cuts>; 2] = [HashMap::default(), HashMap::default()];
-    let mut partners: [HashMap<u32, Vec<Partner>>; 2] = [HashMap::default(), HashMap::default()];
+    let mut cuts: Vec<HashMap<u32, Cuts>> = vec![HashMap::default(); prepared.len()];
+    let mut partners: Vec<HashMap<u32, Vec<Partner>>> = vec![HashMap::default(); prepared.len()];
     let mut candidates: Vec<u32> = Vec::new();
-    for (ta, tb, contact) in &contacts {
-        let ids: Vec<u32> = contact
-            .points
-            .iter()
-            .map(|r| match r {
-                PointRef::Vertex(i) => *i,
-                PointRef::New(p) => {
-                    made.push(*p);
-                    (base + made.len() - 1) as u32
-                }
-            })
-            .collect();
-        candidates.extend(&ids);
-        candidates.extend(&contact.touched);
-        for (side, t, segments) in [
-            (0, *ta, &contact.first_cuts),
-            (1, *tb, &contact.second_cuts),
-        ] {
-            let entry = cuts[side].entry(t).or_default();
-            entry.points.extend(&ids);
-            entry.segments.extend(
-                segments
-                    .iter()
-                    .map(|&(i, j)| (ids[i as usize], ids[j as usize])),
-            );
+    for (i, j, found) in &all_contacts {
+        for (ta, tb, contact) in found {
+            let ids: Vec<u32> = contact
+                .points
+                .iter()
+                .map(|r| match r {
+                    PointRef::Vertex(v) => *v,
+                    PointRef::New(p) => {
+                        made.push(p.clone());
+                        (base + made.len() - 1) as u32
+                    }
+                })
+                .collect();
+            candidates.extend(&ids);
+            candidates.extend(&contact.touched);
+            let corners = [prepared[*i].corners(*ta), prepared[*j].corners(*tb)];
+            for (mine, other, t, list, other_corners) in [
+                (*i, *j, *ta, &contact.first_cuts, corners[1]),
+                (*j, *i, *tb, &contact.second_cuts, corners[0]),
+            ] {
+                let entry = cuts[mine].entry(t).or_default();
+                entry.points.extend(&ids);
+                entry
+                    .segments
+                    .extend(list.iter().map(|&(from, to, along)| Segment {
+                        ends: (ids[from as usize], ids[to as usize]),
+                        operand: other,
+                        line: match along {
+                            Carrier::PlanesMeet => Line::Meets(other_corners),
+                            Carrier::OtherEdge(k) => Line::Through(
+                                other_corners[k as usize],
+                                other_corners[(k as usize + 1) % 3],
+                            ),
+                        },
+                    }));
+            }
+            if let Some(same) = contact.coplanar_same {
+                partners[*i].entry(*ta).or_default().push((*j, *tb, same));
+                partners[*j].entry(*tb).or_default().push((*i, *ta, same));
+            }
         }
-        if let Some(same) = contact.coplanar_same {
-            partners[0].entry(*ta).or_default().push((*tb, same));
-            partners[1].entry(*tb).or_default().push((*ta, same));
-        }
+    }
+    drop(all_contacts);
+    if prepared.len() > 2 {
+        stats.segment_crossings =
+            cross_segments(&prepared, &vertices, &mut made, &mut cuts, &mut candidates);
     }
     stats.new_points = made.len();
     let table = PointTable::new(vertices, made, candidates);
     stats.points_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    stats.cut_triangles = cuts[0].len() + cuts[1].len();
-    let (pieces_a, constrained_a) = pieces(&table, &first, 0, &cuts[0])?;
-    let (pieces_b, constrained_b) = pieces(&table, &second, offset, &cuts[1])?;
-    let constrained: HashSet<(u32, u32)> = constrained_a.into_iter().chain(constrained_b).collect();
+    stats.cut_triangles = cuts.iter().map(HashMap::len).sum();
+    let mut all_pieces = Vec::with_capacity(prepared.len());
+    let mut constrained: HashSet<(u32, u32)> = HashSet::default();
+    for (slot, operand) in prepared.iter().enumerate() {
+        let (p, c) = pieces(&table, operand, offsets[slot], &cuts[slot])?;
+        all_pieces.push(p);
+        constrained.extend(c);
+    }
     stats.split_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    let (labels_a, labels_b) = rayon::join(
-        || {
-            classify::label_pieces(
+    let decisions: Vec<Vec<Option<bool>>> = (0..prepared.len())
+        .into_par_iter()
+        .map(|slot| {
+            classify::keep_pieces(
                 &table,
-                &first,
-                &pieces_a,
+                &prepared,
+                slot,
+                &all_pieces[slot],
                 &constrained,
-                &partners[0],
-                &second,
+                &partners[slot],
+                &expression,
             )
-        },
-        || {
-            classify::label_pieces(
-                &table,
-                &second,
-                &pieces_b,
-                &constrained,
-                &partners[1],
-                &first,
-            )
-        },
-    );
-    let (labels_a, labels_b) = (labels_a?, labels_b?);
+        })
+        .collect::<Result<_, _>>()?;
     stats.classify_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
     let mut kept = Vec::new();
-    for (operand, pieces, labels) in [
-        (&first, &pieces_a, &labels_a),
-        (&second, &pieces_b, &labels_b),
-    ] {
-        for (piece, &label) in pieces.iter().zip(labels.iter()) {
-            if let Some(flip) = select::keep(operation, operand.side, label) {
+    for (slot, operand) in prepared.iter().enumerate() {
+        for (piece, decision) in all_pieces[slot].iter().zip(&decisions[slot]) {
+            if let Some(flip) = *decision {
                 let [x, y, z] = piece.corners;
                 let [p, q, r] = operand.corners(piece.triangle);
                 kept.push(assemble::KeptPiece {
                     corners: if flip { [x, z, y] } else { [x, y, z] },
-                    side: operand.side,
+                    operand: slot,
                     face: operand.faces[piece.triangle as usize],
                     plane: if flip { [p, r, q] } else { [p, q, r] },
                 });
             }
         }
     }
-    let (soup, sources) = assemble::soup_of(&table, &kept, [&first, &second]);
+    let (soup, sources) = assemble::soup_of(&table, &kept, &prepared);
     let (solid, origins, report, proof_seconds) = assemble::build_and_prove(&soup, &sources)?;
     stats.proof_seconds = proof_seconds;
     stats.output_seconds = clock.elapsed().as_secs_f64() - proof_seconds;
@@ -380,21 +443,9 @@ pub fn boolean(
 /// An operand's pieces and the edges of them that lie on segments.
 type Pieces = (Vec<Piece>, Vec<(u32, u32)>);
 
-/// A boolean with an empty operand: one operand or nothing, as it is.
-fn with_empty_operand(
-    a: &Solid,
-    b: &Solid,
-    operation: Operation,
-    stats: BooleanStats,
-) -> Result<Boolean, BooleanError> {
-    let chosen = match operation {
-        Operation::Union if a.face_count() == 0 => Some((b, Operand::Second)),
-        Operation::Union | Operation::Difference if b.face_count() == 0 => {
-            Some((a, Operand::First))
-        }
-        _ => None,
-    };
-    let Some((source, side)) = chosen else {
+/// The result when it is empty (`None`) or one operand as it is.
+fn as_is(chosen: Option<(&Solid, usize)>, stats: BooleanStats) -> Result<Boolean, BooleanError> {
+    let Some((source, operand)) = chosen else {
         return Ok(Boolean {
             report: prove(&Solid::default())?,
             solid: Solid::default(),
@@ -406,7 +457,7 @@ fn with_empty_operand(
     let faces: Vec<_> = solid.faces().map(|(f, _)| f).collect();
     let mut origins = Vec::with_capacity(faces.len());
     for f in faces {
-        origins.push(FaceOrigin { side, face: f });
+        origins.push(FaceOrigin { operand, face: f });
         let mut attributes = solid.face(f).attributes.clone();
         attributes.source_index = Some(origins.len() - 1);
         solid.set_face_attributes(f, attributes);
@@ -423,14 +474,72 @@ fn with_empty_operand(
 #[derive(Clone, Debug, Default)]
 struct Cuts {
     points: Vec<u32>,
-    segments: Vec<(u32, u32)>,
+    segments: Vec<Segment>,
+}
+
+/// With three or more operands: the crossings of segments of different
+/// operands inside each triangle, added to its points (and to the points
+/// that may coincide with others). Returns how many were made.
+fn cross_segments(
+    prepared: &[Prepared],
+    vertices: &[glam::DVec3],
+    made: &mut Vec<ImplicitPoint>,
+    cuts: &mut [HashMap<u32, Cuts>],
+    candidates: &mut Vec<u32>,
+) -> usize {
+    let base = vertices.len();
+    let point = |i: u32| match vertices.get(i as usize) {
+        Some(&v) => ImplicitPoint::Explicit(v),
+        None => made[i as usize - base].clone(),
+    };
+    let mut found: Vec<(usize, u32, Vec<ImplicitPoint>)> = Vec::new();
+    for (slot, operand) in prepared.iter().enumerate() {
+        let mut triangles: Vec<(&u32, &Cuts)> = cuts[slot]
+            .iter()
+            .filter(|(_, cut)| {
+                cut.segments
+                    .iter()
+                    .any(|s| s.operand != cut.segments[0].operand)
+            })
+            .collect();
+        triangles.sort_unstable_by_key(|(t, _)| **t);
+        found.extend(
+            triangles
+                .par_iter()
+                .map(|&(&t, cut)| {
+                    let plane = operand.corners(t);
+                    let (axis, _) = intersect::projection(&plane);
+                    (
+                        slot,
+                        t,
+                        crossings::crossings(plane, axis, &cut.segments, point),
+                    )
+                })
+                .filter(|(_, _, points)| !points.is_empty())
+                .collect::<Vec<_>>(),
+        );
+    }
+    let mut count = 0;
+    for (slot, t, points) in found {
+        let Some(cut) = cuts[slot].get_mut(&t) else {
+            continue;
+        };
+        for p in points {
+            made.push(p);
+            let id = (base + made.len() - 1) as u32;
+            cut.points.push(id);
+            candidates.push(id);
+            count += 1;
+        }
+    }
+    count
 }
 
 /// Refuses an operand that is not a valid closed solid.
-fn check_operand(solid: &Solid, side: Operand) -> Result<(), BooleanError> {
+fn check_operand(solid: &Solid, operand: usize) -> Result<(), BooleanError> {
     prove(solid).map(|_| ()).map_err(|e| match e {
         BooleanError::InvalidResult { validity, report } => BooleanError::InvalidOperand {
-            side,
+            operand,
             validity,
             report,
         },
@@ -449,9 +558,15 @@ pub fn prove(solid: &Solid) -> Result<Report, BooleanError> {
     assemble::prove(solid)
 }
 
-/// Every pair of triangles that meet, with its contact, in an order fixed
-/// by the two BVHs.
-fn contacts(first: &Prepared, second: &Prepared, offset: u32) -> Vec<(u32, u32, Contact)> {
+/// Every pair of triangles of two operands that meet, with its contact, in
+/// an order fixed by the two BVHs; point indices are global (each
+/// operand's vertices from its offset on).
+fn contacts(
+    first: &Prepared,
+    second: &Prepared,
+    first_offset: u32,
+    second_offset: u32,
+) -> Vec<(u32, u32, Contact)> {
     let tri = |operand: &Prepared, t: u32, base: u32| Tri {
         corners: operand.corners(t),
         ids: operand.triangles[t as usize].map(|i| i + base),
@@ -468,9 +583,10 @@ fn contacts(first: &Prepared, second: &Prepared, offset: u32) -> Vec<(u32, u32, 
                 if box_a.intersection(second.bounds[tb as usize]).is_empty() {
                     continue;
                 }
-                if let Some(contact) =
-                    intersect::contact(&tri(first, ta, 0), &tri(second, tb, offset))
-                {
+                if let Some(contact) = intersect::contact(
+                    &tri(first, ta, first_offset),
+                    &tri(second, tb, second_offset),
+                ) {
                     found.push((ta, tb, contact));
                 }
             }
@@ -506,15 +622,15 @@ fn pieces(
             let segments: Vec<(u32, u32)> = cut
                 .segments
                 .iter()
-                .map(|&(i, j)| (canonical(i), canonical(j)))
+                .map(|s| (canonical(s.ends.0), canonical(s.ends.1)))
                 .filter(|(i, j)| i != j)
                 .collect();
             let (axis, _) = intersect::projection(&operand.corners(t));
             let split =
                 split::split_triangle(table, corners, axis, &points, &segments).map_err(|e| {
                     BooleanError::Inconsistent(format!(
-                        "cutting triangle {t} of the {:?} operand: {}",
-                        operand.side, e.0
+                        "cutting triangle {t} of operand {}: {}",
+                        operand.index, e.0
                     ))
                 })?;
             let pieces = split

@@ -12,20 +12,12 @@ use crate::spatial::Bvh;
 
 use super::BooleanError;
 
-/// Which operand of a boolean.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Operand {
-    /// The left operand (`a` in `a ∪ b`, `a − b`).
-    First,
-    /// The right operand.
-    Second,
-}
-
 /// The face of an operand a result face came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct FaceOrigin {
-    /// Which operand.
-    pub side: Operand,
+    /// Which operand, by its index in the operands' list (for
+    /// [`boolean`](super::boolean): 0 is `a`, 1 is `b`).
+    pub operand: usize,
     /// The operand's face.
     pub face: FaceId,
 }
@@ -39,7 +31,8 @@ pub struct FaceOrigin {
 /// `order` lists triangle indices by BVH item position.
 pub(crate) struct Prepared<'s> {
     pub solid: &'s Solid,
-    pub side: Operand,
+    /// The operand's index in the operands' list.
+    pub index: usize,
     pub positions: Vec<DVec3>,
     pub triangles: Vec<[u32; 3]>,
     pub faces: Vec<FaceId>,
@@ -50,7 +43,7 @@ pub(crate) struct Prepared<'s> {
 
 impl<'s> Prepared<'s> {
     /// Triangulates every face of `solid` and indexes the triangles.
-    pub fn new(solid: &'s Solid, side: Operand) -> Result<Prepared<'s>, BooleanError> {
+    pub fn new(solid: &'s Solid, operand: usize) -> Result<Prepared<'s>, BooleanError> {
         let mut index: HashMap<VertexId, u32> =
             HashMap::with_capacity_and_hasher(solid.vertex_count(), Default::default());
         let mut positions = Vec::with_capacity(solid.vertex_count());
@@ -64,7 +57,7 @@ impl<'s> Prepared<'s> {
             let pieces = solid
                 .try_triangulate_face(face)
                 .map_err(|source| BooleanError::Face {
-                    side,
+                    operand,
                     face,
                     reason: source.to_string(),
                 })?;
@@ -80,7 +73,7 @@ impl<'s> Prepared<'s> {
         let (bvh, order) = Bvh::build(&bounds);
         Ok(Prepared {
             solid,
-            side,
+            index: operand,
             positions,
             triangles,
             faces,

@@ -45,14 +45,26 @@ impl PointView<'_> {
     pub fn definition(&self) -> ImplicitPoint {
         match self {
             PointView::Vertex(v) => ImplicitPoint::Explicit(*v),
-            PointView::Made(c) => c.point,
+            PointView::Made(c) => c.point.clone(),
+        }
+    }
+
+    /// The explicit coordinates, if the point has them.
+    #[must_use]
+    pub fn explicit(&self) -> Option<DVec3> {
+        match self {
+            PointView::Vertex(v) => Some(*v),
+            PointView::Made(c) => c.point.explicit(),
         }
     }
 }
 
 impl HasHomogeneous for PointView<'_> {
     fn homogeneous<T: Arithmetic>(&self) -> Homogeneous<T> {
-        self.definition().homogeneous()
+        match self {
+            PointView::Vertex(v) => ImplicitPoint::Explicit(*v).homogeneous(),
+            PointView::Made(c) => c.point.homogeneous(),
+        }
     }
 
     fn filter(&self) -> Homogeneous<Interval> {
@@ -125,17 +137,13 @@ impl PointTable {
     /// The explicit position of point `i`, if it has one.
     #[must_use]
     pub fn explicit(&self, i: u32) -> Option<DVec3> {
-        match self.get(i) {
-            PointView::Vertex(v) => Some(v),
-            PointView::Made(c) => c.point.explicit(),
-        }
+        self.get(i).explicit()
     }
 }
 
 fn exact_order(a: &PointView, b: &PointView) -> Ordering {
-    let (da, db) = (a.definition(), b.definition());
-    if let (Some(_), Some(_)) = (da.explicit(), db.explicit()) {
-        return compare_points(&da, &db);
+    if let (Some(x), Some(y)) = (a.explicit(), b.explicit()) {
+        return compare_points(&ImplicitPoint::Explicit(x), &ImplicitPoint::Explicit(y));
     }
     (0..3)
         .map(|axis| compare_axis(a, b, axis))

@@ -1,43 +1,75 @@
-//! Stage 5: the operator's rule — which labelled pieces bound the result,
-//! and which are turned over.
+//! Stage 5: the expression's rule — which labelled patches bound the
+//! result, and which are turned over.
+//!
+//! A patch of operand `i` separates the inside of `i` (behind it) from the
+//! outside (in front). It bounds the result exactly when the expression
+//! holds on one side and not on the other: evaluated once with `i`'s
+//! membership true and once false, every other operand's membership being
+//! its label (inside, outside; on its surface with the same orientation:
+//! like `i`; with the opposite: unlike `i`). Kept facing out of the result:
+//! as it is when the result is behind it, turned over when in front.
+//!
+//! Where several operands' surfaces coincide, their patches are the same
+//! piece of the result, and the one of the smallest operand index stands
+//! for all (its decision is theirs: a coincident patch with the same
+//! orientation sees the same two sides, one with the opposite orientation
+//! sees them swapped and turns over accordingly).
 
-use super::Operation;
+use super::BooleanError;
 use super::classify::Label;
-use super::operand::Operand;
+use super::expression::Expression;
 
-/// Whether a piece of operand `side` with `label` bounds the result of
-/// `operation`, and if so whether it is turned over (`Some(true)`).
+/// Whether a patch of operand `own` bounds the result of `expression`, and
+/// if so whether it is turned over (`Some(true)`); `label(k)` is the
+/// patch's label against operand `k ≠ own`, asked only where it decides.
 ///
-/// Coplanar pieces are kept once: where both operands' surfaces coincide
-/// with the same orientation the first operand's piece stands for both (in
-/// a union or intersection); with opposite orientations the two solids
-/// touch from opposite sides and the surface is inside a union and outside
-/// an intersection, so neither piece stays. A difference `a − b` is
-/// `a ∩ ¬b`: `b`'s pieces inside `a` are kept turned over, and a coplanar
-/// pair counts as the same orientation when the normals are opposite.
-#[must_use]
-pub(crate) fn keep(operation: Operation, side: Operand, label: Label) -> Option<bool> {
-    use Label::{Inside, OnOpposite, OnSame, Outside};
-    use Operation::{Difference, Intersection, Union};
-    match (operation, side, label) {
-        (Union, Operand::First, Outside | OnSame) => Some(false),
-        (Union, Operand::Second, Outside) => Some(false),
-        (Intersection, Operand::First, Inside | OnSame) => Some(false),
-        (Intersection, Operand::Second, Inside) => Some(false),
-        (Difference, Operand::First, Outside | OnOpposite) => Some(false),
-        (Difference, Operand::Second, Inside) => Some(true),
+/// # Errors
+///
+/// The first error `label` returns.
+pub(crate) fn keep(
+    expression: &Expression,
+    own: usize,
+    label: &mut impl FnMut(usize) -> Result<Label, BooleanError>,
+) -> Result<Option<bool>, BooleanError> {
+    let mut side = |inside_own: bool| {
+        expression.contains(&mut |k| {
+            if k == own {
+                return Ok(inside_own);
+            }
+            Ok(match label(k)? {
+                Label::Inside => true,
+                Label::Outside => false,
+                Label::OnSame => inside_own,
+                Label::OnOpposite => !inside_own,
+            })
+        })
+    };
+    let behind = side(true)?;
+    let in_front = side(false)?;
+    Ok(match (behind, in_front) {
+        (true, false) => Some(false),
+        (false, true) => Some(true),
         _ => None,
-    }
+    })
+}
+
+/// Whether a patch with `label` against operand `other` is that operand's
+/// to keep rather than its own (`own`): it lies on `other`'s surface and
+/// `other` comes first.
+#[must_use]
+pub(crate) fn covered(own: usize, other: usize, label: Label) -> bool {
+    other < own && matches!(label, Label::OnSame | Label::OnOpposite)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::boolean::Operation;
 
-    /// Every combination, written out as a table of the regularized set
-    /// operations.
+    /// With two operands the rule is the table of the regularized set
+    /// operations, written out.
     #[test]
-    fn the_rule_is_the_regularized_set_operation() {
+    fn with_two_operands_the_rule_is_the_regularized_set_operation() {
         use Label::*;
         use Operation::*;
         let cases = [
@@ -58,21 +90,47 @@ mod tests {
             ),
         ];
         for (op, first, second) in cases {
+            let e = Expression::of(op, Expression::Operand(0), Expression::Operand(1));
             for (k, label) in [Outside, Inside, OnSame, OnOpposite]
                 .into_iter()
                 .enumerate()
             {
-                assert_eq!(
-                    keep(op, Operand::First, label),
-                    first[k],
-                    "{op:?} first {label:?}"
-                );
-                assert_eq!(
-                    keep(op, Operand::Second, label),
-                    second[k],
-                    "{op:?} second {label:?}"
-                );
+                for (own, expected) in [(0, first[k]), (1, second[k])] {
+                    let other = 1 - own;
+                    let got = if covered(own, other, label) {
+                        None
+                    } else {
+                        keep(&e, own, &mut |_| Ok(label)).unwrap()
+                    };
+                    assert_eq!(got, expected, "{op:?} operand {own} {label:?}");
+                }
             }
         }
+    }
+
+    /// `a − (b ∪ c)`: a patch of `b` inside `a` and outside `c` bounds the
+    /// result turned over; inside `c` it is hidden.
+    #[test]
+    fn a_patch_bounds_the_result_where_the_expression_changes_across_it() {
+        let e = Expression::of(
+            Operation::Difference,
+            Expression::Operand(0),
+            Expression::of(
+                Operation::Union,
+                Expression::Operand(1),
+                Expression::Operand(2),
+            ),
+        );
+        let labels = |inside_c: bool| {
+            move |k: usize| {
+                Ok(match k {
+                    0 => Label::Inside,
+                    _ if inside_c => Label::Inside,
+                    _ => Label::Outside,
+                })
+            }
+        };
+        assert_eq!(keep(&e, 1, &mut labels(false)).unwrap(), Some(true));
+        assert_eq!(keep(&e, 1, &mut labels(true)).unwrap(), None);
     }
 }

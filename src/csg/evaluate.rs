@@ -1,10 +1,8 @@
-//! Boundary evaluation of a whole tree: every leaf made a polyhedron,
-//! then one exact boolean per operator node, bottom up.
-//!
-//! Each boolean's result is a validated solid with `f64` vertices, and the
-//! next boolean takes it as its operand: the constructed points of one
-//! operator are rounded (and the rounded solid proven valid) before the
-//! operator above uses them.
+//! Boundary evaluation of a whole tree: every leaf made a polyhedron
+//! (proven a valid solid), then the tree's set expression over all leaves
+//! evaluated in one exact pass ([`combine`]): every leaf's surface is cut by
+//! every other's and no constructed point is rounded until the result is
+//! written, so chained operators are as exact as one.
 
 use std::time::Instant;
 
@@ -13,7 +11,7 @@ use thiserror::Error;
 use super::tessellate::DEFAULT_TOLERANCE;
 use super::tree::{Csg, NodeIndex, NodeKind};
 use super::{CsgOp, TessellateError};
-use crate::boolean::{BooleanError, BooleanOptions, BooleanStats, Operation, boolean};
+use crate::boolean::{BooleanError, BooleanOptions, BooleanStats, Expression, Operation, combine};
 use crate::mesh::Solid;
 use crate::validate::Report;
 
@@ -52,15 +50,12 @@ pub enum EvaluateError {
         /// The validator's located report.
         source: BooleanError,
     },
-    /// A boolean failed.
-    #[error("{operation:?} of {left} and {right}: {source}")]
+    /// The booleans failed: the result could not be made a valid solid.
+    #[error("{tree}: {source}")]
     Boolean {
-        /// The operation.
-        operation: Operation,
-        /// The labels of the left operand's leaves.
-        left: String,
-        /// The labels of the right operand's leaves.
-        right: String,
+        /// The tree as a formula of its leaves' labels (its first 160
+        /// characters).
+        tree: String,
         /// Why.
         source: BooleanError,
     },
@@ -77,49 +72,58 @@ pub struct Evaluated {
     pub stats: BooleanStats,
     /// Seconds spent making leaves into polyhedra.
     pub tessellate_seconds: f64,
-    /// The number of booleans evaluated.
+    /// The number of operators in the tree (evaluated together).
     pub booleans: usize,
-}
-
-struct Partial {
-    solid: Solid,
-    report: Report,
-    labels: String,
 }
 
 /// Evaluates `csg` to a valid solid.
 ///
 /// # Errors
 ///
-/// [`EvaluateError`] naming the leaf or the operands where it failed.
+/// [`EvaluateError`] naming the leaf where a leaf failed, or the tree
+/// where the booleans did.
 pub fn evaluate(csg: &Csg, options: &EvaluateOptions) -> Result<Evaluated, EvaluateError> {
-    let mut work = Work::default();
+    let mut leaves = Leaves::default();
     let clip = csg.bounds();
-    let root = node(csg, csg.root, options, &clip, &mut work)?;
+    let (expression, tree) = node(csg, csg.root, options, &clip, &mut leaves)?;
+    let operands: Vec<&Solid> = leaves.solids.iter().collect();
+    // Every leaf was proven valid above.
+    let boolean_options = BooleanOptions {
+        check_operands: false,
+        ..BooleanOptions::default()
+    };
+    let result = combine(&operands, &expression, boolean_options).map_err(|source| {
+        EvaluateError::Boolean {
+            tree: shortened(&tree),
+            source,
+        }
+    })?;
     Ok(Evaluated {
-        solid: root.solid,
-        report: root.report,
-        stats: work.stats,
-        tessellate_seconds: work.tessellate_seconds,
-        booleans: work.booleans,
+        solid: result.solid,
+        report: result.report,
+        stats: result.stats,
+        tessellate_seconds: leaves.tessellate_seconds,
+        booleans: leaves.operators,
     })
 }
 
-/// The work counted while evaluating.
+/// The leaves made so far, in the order the expression names them.
 #[derive(Default)]
-struct Work {
-    stats: BooleanStats,
+struct Leaves {
+    solids: Vec<Solid>,
     tessellate_seconds: f64,
-    booleans: usize,
+    operators: usize,
 }
 
+/// The expression of the subtree at `index` over the leaves it adds to
+/// `out`, and its formula in leaf labels.
 fn node(
     csg: &Csg,
     index: NodeIndex,
     options: &EvaluateOptions,
     clip: &crate::geom::Aabb,
-    out: &mut Work,
-) -> Result<Partial, EvaluateError> {
+    out: &mut Leaves,
+) -> Result<(Expression, String), EvaluateError> {
     match csg.nodes[index].kind {
         NodeKind::Leaf(id) => {
             let leaf = &csg.leaves[id.0 as usize];
@@ -132,16 +136,15 @@ fn node(
                     source,
                 })?;
             out.tessellate_seconds += clock.elapsed().as_secs_f64();
-            let report =
-                crate::boolean::prove(&solid).map_err(|source| EvaluateError::InvalidLeaf {
-                    label: leaf.label.clone(),
-                    source,
-                })?;
-            Ok(Partial {
-                solid,
-                report,
-                labels: leaf.label.clone(),
-            })
+            crate::boolean::prove(&solid).map_err(|source| EvaluateError::InvalidLeaf {
+                label: leaf.label.clone(),
+                source,
+            })?;
+            out.solids.push(solid);
+            Ok((
+                Expression::Operand(out.solids.len() - 1),
+                leaf.label.clone(),
+            ))
         }
         NodeKind::Op { op, left, right } => {
             let (l, r) = (
@@ -154,29 +157,26 @@ fn node(
                 CsgOp::Difference => (l, r, Operation::Difference),
                 CsgOp::ReverseDifference => (r, l, Operation::Difference),
             };
-            // Leaves were proven valid above and every result is.
-            let options = BooleanOptions {
-                check_operands: false,
-                ..BooleanOptions::default()
-            };
-            let result = boolean(&a.solid, &b.solid, operation, options).map_err(|source| {
-                EvaluateError::Boolean {
-                    operation,
-                    left: a.labels.clone(),
-                    right: b.labels.clone(),
-                    source,
-                }
-            })?;
-            out.booleans += 1;
-            out.stats += &result.stats;
-            Ok(Partial {
-                solid: result.solid,
-                report: result.report,
-                labels: format!("({} {} {})", a.labels, symbol(operation), b.labels),
-            })
+            out.operators += 1;
+            Ok((
+                Expression::of(operation, a.0, b.0),
+                format!("({} {} {})", a.1, symbol(operation), b.1),
+            ))
         }
     }
 }
+
+/// A tree's formula cut to its first [`FORMULA_CHARS`] characters, so an
+/// error about a large scene stays readable.
+fn shortened(formula: &str) -> String {
+    match formula.char_indices().nth(FORMULA_CHARS) {
+        Some((end, _)) => format!("{}…", &formula[..end]),
+        None => formula.to_string(),
+    }
+}
+
+/// How much of a tree's formula an error quotes.
+const FORMULA_CHARS: usize = 160;
 
 fn symbol(operation: Operation) -> &'static str {
     match operation {

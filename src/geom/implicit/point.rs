@@ -1,7 +1,8 @@
 //! Points made by intersections, kept as the inputs that define them.
 //!
 //! A boolean's new vertices are where an edge of one solid meets a face of
-//! the other, or where two coplanar edges cross. Rounding such a point to
+//! another, where two coplanar edges cross, or — when several solids are
+//! combined at once — where three faces' planes meet. Rounding such a point to
 //! `f64` moves it off the lines and planes it lies on, and a later sign
 //! computed from the rounded point can contradict the construction. So the
 //! point is kept as its definition and every predicate on it is evaluated
@@ -22,10 +23,11 @@ use super::interval::Interval;
 ///
 /// The constructions are not degenerate: for [`ImplicitPoint::EdgePlane`]
 /// the segment is not parallel to the plane, for [`ImplicitPoint::EdgeEdge`]
-/// the two segments are not parallel in the projection, so the homogeneous
-/// weight `W` is never zero. Callers establish this with exact predicates
+/// the two segments are not parallel in the projection, for
+/// [`ImplicitPoint::ThreePlanes`] the three normals are independent, so the
+/// homogeneous weight `W` is never zero. Callers establish this with exact predicates
 /// before they make the point.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum ImplicitPoint {
     /// A point with `f64` coordinates.
     Explicit(DVec3),
@@ -52,6 +54,12 @@ pub enum ImplicitPoint {
         s: DVec3,
         /// The coordinate the projection drops (0, 1 or 2).
         drop_axis: u8,
+    },
+    /// The three planes, each through three points, meet in this point.
+    ThreePlanes {
+        /// Three points spanning each plane (boxed: the other points are
+        /// half its size, and most points are not of this kind).
+        planes: Box<[[DVec3; 3]; 3]>,
     },
 }
 
@@ -154,6 +162,25 @@ impl HasHomogeneous for ImplicitPoint {
                 let denominator = cross2(&along, &other);
                 on_segment(p, q, numerator, denominator)
             }
+            ImplicitPoint::ThreePlanes { ref planes } => {
+                // n_k · x = d_k for k = 0, 1, 2, by Cramer's rule:
+                // x = (d0 (n1 × n2) + d1 (n2 × n0) + d2 (n0 × n1)) / (n0 · (n1 × n2)).
+                let [(n0, d0), (n1, d1), (n2, d2)] = (**planes).map(|[a, b, c]| {
+                    let normal = cross(&difference::<T>(b, a), &difference::<T>(c, a));
+                    let offset = dot(&normal, &exact::<T>(a));
+                    (normal, offset)
+                });
+                let (c12, c20, c01) = (cross(&n1, &n2), cross(&n2, &n0), cross(&n0, &n1));
+                let coordinate = |i: usize| {
+                    d0.times(&c12[i])
+                        .plus(&d1.times(&c20[i]))
+                        .plus(&d2.times(&c01[i]))
+                };
+                Homogeneous {
+                    xyz: [coordinate(0), coordinate(1), coordinate(2)],
+                    w: dot(&n0, &c12),
+                }
+            }
         }
     }
 }
@@ -218,6 +245,9 @@ impl ImplicitPoint {
             }
             ImplicitPoint::EdgeEdge { p, q, r, s, .. } => {
                 [0, 1, 2].map(|k| shared(&[p, q], k).or_else(|| shared(&[r, s], k)))
+            }
+            ImplicitPoint::ThreePlanes { ref planes } => {
+                [0, 1, 2].map(|k| planes.iter().find_map(|plane| shared(plane, k)))
             }
         };
         match known {

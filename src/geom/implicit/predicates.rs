@@ -322,6 +322,74 @@ mod tests {
         assert_eq!(compare_points(&tilted, &beside), Ordering::Less);
     }
 
+    /// Three tilted planes meet in a point that lies exactly on each of
+    /// them and equals the same point made as an edge–plane point; planes
+    /// that share a coordinate give it explicitly.
+    #[test]
+    fn three_planes_meet_exactly_on_each() {
+        let planes = [
+            [
+                DVec3::new(0.1, 0.0, 0.3),
+                DVec3::new(1.0, 0.2, 0.7),
+                DVec3::new(0.3, 1.0, 0.1),
+            ],
+            [
+                DVec3::new(0.0, 0.7, 0.0),
+                DVec3::new(0.9, 0.1, 0.2),
+                DVec3::new(0.2, 0.3, 1.1),
+            ],
+            [
+                DVec3::new(0.6, 0.0, 0.0),
+                DVec3::new(0.1, 0.9, 0.3),
+                DVec3::new(0.4, 0.2, 1.3),
+            ],
+        ];
+        let point = ImplicitPoint::ThreePlanes {
+            planes: Box::new(planes),
+        };
+        for plane in planes {
+            assert_eq!(side_of_plane(plane, &point), Sign::Zero);
+        }
+        let beside = ImplicitPoint::Explicit(rounded(&point) + DVec3::splat(1e-9));
+        assert_ne!(side_of_plane(planes[0], &beside), Sign::Zero);
+        // Planes x = 0.25, y = 0.5 and a tilted one: x and y are known.
+        let x = [
+            DVec3::new(0.25, 0.0, 0.0),
+            DVec3::new(0.25, 1.0, 0.0),
+            DVec3::new(0.25, 0.0, 1.0),
+        ];
+        let y = [
+            DVec3::new(0.0, 0.5, 0.0),
+            DVec3::new(0.0, 0.5, 1.0),
+            DVec3::new(1.0, 0.5, 0.0),
+        ];
+        let z = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 1.0),
+        ];
+        let corner = ImplicitPoint::ThreePlanes {
+            planes: Box::new([x, y, z]),
+        };
+        assert_eq!(
+            compare_points(
+                &corner,
+                &ImplicitPoint::Explicit(DVec3::new(0.25, 0.5, 0.5))
+            ),
+            Ordering::Equal
+        );
+        // The line of planes x and y, met by the plane z, as an edge–plane
+        // point.
+        let along = edge_plane(DVec3::new(0.25, 0.5, -3.0), DVec3::new(0.25, 0.5, 5.0), z);
+        assert_eq!(compare_points(&corner, &along), Ordering::Equal);
+        assert_eq!(
+            corner.simplified(),
+            ImplicitPoint::ThreePlanes {
+                planes: Box::new([x, y, z])
+            }
+        );
+    }
+
     /// A point on a triangle parallel to the ray is on it, not beside it;
     /// a ray through a shared edge crosses exactly one of its triangles.
     #[test]

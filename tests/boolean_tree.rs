@@ -1,0 +1,254 @@
+//! Whole set expressions over several solids evaluated in one pass
+//! (`boolean::combine`): seeded random trees of boxes on an integer grid
+//! against an exact count of unit cells, and trees of turned solids in
+//! general position against the same tree evaluated one operator at a
+//! time.
+
+use glam::{DAffine3, DVec3};
+use wingedge::boolean::{
+    Boolean, BooleanError, BooleanOptions, Expression, Operation, boolean, combine,
+};
+use wingedge::mesh::{Solid, builders};
+use wingedge::validate::Validity;
+
+#[path = "../src/test_rng.rs"]
+mod test_rng;
+
+/// Unit cells per side of the grid the boxes live on.
+const SIDE: i32 = 5;
+
+/// A random expression over operands `first..first + count`.
+fn random_expression(next: &mut impl FnMut() -> f64, first: usize, count: usize) -> Expression {
+    if count == 1 {
+        return Expression::Operand(first);
+    }
+    let left = 1 + ((next() * (count - 1) as f64) as usize).min(count - 2);
+    let operation = match (next() * 3.0) as u32 {
+        0 => Operation::Union,
+        1 => Operation::Intersection,
+        _ => Operation::Difference,
+    };
+    Expression::of(
+        operation,
+        random_expression(next, first, left),
+        random_expression(next, first + left, count - left),
+    )
+}
+
+/// Whether the cell with lower corner `c` is in the expression's set.
+fn cell_inside(expression: &Expression, boxes: &[([i32; 3], [i32; 3])], c: [i32; 3]) -> bool {
+    expression
+        .contains(&mut |k| {
+            let (lo, hi) = boxes[k];
+            Ok::<bool, ()>((0..3).all(|i| lo[i] <= c[i] && c[i] < hi[i]))
+        })
+        .unwrap_or(false)
+}
+
+/// Whether the boundary of a set of unit cells is a 2-manifold: around
+/// every grid vertex, the filled cells of its 2 × 2 × 2 block and the empty
+/// ones are each connected through shared faces (unless one of them is
+/// absent). A block of two diagonal cells around an edge fails this at both
+/// ends of the edge.
+fn cells_are_manifold(filled: &impl Fn([i32; 3]) -> bool) -> bool {
+    for x in 0..=SIDE {
+        for y in 0..=SIDE {
+            for z in 0..=SIDE {
+                let block: Vec<bool> = (0..8)
+                    .map(|b| filled([x - 1 + (b & 1), y - 1 + ((b >> 1) & 1), z - 1 + (b >> 2)]))
+                    .collect();
+                for want in [true, false] {
+                    let members: Vec<i32> = (0..8).filter(|&b| block[b as usize] == want).collect();
+                    if members.is_empty() {
+                        continue;
+                    }
+                    let mut reached = vec![members[0]];
+                    let mut k = 0;
+                    while k < reached.len() {
+                        let b = reached[k];
+                        for bit in [1, 2, 4] {
+                            let n = b ^ bit;
+                            if block[n as usize] == want && !reached.contains(&n) {
+                                reached.push(n);
+                            }
+                        }
+                        k += 1;
+                    }
+                    if reached.len() != members.len() {
+                        return false;
+                    }
+                }
+            }
+        }
+    }
+    true
+}
+
+/// Trees of 3 to 6 boxes with integer corners (faces coincide, edges and
+/// corners touch, three planes meet at grid points): the one-pass result is
+/// valid with exactly the volume of the cells inside, whenever the exact
+/// result is a 2-manifold, and is refused (never wrong) when it is not.
+#[test]
+fn trees_of_grid_boxes_have_the_volume_of_their_cells() {
+    let mut uniform = test_rng::uniform(0x07EE_50FB_08E5);
+    let mut next = move || uniform();
+    let (mut made, mut refused) = (0, 0);
+    for case in 0..150 {
+        let count = 3 + (next() * 4.0) as usize;
+        let mut boxes = Vec::new();
+        let mut solids = Vec::new();
+        for _ in 0..count {
+            let mut lo = [0; 3];
+            let mut hi = [0; 3];
+            for i in 0..3 {
+                let a = (next() * SIDE as f64) as i32;
+                let b = (next() * SIDE as f64) as i32;
+                lo[i] = a.min(b);
+                hi[i] = a.max(b) + 1;
+            }
+            let corner = |c: [i32; 3]| DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64);
+            solids.push(builders::cuboid(corner(lo), corner(hi)).expect("a box"));
+            boxes.push((lo, hi));
+        }
+        let expression = random_expression(&mut next, 0, count);
+        let filled = |c: [i32; 3]| {
+            (0..3).all(|i| (0..SIDE).contains(&c[i])) && cell_inside(&expression, &boxes, c)
+        };
+        let mut cells = 0;
+        for x in 0..SIDE {
+            for y in 0..SIDE {
+                for z in 0..SIDE {
+                    cells += i32::from(filled([x, y, z]));
+                }
+            }
+        }
+        let operands: Vec<&Solid> = solids.iter().collect();
+        let result = combine(&operands, &expression, BooleanOptions::default());
+        if cells_are_manifold(&filled) {
+            let r = result.unwrap_or_else(|e| panic!("case {case} {expression:?}: {e}"));
+            if cells == 0 {
+                assert_eq!(r.solid.face_count(), 0, "case {case}: empty");
+            } else {
+                assert_eq!(r.report.validity, Validity::ValidSolid, "case {case}");
+            }
+            let volume = r.solid.volume();
+            assert!(
+                (volume - f64::from(cells)).abs() < 1e-9,
+                "case {case} {expression:?}: volume {volume}, {cells} cells"
+            );
+            made += 1;
+        } else {
+            match result {
+                Err(BooleanError::NotBuilt(_) | BooleanError::InvalidResult { .. }) => {
+                    refused += 1;
+                }
+                Err(e) => panic!("case {case}: {e}"),
+                Ok(_) => panic!("case {case} {expression:?}: a pinched result was returned"),
+            }
+        }
+    }
+    println!("{made} results, {refused} pinched results refused");
+    assert!(made >= 100, "only {made} of 150 trees are 2-manifolds");
+}
+
+fn mapped(s: &Solid, map: DAffine3) -> Solid {
+    let mut soup = s.to_soup();
+    for p in &mut soup.positions {
+        *p = map.transform_point3(*p);
+    }
+    Solid::try_from_soup(&soup).expect("a solid")
+}
+
+/// The expression evaluated one operator at a time, each result rounded
+/// and proven before the next operator takes it.
+fn one_at_a_time(expression: &Expression, solids: &[Solid]) -> Result<Solid, BooleanError> {
+    let (operation, l, r) = match expression {
+        Expression::Operand(k) => return Ok(solids[*k].clone()),
+        Expression::Union(l, r) => (Operation::Union, l, r),
+        Expression::Intersection(l, r) => (Operation::Intersection, l, r),
+        Expression::Difference(l, r) => (Operation::Difference, l, r),
+    };
+    let (a, b) = (one_at_a_time(l, solids)?, one_at_a_time(r, solids)?);
+    boolean(&a, &b, operation, BooleanOptions::default()).map(|r: Boolean| r.solid)
+}
+
+/// Trees of 3 to 5 turned and offset cubes, octahedra and spheres (general
+/// position: the faces of three operands meet in points no operand has):
+/// the one-pass result is valid and agrees with the operators evaluated
+/// one at a time in volume, shells and genus.
+#[test]
+fn trees_of_turned_solids_agree_with_one_operator_at_a_time() {
+    let mut uniform = test_rng::uniform(0x007E_E50F_7A2E_0002);
+    let mut next = move || uniform();
+    let mut crossings = 0;
+    for case in 0..40 {
+        let count = 3 + (next() * 3.0) as usize;
+        let mut solids = Vec::new();
+        for _ in 0..count {
+            let base = match (next() * 3.0) as u32 {
+                0 => builders::sphere(6 + (next() * 6.0) as usize),
+                1 => builders::cube(),
+                _ => builders::octahedron(),
+            };
+            let axis = DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize_or(DVec3::Z);
+            let map = DAffine3::from_translation(DVec3::new(next(), next(), next()) * 0.9)
+                * DAffine3::from_axis_angle(axis, next() * 6.0);
+            solids.push(mapped(&base, map));
+        }
+        let expression = random_expression(&mut next, 0, count);
+        let operands: Vec<&Solid> = solids.iter().collect();
+        let together = combine(&operands, &expression, BooleanOptions::default())
+            .unwrap_or_else(|e| panic!("case {case} {expression:?}: {e}"));
+        crossings += together.stats.segment_crossings;
+        let apart = one_at_a_time(&expression, &solids)
+            .unwrap_or_else(|e| panic!("case {case} one at a time: {e}"));
+        let apart_report = wingedge::boolean::prove(&apart).expect("proven");
+        let (v1, v2) = (together.solid.volume(), apart.volume());
+        let scale = solids.iter().map(Solid::volume).fold(0.0, f64::max);
+        assert!(
+            (v1 - v2).abs() <= 1e-12 * scale,
+            "case {case} {expression:?}: {v1} vs {v2}"
+        );
+        assert_eq!(together.report.shells, apart_report.shells, "case {case}");
+        assert_eq!(together.report.genus, apart_report.genus, "case {case}");
+    }
+    assert!(crossings > 0, "no three-operand crossing was exercised");
+    println!("{crossings} points where three operands' faces meet");
+}
+
+/// Bad expressions are refused by name; empty operands drop out.
+#[test]
+fn unknown_operands_are_refused_and_empty_ones_drop_out() {
+    let cube = builders::cube();
+    let err = combine(
+        &[&cube],
+        &Expression::of(
+            Operation::Union,
+            Expression::Operand(0),
+            Expression::Operand(3),
+        ),
+        BooleanOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(
+        err,
+        BooleanError::UnknownOperand {
+            operand: 3,
+            count: 1
+        }
+    );
+    let empty = Solid::default();
+    let e = Expression::of(
+        Operation::Difference,
+        Expression::of(
+            Operation::Union,
+            Expression::Operand(0),
+            Expression::Operand(1),
+        ),
+        Expression::Operand(1),
+    );
+    let r = combine(&[&cube, &empty], &e, BooleanOptions::default()).unwrap();
+    assert_eq!(r.solid.face_count(), cube.face_count());
+    assert!((r.solid.volume() - cube.volume()).abs() < 1e-12);
+    assert!(r.origins.iter().all(|o| o.operand == 0));
+}
