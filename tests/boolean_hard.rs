@@ -37,17 +37,24 @@ fn cubes_sharing_an_edge_or_a_vertex() {
         let d = a.difference(&b).unwrap();
         assert_eq!(valid(&d), 1.0);
         assert_eq!(d.solid.face_count(), 6);
-        // The union is pinched along the edge or at the vertex: not a
-        // 2-manifold, refused with the place named.
-        let err = a.union(&b).unwrap_err();
-        assert!(
-            matches!(
-                err,
-                BooleanError::NotBuilt(_) | BooleanError::InvalidResult { .. }
-            ),
-            "{err}"
-        );
     }
+    // The union touching itself at a vertex: two shells, each with its own
+    // vertex at the shared corner.
+    let corner = a.union(&cuboid([1.0; 3], [2.0; 3])).unwrap();
+    assert_eq!(valid(&corner), 2.0);
+    assert_eq!(corner.report.shells, 2);
+    assert_eq!(corner.solid.vertex_count(), 16);
+    // Pinched along the edge: refused with the place named.
+    let err = a
+        .union(&cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]))
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            BooleanError::NotBuilt(_) | BooleanError::InvalidResult { .. }
+        ),
+        "{err}"
+    );
 }
 
 #[test]

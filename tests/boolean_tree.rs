@@ -45,49 +45,40 @@ fn cell_inside(expression: &Expression, boxes: &[([i32; 3], [i32; 3])], c: [i32;
         .unwrap_or(false)
 }
 
-/// Whether the boundary of a set of unit cells is a 2-manifold: around
-/// every grid vertex, the filled cells of its 2 × 2 × 2 block and the empty
-/// ones are each connected through shared faces (unless one of them is
-/// absent). A block of two diagonal cells around an edge fails this at both
-/// ends of the edge.
-fn cells_are_manifold(filled: &impl Fn([i32; 3]) -> bool) -> bool {
-    for x in 0..=SIDE {
-        for y in 0..=SIDE {
-            for z in 0..=SIDE {
-                let block: Vec<bool> = (0..8)
-                    .map(|b| filled([x - 1 + (b & 1), y - 1 + ((b >> 1) & 1), z - 1 + (b >> 2)]))
-                    .collect();
-                for want in [true, false] {
-                    let members: Vec<i32> = (0..8).filter(|&b| block[b as usize] == want).collect();
-                    if members.is_empty() {
-                        continue;
-                    }
-                    let mut reached = vec![members[0]];
-                    let mut k = 0;
-                    while k < reached.len() {
-                        let b = reached[k];
-                        for bit in [1, 2, 4] {
-                            let n = b ^ bit;
-                            if block[n as usize] == want && !reached.contains(&n) {
-                                reached.push(n);
-                            }
-                        }
-                        k += 1;
-                    }
-                    if reached.len() != members.len() {
-                        return false;
+/// Whether the boundary of a set of unit cells touches itself along an
+/// edge: two cells of the set and two of its complement around one grid
+/// edge, diagonally. (Cells meeting only at a corner give a surface that
+/// touches itself at a point, which a winged-edge solid holds as two
+/// vertices at one position.)
+fn cells_touch_along_an_edge(filled: &impl Fn([i32; 3]) -> bool) -> bool {
+    for axis in 0..3 {
+        let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+        for a in 0..SIDE {
+            for b in 0..=SIDE {
+                for c in 0..=SIDE {
+                    let cell = |du: i32, dv: i32| {
+                        let mut p = [0; 3];
+                        p[axis] = a;
+                        p[u] = b - 1 + du;
+                        p[v] = c - 1 + dv;
+                        filled(p)
+                    };
+                    let (x00, x01, x10, x11) = (cell(0, 0), cell(0, 1), cell(1, 0), cell(1, 1));
+                    if x00 == x11 && x01 == x10 && x00 != x01 {
+                        return true;
                     }
                 }
             }
         }
     }
-    true
+    false
 }
 
 /// Trees of 3 to 6 boxes with integer corners (faces coincide, edges and
 /// corners touch, three planes meet at grid points): the one-pass result is
-/// valid with exactly the volume of the cells inside, whenever the exact
-/// result is a 2-manifold, and is refused (never wrong) when it is not.
+/// valid with exactly the volume of the cells inside, also where it
+/// touches itself at a point, and is refused (never wrong) exactly when it
+/// touches itself along an edge.
 #[test]
 fn trees_of_grid_boxes_have_the_volume_of_their_cells() {
     let mut uniform = test_rng::uniform(0x07EE_50FB_08E5);
@@ -124,7 +115,7 @@ fn trees_of_grid_boxes_have_the_volume_of_their_cells() {
         }
         let operands: Vec<&Solid> = solids.iter().collect();
         let result = combine(&operands, &expression, BooleanOptions::default());
-        if cells_are_manifold(&filled) {
+        if !cells_touch_along_an_edge(&filled) {
             let r = result.unwrap_or_else(|e| panic!("case {case} {expression:?}: {e}"));
             if cells == 0 {
                 assert_eq!(r.solid.face_count(), 0, "case {case}: empty");
@@ -143,12 +134,12 @@ fn trees_of_grid_boxes_have_the_volume_of_their_cells() {
                     refused += 1;
                 }
                 Err(e) => panic!("case {case}: {e}"),
-                Ok(_) => panic!("case {case} {expression:?}: a pinched result was returned"),
+                Ok(_) => panic!("case {case} {expression:?}: a result pinched along an edge"),
             }
         }
     }
-    println!("{made} results, {refused} pinched results refused");
-    assert!(made >= 100, "only {made} of 150 trees are 2-manifolds");
+    println!("{made} results, {refused} results pinched along an edge refused");
+    assert!(made >= 100, "only {made} of 150 trees are not pinched");
 }
 
 fn mapped(s: &Solid, map: DAffine3) -> Solid {
@@ -251,4 +242,35 @@ fn unknown_operands_are_refused_and_empty_ones_drop_out() {
     assert_eq!(r.solid.face_count(), cube.face_count());
     assert!((r.solid.volume() - cube.volume()).abs() < 1e-12);
     assert!(r.origins.iter().all(|o| o.operand == 0));
+}
+
+/// The 101-leaf scene of balls and boxes on a slab, in one pass: the balls
+/// touch the slab at their poles and the boxes stand on it, so the union
+/// is 51 shells (the slab with its boxes, and each ball) whose volume is
+/// the sum of the leaves' own.
+#[test]
+fn balls_resting_on_a_slab_union_to_touching_shells() {
+    use std::path::Path;
+    use wingedge::csg::{EvaluateOptions, evaluate};
+    use wingedge::scene::Scene;
+    let path = Path::new("fixtures/scenes/many_leaves.json");
+    let scene = Scene::from_file(path).expect("the scene");
+    let options = EvaluateOptions::default();
+    let union = evaluate(&scene.csg, &options).expect("evaluated");
+    assert_eq!(union.report.validity, Validity::ValidSolid);
+    assert_eq!(union.report.shells, 51);
+    // Each leaf evaluated alone, clipped by the same bounds (the slab is a
+    // box: no clipping happens).
+    let text = std::fs::read_to_string(path).expect("readable");
+    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let leaves = json["root"]["union"].as_array().expect("a union");
+    assert_eq!(leaves.len(), 101);
+    let mut sum = 0.0;
+    for (k, leaf) in leaves.iter().enumerate() {
+        let alone = serde_json::json!({ "root": leaf }).to_string();
+        let one = Scene::from_json(&alone, &format!("leaf {k}"), Path::new(".")).expect("a leaf");
+        sum += evaluate(&one.csg, &options).expect("a leaf").solid.volume();
+    }
+    let volume = union.solid.volume();
+    assert!((volume - sum).abs() < 1e-9 * sum, "{volume} vs {sum}");
 }

@@ -138,9 +138,31 @@ fn csg_refuses_what_it_cannot_evaluate() {
     let (code, _, err) = wingedge(&["csg", DRILLED, "-o", &out, "--tolerance", "0"], "");
     assert_eq!(code, 2);
     assert!(err.contains("tolerance"), "{err}");
-    // A sphere touching a plate at one point: the regularized union is
-    // pinched there, not a 2-manifold; the touching faces are named.
-    let (code, _, err) = wingedge(&["csg", "fixtures/scenes/many_leaves.json", "-o", &out], "");
+    // Two boxes sharing an edge: the regularized union is pinched along
+    // it, which a winged-edge solid cannot hold; exit 1, the edge named.
+    let scene = dir.arg("edge.json");
+    std::fs::write(
+        &scene,
+        r#"{"root": {"union": [
+            {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}},
+            {"box": {"min": [1, 1, 0], "max": [2, 2, 1]}}]}}"#,
+    )
+    .unwrap();
+    let (code, _, err) = wingedge(&["csg", &scene, "-o", &out], "");
     assert_eq!(code, 1, "{err}");
-    assert!(err.contains("self_intersection: face"), "{err}");
+    assert!(err.contains("edge"), "{err}");
+}
+
+/// Balls resting on a slab touch it at one point each: the union is valid,
+/// one shell for the slab and its boxes and one per ball.
+#[test]
+fn csg_evaluates_solids_touching_at_points() {
+    let dir = TempDir::new("csg-touch");
+    let out = dir.arg("out.obj");
+    let (code, text, err) = wingedge(&["csg", "fixtures/scenes/many_leaves.json", "-o", &out], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(text.contains("shells 51"), "{text}");
+    let (code, text, err) = wingedge(&["validate", &out], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(text.contains("valid closed solid"), "{text}");
 }

@@ -10,12 +10,12 @@
 //! planes meet, so removing it changes no shape, and it drops the
 //! near-collinear points that rounding could otherwise fold.
 
-use rustc_hash::FxHashMap as HashMap;
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use glam::DVec3;
 
 use crate::geom::{Sign, orient3d};
-use crate::mesh::{FaceId, Solid};
+use crate::mesh::{FaceId, Solid, VertexId};
 
 use super::intersect::projection;
 use super::operand::FaceOrigin;
@@ -30,20 +30,48 @@ pub(crate) struct PieceSource {
 }
 
 /// Merges every pair of neighbouring faces from the same operand face or
-/// exactly one plane facing one way ([`Solid::merge_faces_where`]).
+/// exactly one plane facing one way ([`Solid::merge_faces_where`]), except
+/// faces at a point where the result touches itself (two vertices at one
+/// position: a sphere resting on a plate touches it at its pole). Merging
+/// every piece around such a point would leave it inside one face, where
+/// a face cannot keep a vertex, and the contact would turn into a vertex
+/// on a face.
 pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) {
     let source_of =
         |solid: &Solid, f: FaceId| solid.face(f).attributes.source_index.map(|i| sources[i]);
+    let touching = touching_vertices(solid);
     let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> = HashMap::default();
     solid.merge_faces_where(|solid, left, right| {
         let (Some(l), Some(r)) = (source_of(solid, left), source_of(solid, right)) else {
             return false;
         };
+        if !touching.is_empty()
+            && [left, right]
+                .iter()
+                .any(|&f| solid.face_vertices(f).any(|v| touching.contains(&v)))
+        {
+            return false;
+        }
         l.origin == r.origin
             || *coplanar_cache
                 .entry((l.origin, r.origin))
                 .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane))
     });
+}
+
+/// The vertices that share their position with another vertex.
+fn touching_vertices(solid: &Solid) -> HashSet<VertexId> {
+    let mut by_position: HashMap<[u64; 3], Vec<VertexId>> = HashMap::default();
+    for (v, vertex) in solid.vertices() {
+        // −0 and +0 are one position.
+        let key = (vertex.position + DVec3::ZERO).to_array().map(f64::to_bits);
+        by_position.entry(key).or_default().push(v);
+    }
+    by_position
+        .into_values()
+        .filter(|vs| vs.len() > 1)
+        .flatten()
+        .collect()
 }
 
 /// Whether two triangles lie exactly in one plane and face the same way.

@@ -49,8 +49,16 @@
 //!
 //! # Sharing nothing
 //!
-//! Any common point is a defect (crossing or touching):
-//! [`triangles_intersect`].
+//! When exactly one corner of each lies at one position (two shells, or
+//! two sheets of one shell, touching at a point where each has a vertex —
+//! spheres resting on a plate, after a boolean): the rule for one shared
+//! vertex, so only a common point beyond it is a defect. Two sheets that
+//! touch at a point without crossing enclose disjoint solids there or one
+//! inside the other; the second is caught by the shells' nesting and
+//! orientation. Otherwise any common point is a defect (crossing or
+//! touching): [`triangles_intersect`]. Coincident edges (two corners at
+//! the same positions) stay defects: whether two sheets cross along an
+//! edge depends on all four faces around it.
 
 use glam::{DVec2, DVec3};
 
@@ -72,7 +80,17 @@ pub(super) fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Tria
         })
         .collect();
     match shared[..] {
-        [] => triangles_intersect(pa, pb),
+        [] => match coincident_corner(pa, pb) {
+            // Two shells (or two sheets of one) touching at a point where
+            // each has a vertex: a contact, not a crossing, unless the
+            // triangles meet beyond it.
+            Some((i, j)) => corners_meet(
+                pa[i],
+                [pa[(i + 1) % 3], pa[(i + 2) % 3]],
+                [pb[(j + 1) % 3], pb[(j + 2) % 3]],
+            ),
+            None => triangles_intersect(pa, pb),
+        },
         [(i, j)] => corners_meet(
             pa[i],
             [pa[(i + 1) % 3], pa[(i + 2) % 3]],
@@ -95,6 +113,23 @@ pub(super) fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Tria
         // The same three vertices: a duplicate, reported as such.
         _ => false,
     }
+}
+
+/// The corners `(i, j)` of two triangles that share no vertex when exactly
+/// one corner of each lies at one position (`pa[i] == pb[j]`, exactly).
+fn coincident_corner(pa: [DVec3; 3], pb: [DVec3; 3]) -> Option<(usize, usize)> {
+    let mut found = None;
+    for i in 0..3 {
+        for j in 0..3 {
+            if pa[i] == pb[j] {
+                if found.is_some() {
+                    return None;
+                }
+                found = Some((i, j));
+            }
+        }
+    }
+    found
 }
 
 /// Whether the triangles `(v, a1, a2)` and `(v, b1, b2)` have a common
