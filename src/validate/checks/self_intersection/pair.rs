@@ -119,9 +119,9 @@ pub(super) fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Tria
 /// one corner of each lies at one position (`pa[i] == pb[j]`, exactly).
 fn coincident_corner(pa: [DVec3; 3], pb: [DVec3; 3]) -> Option<(usize, usize)> {
     let mut found = None;
-    for i in 0..3 {
-        for j in 0..3 {
-            if pa[i] == pb[j] {
+    for (i, p) in pa.iter().enumerate() {
+        for (j, q) in pb.iter().enumerate() {
+            if p == q {
                 if found.is_some() {
                     return None;
                 }
