@@ -9,7 +9,9 @@ use glam::DVec3;
 
 use crate::geom::implicit::rounded;
 use crate::mesh::{FaceId, Polygon, PolygonSoup, Solid};
-use crate::validate::{Options, Report, Validity, check_rings, validate_soup};
+use crate::validate::{
+    Options, Report, Validity, check_rings, validate_soup, validate_soup_near_changed,
+};
 
 use super::BooleanError;
 use super::merge::{PieceSource, merge_faces};
@@ -25,6 +27,9 @@ pub(crate) struct KeptPiece {
     pub face: FaceId,
     /// The operand triangle the piece lies in, wound as the piece.
     pub plane: [DVec3; 3],
+    /// Whether the piece is less than its whole operand triangle (cut, or
+    /// with points of another operand on it).
+    pub changed: bool,
 }
 
 /// The soup of the kept pieces: each canonical point once, rounded; each
@@ -78,6 +83,7 @@ pub(crate) fn soup_of(
                 face: piece.face,
             },
             plane: piece.plane,
+            changed: piece.changed,
         };
         kept.push(Some((polygon, source)));
     }
@@ -187,7 +193,7 @@ pub(crate) fn build_and_prove(
     }
     let mut solid =
         Solid::try_from_soup(soup).map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
-    merge_faces(&mut solid, sources);
+    let changed = merge_faces(&mut solid, sources);
     let mut origins = Vec::new();
     let mut origin_index: HashMap<FaceOrigin, usize> = HashMap::default();
     let faces: Vec<FaceId> = solid.faces().map(|(f, _)| f).collect();
@@ -205,17 +211,41 @@ pub(crate) fn build_and_prove(
         solid.set_face_attributes(f, attributes);
     }
     let clock = std::time::Instant::now();
-    let report = prove(&solid)?;
+    let report = prove_changed(&solid, &changed)?;
     let proof_seconds = clock.elapsed().as_secs_f64();
     Ok((solid, origins, report, proof_seconds))
+}
+
+/// Validates a boolean's result like [`prove`], the self-intersection
+/// check restricted to pairs with a face in `changed`. Sound because every
+/// other face is a whole triangle of an operand, or several merged: two
+/// such faces of one operand do not meet beyond their shared vertices and
+/// edges (the operand is a valid solid), and two of different operands do
+/// not meet at all (the intersection stage tested every pair of their
+/// triangles whose boxes overlap, exactly, and found no contact — else
+/// both would have been cut, or share the point as a vertex).
+fn prove_changed(
+    solid: &Solid,
+    changed: &rustc_hash::FxHashSet<FaceId>,
+) -> Result<Report, BooleanError> {
+    let (proof, polygon_changed) = triangulated(solid, Some(changed))?;
+    let report = validate_soup_near_changed(&proof, &polygon_changed)
+        .map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
+    judged(solid, report)
 }
 
 /// Validates `solid`: every rule on the exact triangulations of its faces,
 /// and its rings.
 pub(crate) fn prove(solid: &Solid) -> Result<Report, BooleanError> {
-    let proof = triangulated(solid)?;
+    let (proof, _) = triangulated(solid, None)?;
     let report = validate_soup(&proof, None, &Options::default())
         .map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
+    judged(solid, report)
+}
+
+/// The report on `solid` made a verdict: an error with the located defects
+/// unless it is a valid solid with valid rings (or empty).
+fn judged(solid: &Solid, report: Report) -> Result<Report, BooleanError> {
     if solid.face_count() == 0 {
         return Ok(report);
     }
@@ -235,8 +265,12 @@ pub(crate) fn prove(solid: &Solid) -> Result<Report, BooleanError> {
 }
 
 /// The solid as a soup of the exact triangulations of its faces (rings
-/// included), which the soup validator can check.
-fn triangulated(solid: &Solid) -> Result<PolygonSoup, BooleanError> {
+/// included), which the soup validator can check; with `changed`, whether
+/// each triangle's face is in it.
+fn triangulated(
+    solid: &Solid,
+    changed: Option<&rustc_hash::FxHashSet<FaceId>>,
+) -> Result<(PolygonSoup, Vec<bool>), BooleanError> {
     let mut index = HashMap::default();
     let mut positions = Vec::with_capacity(solid.vertex_count());
     for (i, (v, vertex)) in solid.vertices().enumerate() {
@@ -244,6 +278,7 @@ fn triangulated(solid: &Solid) -> Result<PolygonSoup, BooleanError> {
         positions.push(vertex.position);
     }
     let mut polygons = Vec::new();
+    let mut polygon_changed = Vec::new();
     for (f, face) in solid.faces() {
         let triangles = solid
             .try_triangulate_face(f)
@@ -255,12 +290,16 @@ fn triangulated(solid: &Solid) -> Result<PolygonSoup, BooleanError> {
             let mut polygon = Polygon::new(t.map(|v| index[&v]));
             polygon.attributes = face.attributes.clone();
             polygons.push(polygon);
+            polygon_changed.push(changed.is_none_or(|c| c.contains(&f)));
         }
     }
-    Ok(PolygonSoup {
-        positions,
-        polygons,
-    })
+    Ok((
+        PolygonSoup {
+            positions,
+            polygons,
+        },
+        polygon_changed,
+    ))
 }
 
 /// The first few defects of a report, one line each.

@@ -14,6 +14,7 @@ use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use glam::DVec3;
 
+use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Sign, orient3d};
 use crate::mesh::{FaceId, Solid, VertexId};
 
@@ -27,6 +28,8 @@ pub(crate) struct PieceSource {
     pub origin: FaceOrigin,
     /// The operand triangle the piece lies in, wound as the piece faces.
     pub plane: [DVec3; 3],
+    /// Whether the piece is less than its whole operand triangle.
+    pub changed: bool,
 }
 
 /// Merges every pair of neighbouring faces from the same operand face or
@@ -36,11 +39,27 @@ pub(crate) struct PieceSource {
 /// every piece around such a point would leave it inside one face, where
 /// a face cannot keep a vertex, and the contact would turn into a vertex
 /// on a face.
-pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) {
+///
+/// Returns the faces after the merge that hold a changed piece (see
+/// [`PieceSource::changed`]).
+pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet<FaceId> {
     let source_of =
         |solid: &Solid, f: FaceId| solid.face(f).attributes.source_index.map(|i| sources[i]);
+    let mut changed: HashSet<FaceId> = solid
+        .faces()
+        .filter(|(_, face)| {
+            face.attributes
+                .source_index
+                .is_none_or(|i| sources[i].changed)
+        })
+        .map(|(f, _)| f)
+        .collect();
     let touching = touching_vertices(solid);
     let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> = HashMap::default();
+    // Faces allowed to merge, as pairs: a merged face holds a changed piece
+    // when any face of its group did (an allowed merge that the Euler
+    // operators then skip only makes the set larger).
+    let mut merged: Vec<(FaceId, FaceId)> = Vec::new();
     solid.merge_faces_where(|solid, left, right| {
         let (Some(l), Some(r)) = (source_of(solid, left), source_of(solid, right)) else {
             return false;
@@ -52,11 +71,39 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) {
         {
             return false;
         }
-        l.origin == r.origin
+        let allowed = l.origin == r.origin
             || *coplanar_cache
                 .entry((l.origin, r.origin))
-                .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane))
+                .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane));
+        if allowed {
+            merged.push((left, right));
+        }
+        allowed
     });
+    // "Changed" spread over each group of merged faces.
+    let mut index: HashMap<FaceId, usize> = HashMap::default();
+    for &(l, r) in &merged {
+        for f in [l, r] {
+            let next = index.len();
+            index.entry(f).or_insert(next);
+        }
+    }
+    let mut groups = DisjointSets::new(index.len());
+    for &(l, r) in &merged {
+        groups.union(index[&l], index[&r]);
+    }
+    let changed_groups: HashSet<usize> = index
+        .iter()
+        .filter(|(f, _)| changed.contains(f))
+        .map(|(_, &i)| groups.find(i))
+        .collect();
+    for (&f, &i) in &index {
+        if changed_groups.contains(&groups.find(i)) {
+            changed.insert(f);
+        }
+    }
+    changed.retain(|&f| solid.get_face(f).is_some());
+    changed
 }
 
 /// The vertices that share their position with another vertex.

@@ -166,7 +166,9 @@ pub struct Boolean {
 pub struct BooleanOptions {
     /// Validate both operands (closed, oriented, no self-intersection)
     /// before any work; on by default. Turn off only for operands known to
-    /// be valid (the output of an earlier boolean, a builder's solid).
+    /// be valid (the output of an earlier boolean, a builder's solid): the
+    /// proof of the result relies on it, testing for self-intersection
+    /// only the faces the boolean changed.
     pub check_operands: bool,
     /// The most pairs of touching triangles a boolean takes on: each costs
     /// a few hundred bytes through the later stages, so the default
@@ -419,11 +421,17 @@ pub fn combine(
             if let Some(flip) = *decision {
                 let [x, y, z] = piece.corners;
                 let [p, q, r] = operand.corners(piece.triangle);
+                let mut own = operand.triangles[piece.triangle as usize]
+                    .map(|i| table.canonical[(i + offsets[slot]) as usize]);
+                own.sort_unstable();
+                let mut corners = piece.corners;
+                corners.sort_unstable();
                 kept.push(assemble::KeptPiece {
                     corners: if flip { [x, z, y] } else { [x, y, z] },
                     operand: slot,
                     face: operand.faces[piece.triangle as usize],
                     plane: if flip { [p, r, q] } else { [p, q, r] },
+                    changed: corners != own,
                 });
             }
         }

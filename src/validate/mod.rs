@@ -106,7 +106,24 @@ pub fn validate_soup(
 ) -> Result<Report, ValidateError> {
     check_soup(soup)?;
     let lines = vertex_lines.filter(|l| l.len() == soup.positions.len());
-    Ok(run(soup, lines, options).0)
+    Ok(run(soup, lines, options, None).0)
+}
+
+/// [`validate_soup`] with the default options, the self-intersection check
+/// restricted to pairs of faces with at least one marked in `changed`
+/// (by polygon index): for a surface made by editing ones known to be
+/// valid and apart (a boolean's result), whose unchanged faces cannot meet
+/// each other. Every other rule runs on the whole soup.
+///
+/// # Errors
+///
+/// As for [`validate_soup`].
+pub(crate) fn validate_soup_near_changed(
+    soup: &PolygonSoup,
+    changed: &[bool],
+) -> Result<Report, ValidateError> {
+    check_soup(soup)?;
+    Ok(run(soup, None, &Options::default(), Some(changed)).0)
 }
 
 /// Validates an imported OBJ file and also returns the winged-edge solid
@@ -121,7 +138,7 @@ pub fn validate_and_build(
     options: &Options,
 ) -> Result<(Report, Option<Solid>), ValidateError> {
     check_soup(&import.soup)?;
-    Ok(run(&import.soup, Some(&import.vertex_lines), options))
+    Ok(run(&import.soup, Some(&import.vertex_lines), options, None))
 }
 
 fn check_soup(soup: &PolygonSoup) -> Result<(), ValidateError> {
@@ -155,10 +172,13 @@ fn check_soup(soup: &PolygonSoup) -> Result<(), ValidateError> {
     Ok(())
 }
 
+/// Every rule on `soup`; the self-intersection check only on pairs with a
+/// face marked in `changed` when it is given.
 fn run(
     soup: &PolygonSoup,
     vertex_lines: Option<&[usize]>,
     options: &Options,
+    changed: Option<&[bool]>,
 ) -> (Report, Option<Solid>) {
     let start = std::time::Instant::now();
     // The soup usually needs no cleaning (no repeats in a row, no duplicate
@@ -186,10 +206,12 @@ fn run(
     let ((intersections, si_seconds), (mut violations, built)) = rayon::join(
         || {
             let t = std::time::Instant::now();
-            let found = if options.self_intersection {
-                checks::self_intersection::check(&ctx)
-            } else {
-                Vec::new()
+            let found = match (options.self_intersection, changed) {
+                (false, _) => Vec::new(),
+                (true, None) => checks::self_intersection::check(&ctx),
+                (true, Some(changed)) => {
+                    checks::self_intersection::check_near_changed(&ctx, changed)
+                }
             };
             (found, t.elapsed().as_secs_f64())
         },

@@ -31,6 +31,7 @@
 
 mod apart;
 mod around_axis;
+mod near;
 mod pair;
 mod sharing;
 mod triangles;
@@ -47,6 +48,20 @@ use triangles::{Triangle, triangulate};
 pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
     let triangles = triangulate(ctx);
     let pairs = intersecting_face_pairs(ctx, &triangles);
+    violations(ctx, pairs)
+}
+
+/// [`check`] restricted to pairs with at least one face marked in
+/// `changed` (by face index): for surfaces whose unchanged faces are known
+/// not to meet each other ([`near`]).
+pub(crate) fn check_near_changed(ctx: &Context, changed: &[bool]) -> Vec<Violation> {
+    let triangles = triangulate(ctx);
+    let pairs = near::pairs_near_changed(ctx, &triangles, changed);
+    violations(ctx, pairs)
+}
+
+/// One violation per pair of faces.
+fn violations(ctx: &Context, pairs: Vec<(usize, usize)>) -> Vec<Violation> {
     pairs
         .into_iter()
         .map(|(a, b)| {
@@ -135,6 +150,38 @@ mod tests {
             .of(crate::validate::Rule::SelfIntersection)
             .map(|v| v.faces.clone())
             .collect()
+    }
+
+    /// The restricted check finds a crossing when either of the two faces
+    /// is marked changed, every pair of marked faces, and nothing between
+    /// unmarked faces (their caller vouches for them).
+    #[test]
+    fn the_check_near_changed_faces_sees_every_pair_with_a_changed_face() {
+        // Three triangles: 0 and 1 cross, 2 far away.
+        let p = vec![
+            v(0., 0., 0.),
+            v(2., 0., 0.),
+            v(0., 2., 0.),
+            v(0.5, 0.5, -1.),
+            v(0.5, 0.5, 1.),
+            v(1.5, 0.2, 0.),
+            v(9., 9., 9.),
+            v(10., 9., 9.),
+            v(9., 10., 9.),
+        ];
+        let faces = vec![vec![0, 1, 2], vec![3, 4, 5], vec![6, 7, 8]];
+        let soup = crate::mesh::PolygonSoup::new(p, faces);
+        let near = |changed: [bool; 3]| -> Vec<Vec<usize>> {
+            crate::validate::validate_soup_near_changed(&soup, &changed)
+                .unwrap()
+                .of(crate::validate::Rule::SelfIntersection)
+                .map(|v| v.faces.clone())
+                .collect()
+        };
+        assert_eq!(near([true, false, false]), vec![vec![0, 1]]);
+        assert_eq!(near([false, true, false]), vec![vec![0, 1]]);
+        assert_eq!(near([true, true, true]), vec![vec![0, 1]]);
+        assert!(near([false, false, true]).is_empty());
     }
 
     #[test]
