@@ -18,7 +18,8 @@ use glam::DVec3;
 
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::implicit::{
-    Centroid, HasHomogeneous, ImplicitPoint, XRayCrossing, orient2d_projected, x_ray_crossing,
+    Centroid, HasHomogeneous, ImplicitPoint, XRayCrossing, enclosing_box, orient2d_projected,
+    x_ray_crossing,
 };
 use crate::geom::{Aabb, Sign};
 
@@ -182,7 +183,7 @@ impl Patch<'_> {
         let first = pieces[members[0] as usize];
         let mut piece_box = Aabb::EMPTY;
         for c in first.corners {
-            piece_box = piece_box.union(bounds_of(&table.get(c)));
+            piece_box = piece_box.union(enclosing_box(&table.get(c)));
         }
         if piece_box.intersection(other.bvh.bounds()).is_empty() {
             return Ok(Label::Outside);
@@ -223,31 +224,10 @@ fn strictly_inside(p: &Centroid<PointView>, tri: [DVec3; 3]) -> bool {
     (0..3).all(|k| orient2d_projected(&corners[k], &corners[(k + 1) % 3], p, axis) == facing)
 }
 
-/// A box that surely holds `p` (its interval coordinates, widened by two
-/// units in the last place for the division).
-fn bounds_of(p: &impl HasHomogeneous) -> Aabb {
-    let filter = p.filter();
-    let bound = |i: usize| -> (f64, f64) {
-        let (x, w) = (filter.xyz[i], filter.w);
-        if w.lo <= 0.0 && w.hi >= 0.0 {
-            return (f64::NEG_INFINITY, f64::INFINITY);
-        }
-        let q = [x.lo / w.lo, x.lo / w.hi, x.hi / w.lo, x.hi / w.hi];
-        let lo = q.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = q.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        (lo.next_down().next_down(), hi.next_up().next_up())
-    };
-    let (x, y, z) = (bound(0), bound(1), bound(2));
-    Aabb {
-        min: DVec3::new(x.0, y.0, z.0),
-        max: DVec3::new(x.1, y.1, z.1),
-    }
-}
-
 /// The parity of the `+x` ray from `p` through `other`'s triangles
 /// (`true`: inside), or `None` when `p` lies on one.
 fn ray_parity(p: &impl HasHomogeneous, other: &Prepared) -> Option<bool> {
-    let mut query = bounds_of(p);
+    let mut query = enclosing_box(p);
     query.max.x = other.bvh.bounds().max.x.max(query.max.x);
     let mut crossings = 0usize;
     let mut on_surface = false;

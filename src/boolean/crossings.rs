@@ -18,8 +18,8 @@
 
 use glam::DVec3;
 
-use crate::geom::Sign;
-use crate::geom::implicit::{ImplicitPoint, orient2d_points};
+use crate::geom::implicit::{ImplicitPoint, enclosing_box, kept_axes, orient2d_points};
+use crate::geom::{Aabb, Sign};
 
 /// The line a segment lies on, besides the plane of the triangle it cuts.
 #[derive(Clone, Copy, Debug)]
@@ -49,21 +49,40 @@ pub(crate) fn crossings(
     segments: &[Segment],
     point: impl Fn(u32) -> ImplicitPoint,
 ) -> Vec<ImplicitPoint> {
+    // A sweep along the first kept axis: only segments whose boxes overlap
+    // are tested exactly.
+    let (u, v) = kept_axes(axis);
+    let ends: Vec<[ImplicitPoint; 2]> = segments
+        .iter()
+        .map(|s| [point(s.ends.0), point(s.ends.1)])
+        .collect();
+    let boxes: Vec<Aabb> = ends
+        .iter()
+        .map(|[a, b]| enclosing_box(a).union(enclosing_box(b)))
+        .collect();
+    let mut order: Vec<usize> = (0..segments.len()).collect();
+    order.sort_by(|&i, &j| boxes[i].min[u].total_cmp(&boxes[j].min[u]));
     let mut found = Vec::new();
-    for (i, s) in segments.iter().enumerate() {
-        for r in &segments[i + 1..] {
-            if r.operand == s.operand {
+    for (k, &i) in order.iter().enumerate() {
+        for &j in &order[k + 1..] {
+            if boxes[j].min[u] > boxes[i].max[u] {
+                break;
+            }
+            let (s, r) = (&segments[i], &segments[j]);
+            if r.operand == s.operand
+                || boxes[j].min[v] > boxes[i].max[v]
+                || boxes[i].min[v] > boxes[j].max[v]
+            {
                 continue;
             }
-            let [a, b] = [s.ends.0, s.ends.1].map(&point);
-            let [c, d] = [r.ends.0, r.ends.1].map(&point);
+            let ([a, b], [c, d]) = (&ends[i], &ends[j]);
             let proper = |x: Sign, y: Sign| x != Sign::Zero && y != Sign::Zero && x != y;
             if proper(
-                orient2d_points(&a, &b, &c, axis),
-                orient2d_points(&a, &b, &d, axis),
+                orient2d_points(a, b, c, axis),
+                orient2d_points(a, b, d, axis),
             ) && proper(
-                orient2d_points(&c, &d, &a, axis),
-                orient2d_points(&c, &d, &b, axis),
+                orient2d_points(c, d, a, axis),
+                orient2d_points(c, d, b, axis),
             ) {
                 found.push(crossing(plane, axis, s.line, r.line).simplified());
             }

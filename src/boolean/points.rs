@@ -6,9 +6,12 @@
 
 use std::cmp::Ordering;
 
+use std::sync::OnceLock;
+
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::geom::dyadic::Dyadic;
 use crate::geom::implicit::{
     Arithmetic, HasHomogeneous, Homogeneous, ImplicitPoint, Interval, compare_axis, compare_points,
 };
@@ -19,6 +22,9 @@ use crate::geom::implicit::{
 pub(crate) struct CachedPoint {
     pub point: ImplicitPoint,
     filter: Homogeneous<Interval>,
+    /// The exact coordinates, computed the first time a predicate needs
+    /// them (degenerate configurations ask again and again).
+    exact: OnceLock<Homogeneous<Dyadic>>,
 }
 
 impl CachedPoint {
@@ -26,6 +32,7 @@ impl CachedPoint {
         CachedPoint {
             filter: point.homogeneous(),
             point,
+            exact: OnceLock::new(),
         }
     }
 }
@@ -71,6 +78,13 @@ impl HasHomogeneous for PointView<'_> {
         match self {
             PointView::Vertex(v) => ImplicitPoint::Explicit(*v).homogeneous(),
             PointView::Made(c) => c.filter.clone(),
+        }
+    }
+
+    fn exact(&self) -> Homogeneous<Dyadic> {
+        match self {
+            PointView::Vertex(v) => ImplicitPoint::Explicit(*v).homogeneous(),
+            PointView::Made(c) => c.exact.get_or_init(|| c.point.homogeneous()).clone(),
         }
     }
 }

@@ -11,8 +11,10 @@
 
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
-use crate::geom::Sign;
-use crate::geom::implicit::{HasHomogeneous, compare_axis, kept_axes, orient2d_projected, times};
+use crate::geom::implicit::{
+    HasHomogeneous, compare_axis, enclosing_box, kept_axes, orient2d_projected, times,
+};
+use crate::geom::{Aabb, Sign};
 
 use super::points::PointTable;
 
@@ -42,6 +44,9 @@ struct Triangulation<'t> {
     facing: Sign,
     vertices: Vec<u32>,
     present: HashSet<u32>,
+    /// A box surely holding each vertex: pairs whose boxes are apart need
+    /// no exact test.
+    boxes: HashMap<u32, Aabb>,
     triangles: Vec<[u32; 3]>,
     edges: HashMap<(u32, u32), usize>,
     constrained: HashSet<(u32, u32)>,
@@ -69,6 +74,11 @@ pub(crate) fn split_triangle(
         facing: Sign::Positive,
         vertices: corners.to_vec(),
         present: corners.iter().copied().collect(),
+        boxes: corners
+            .iter()
+            .chain(points)
+            .map(|&p| (p, enclosing_box(&table.get(p))))
+            .collect(),
         triangles: Vec::new(),
         edges: HashMap::default(),
         constrained: HashSet::default(),
@@ -118,6 +128,14 @@ impl Triangulation<'_> {
         let t = self.table;
         let s = orient2d_projected(&t.get(a), &t.get(b), &t.get(c), self.axis);
         times(s, self.facing)
+    }
+
+    /// A box surely holding vertex `p` (every vertex has one).
+    fn box_of(&self, p: u32) -> Aabb {
+        self.boxes.get(&p).copied().unwrap_or(Aabb {
+            min: glam::DVec3::NEG_INFINITY,
+            max: glam::DVec3::INFINITY,
+        })
     }
 
     /// Replaces triangle `ti` by `tri`, keeping the edge map.
@@ -276,8 +294,13 @@ impl Triangulation<'_> {
             self.constrained.insert(key(u, v));
             return Ok(());
         }
+        let reach = self.box_of(u).union(self.box_of(v));
         let on_segment = self.vertices.iter().copied().find(|&w| {
-            w != u && w != v && self.orient(u, v, w) == Sign::Zero && self.strictly_between(u, v, w)
+            w != u
+                && w != v
+                && !self.box_of(w).intersection(reach).is_empty()
+                && self.orient(u, v, w) == Sign::Zero
+                && self.strictly_between(u, v, w)
         });
         if let Some(w) = on_segment {
             self.insert_segment(u, w, depth + 1)?;
@@ -290,7 +313,14 @@ impl Triangulation<'_> {
         for t in &self.triangles {
             for k in 0..3 {
                 let (x, y) = (t[k], t[(k + 1) % 3]);
-                if x < y && self.crosses(u, v, x, y) {
+                if x < y
+                    && !self
+                        .box_of(x)
+                        .union(self.box_of(y))
+                        .intersection(reach)
+                        .is_empty()
+                    && self.crosses(u, v, x, y)
+                {
                     queue.push_back((x, y));
                 }
             }

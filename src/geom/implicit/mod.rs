@@ -12,7 +12,7 @@ mod predicates;
 pub(crate) use arithmetic::Arithmetic;
 pub(crate) use interval::Interval;
 pub use point::ImplicitPoint;
-pub(crate) use point::{Centroid, HasHomogeneous, Homogeneous, kept_axes};
+pub(crate) use point::{Centroid, HasHomogeneous, Homogeneous, enclosing_box, kept_axes};
 pub(crate) use predicates::{
     XRayCrossing, compare_axis, orient2d_projected, times, x_ray_crossing,
 };

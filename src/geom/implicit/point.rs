@@ -13,6 +13,9 @@
 
 use glam::DVec3;
 
+use crate::geom::Aabb;
+use crate::geom::dyadic::Dyadic;
+
 use super::arithmetic::Arithmetic;
 use super::interval::Interval;
 
@@ -79,6 +82,12 @@ pub(crate) trait HasHomogeneous {
     /// The coordinates as intervals (the filter stage); a point that keeps
     /// them computed returns its copy.
     fn filter(&self) -> Homogeneous<Interval> {
+        self.homogeneous()
+    }
+
+    /// The exact coordinates (the stage after the filter); a point that
+    /// keeps them computed returns its copy.
+    fn exact(&self) -> Homogeneous<Dyadic> {
         self.homogeneous()
     }
 }
@@ -185,6 +194,27 @@ impl HasHomogeneous for ImplicitPoint {
     }
 }
 
+/// A box that surely holds `p` (its interval coordinates, widened by two
+/// units in the last place for the division).
+pub(crate) fn enclosing_box(p: &impl HasHomogeneous) -> Aabb {
+    let filter = p.filter();
+    let bound = |i: usize| -> (f64, f64) {
+        let (x, w) = (filter.xyz[i], filter.w);
+        if w.lo <= 0.0 && w.hi >= 0.0 {
+            return (f64::NEG_INFINITY, f64::INFINITY);
+        }
+        let q = [x.lo / w.lo, x.lo / w.hi, x.hi / w.lo, x.hi / w.hi];
+        let lo = q.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = q.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        (lo.next_down().next_down(), hi.next_up().next_up())
+    };
+    let (x, y, z) = (bound(0), bound(1), bound(2));
+    Aabb {
+        min: DVec3::new(x.0, y.0, z.0),
+        max: DVec3::new(x.1, y.1, z.1),
+    }
+}
+
 /// The centroid of three points: strictly inside their triangle when the
 /// triangle is not degenerate.
 #[derive(Clone, Copy, Debug)]
@@ -198,6 +228,11 @@ impl<P: HasHomogeneous> HasHomogeneous for Centroid<P> {
 
     fn filter(&self) -> Homogeneous<Interval> {
         let [a, b, c] = [0, 1, 2].map(|i| self.0[i].filter());
+        centroid_of(a, b, c)
+    }
+
+    fn exact(&self) -> Homogeneous<Dyadic> {
+        let [a, b, c] = [0, 1, 2].map(|i| self.0[i].exact());
         centroid_of(a, b, c)
     }
 }

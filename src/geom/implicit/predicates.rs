@@ -57,7 +57,7 @@ fn side_in<T: Arithmetic>(plane: [DVec3; 3], p: &Homogeneous<T>) -> Option<Sign>
 pub(crate) fn side_of_plane(plane: [DVec3; 3], p: &impl HasHomogeneous) -> Sign {
     decide(
         || side_in(plane, &p.filter()),
-        || side_in::<Dyadic>(plane, &p.homogeneous()),
+        || side_in::<Dyadic>(plane, &p.exact()),
     )
 }
 
@@ -103,7 +103,7 @@ pub(crate) fn orient2d_projected(
 ) -> Sign {
     decide(
         || orient2d_in([a.filter(), b.filter(), c.filter()], axis),
-        || orient2d_in::<Dyadic>([a.homogeneous(), b.homogeneous(), c.homogeneous()], axis),
+        || orient2d_in::<Dyadic>([a.exact(), b.exact(), c.exact()], axis),
     )
 }
 
@@ -135,7 +135,7 @@ pub(crate) fn compare_axis(
 ) -> Ordering {
     let sign = decide(
         || compare_in(&a.filter(), &b.filter(), axis),
-        || compare_in::<Dyadic>(&a.homogeneous(), &b.homogeneous(), axis),
+        || compare_in::<Dyadic>(&a.exact(), &b.exact(), axis),
     );
     match sign {
         Sign::Negative => Ordering::Less,
