@@ -129,6 +129,12 @@ pub fn det3_sign(rows: [[Diff; 3]; 3]) -> Sign {
         return Sign::of(det);
     }
     count_fallback();
+    // A row or a column of exact zeros (a ray lying in an axis-aligned
+    // face: every row's component along that axis is zero): exactly zero.
+    let zero = |d: &Diff| d.plus == d.minus;
+    if (0..3).any(|k| rows[k].iter().all(zero) || rows.iter().all(|r| zero(&r[k]))) {
+        return Sign::Zero;
+    }
     if !entries.iter().all(|e| e.in_safe_range()) {
         return dyadic::det3_sign(&rows.map(|r| r.map(Diff::dyadic)));
     }
