@@ -291,9 +291,9 @@ def _build_cell(ours, group):
 def _open3d_cell(ours, group):
     """wingedge's rate and how many times open3d's it is, or wingedge's rate alone."""
     open3d = [r for r in group if r["library"].startswith("open3d")]
-    text = "%.3g M/s" % _rate(ours)[0]
+    text = "%.3g" % _rate(ours)[0]
     if open3d:
-        text += ", **%.2f×**" % (_rate(ours)[0] / _rate(open3d[0])[0])
+        text += " **%.2f×**" % (_rate(ours)[0] / _rate(open3d[0])[0])
     return text
 
 
@@ -305,22 +305,22 @@ def render_goal_summary(record):
     for _, task, ours, group in _query_groups(record, with_sets=True):
         cells[(ours["mesh"], task, ours.get("set"))] = _open3d_cell(ours, group)
         if not ours.get("set"):
-            cells[(ours["mesh"], "build")] = "%.3f s" % ours["setup_s"] + "".join(
-                " (open3d %.3f s)" % r["setup_s"] for r in group if r["library"].startswith("open3d"))
+            cells[(ours["mesh"], "build")] = "%.3f" % ours["setup_s"] + "".join(
+                " (%.3f)" % r["setup_s"] for r in group if r["library"].startswith("open3d"))
     settled = sum(v["settled"] for by in record["exact"].values() for v in by.values())
     wrong = sum(v["wingedge_wrong"] for by in record["exact"].values() for v in by.values())
     disputed = sum(v["disputed"] for by in record["exact"].values() for v in by.values())
     load = info["load"]
     out = ["Measured %s on %s (%d cores), %d threads, wingedge and open3d taking turns in one run "
-           "(1-minute load average %.1f at its start, %.1f at its end). Each cell: wingedge's queries per "
-           "second and, in bold, how many times open3d's rate that is (above 1: wingedge is faster). "
-           "Of %d queries settled by exact rational arithmetic (%d where some library disagreed with "
-           "wingedge, the rest a control sample), wingedge answered %d wrong."
+           "(load average %.1f at its start, %.1f at its end). Each cell: wingedge's millions of queries per "
+           "second and, in bold, that rate over open3d's. Of %d queries settled by exact rational "
+           "arithmetic (%d where some library disagreed with wingedge, the rest a control sample), "
+           "wingedge answered %d wrong."
            % (info["date"], info["cpu"], info["cores"], info["threads"], load[0], load[1], settled, disputed,
               wrong),
            "",
            "| mesh (triangles) | " + " | ".join(words for _, _, words in SUMMARY_COLUMNS)
-           + " | accel build (open3d) |",
+           + " | build s (open3d) |",
            "|---|" + "---:|" * (len(SUMMARY_COLUMNS) + 1)]
     triangles = {}
     for r in record["queries"]:
