@@ -123,7 +123,9 @@ mod tests {
         let mut total = Expansion::default();
         for (p, negative) in PERMS {
             let e = |d: Diff| Expansion::difference(d.plus, d.minus);
-            let prod = e(rows[0][p[0]]).mul(&e(rows[1][p[1]])).mul(&e(rows[2][p[2]]));
+            let prod = e(rows[0][p[0]])
+                .mul(&e(rows[1][p[1]]))
+                .mul(&e(rows[2][p[2]]));
             total.grow_expansion(&prod, negative);
         }
         total.sign()

@@ -21,8 +21,8 @@
 
 use glam::{DVec2, DVec3};
 
-use super::dyadic::{self, Dyadic, in_safe_range};
 use super::compensated;
+use super::dyadic::{self, Dyadic, in_safe_range};
 use super::expansion::{Expansion, two_sum};
 use super::predicates::{UNDERFLOW, count_fallback};
 use super::{Sign, larger, orient2d};
