@@ -38,7 +38,7 @@ library) decides which is right, for up to --arbitrate such queries per mesh
 and task, plus a control sample of queries on which everyone agrees.
 
 The table goes to stdout and OUT/peers.md; everything measured to
-OUT/peers.json. The inputs take about 0.4 GB under OUT and are reused by
+OUT/peers.json. The inputs take about 2 GB under OUT and are reused by
 the next run.
 
 With --booleans CASES (default `spheres`; `none` to skip, `spheres,models`
