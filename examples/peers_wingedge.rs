@@ -1,7 +1,7 @@
 //! wingedge's side of the peer comparison (`benches/peers/run.py` runs it).
 //!
 //! ```text
-//! cargo run --release --example peers_wingedge -- queries DIR NAME...
+//! cargo run --release --example peers_wingedge -- queries DIR NAME[@SET]...
 //! cargo run --release --example peers_wingedge -- validate FILE.obj [REPEATS]
 //! ```
 //!
@@ -10,7 +10,7 @@
 //! `accel_s`), then reads `DIR/NAME.points.f64` (N × 3 little-endian `f64`)
 //! and `DIR/NAME.rays.f64` (N × 6: origin, direction) — reading is not timed —
 //! and times [`Accel::classify_batch`] (parity) and [`Accel::first_hit_batch`],
-//! best of 3 each, on the global rayon pool (`RAYON_NUM_THREADS` sets its
+//! best of 3 each (one when a call takes over 5 s), on the global rayon pool (`RAYON_NUM_THREADS` sets its
 //! size). Answers go to `DIR/NAME.wingedge.points.u8` (0 outside, 1 inside,
 //! 2 on the boundary), `DIR/NAME.wingedge.rays.f64` (first-hit `t`, `inf`
 //! for a miss) and `DIR/NAME.wingedge.hitface.u32` (per ray `2 · face +
@@ -19,6 +19,12 @@
 //! per mesh goes to stdout (`accel_bytes`: the accel's heap bytes after the
 //! queries, the point grid included; `grid_s`: the grid's build, part of
 //! the first point query).
+//!
+//! `NAME@SET` asks one of the harder query sets of `inputs.py` instead:
+//! the mesh is still `DIR/NAME.obj`, the queries are
+//! `DIR/NAME.SET.points.f64` and `DIR/NAME.SET.rays.f64` — whichever of the
+//! two exists; a set holds points or rays — and the answers go to
+//! `DIR/NAME.SET.wingedge.*`.
 //!
 //! **validate**: what `wingedge validate` does — import (tobj and the line
 //! pass, welding), build the winged-edge solid, every check (the exact
@@ -68,10 +74,17 @@ fn process_cpu() -> f64 {
     ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
 }
 
-/// Best wall time of `runs` calls (at least one) and the last result.
+/// A call slower than this is not repeated (as the Python peers do).
+const REPEAT_BELOW_S: f64 = 5.0;
+
+/// Best wall time of `runs` calls (at least one; one if a call takes over
+/// [`REPEAT_BELOW_S`]) and the last result.
 fn best_of<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     let (mut best, mut best_cpu, mut out) = (f64::INFINITY, f64::INFINITY, None);
     for _ in 0..runs.max(1) {
+        if out.is_some() && best > REPEAT_BELOW_S {
+            break;
+        }
         let (t, c) = (Instant::now(), process_cpu());
         let r = f();
         best = best.min(t.elapsed().as_secs_f64());
@@ -84,7 +97,20 @@ fn best_of<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     (best, out.expect("runs.max(1) >= 1"))
 }
 
-fn queries(dir: &Path, name: &str) -> Result<()> {
+/// Reads `N × width` `f64`s from `path`, or `None` when a query set has no such file.
+fn read_optional(path: &Path, width: usize, in_set: bool) -> Result<Option<Vec<f64>>> {
+    if in_set && !path.exists() {
+        return Ok(None);
+    }
+    read_f64s(path, width).map(Some)
+}
+
+fn queries(dir: &Path, request: &str) -> Result<()> {
+    // `NAME@SET`: the mesh NAME, the query files and answers of NAME.SET.
+    let (name, stem, in_set) = match request.split_once('@') {
+        Some((name, set)) => (name, format!("{name}.{set}"), true),
+        None => (request, request.to_owned(), false),
+    };
     let only = std::env::var("WINGEDGE_ONLY").unwrap_or_default();
     let repeats = std::env::var("WINGEDGE_RUNS")
         .ok()
@@ -109,15 +135,17 @@ fn queries(dir: &Path, name: &str) -> Result<()> {
         }
         return Ok(());
     }
-    let points: Vec<DVec3> = read_f64s(&dir.join(format!("{name}.points.f64")), 3)?
+    let points: Vec<DVec3> = read_optional(&dir.join(format!("{stem}.points.f64")), 3, in_set)?
+        .unwrap_or_default()
         .chunks_exact(3)
         .map(|c| DVec3::new(c[0], c[1], c[2]))
         .collect();
-    let rays: Vec<Ray> = read_f64s(&dir.join(format!("{name}.rays.f64")), 6)?
+    let rays: Vec<Ray> = read_optional(&dir.join(format!("{stem}.rays.f64")), 6, in_set)?
+        .unwrap_or_default()
         .chunks_exact(6)
         .map(|c| Ray::new(DVec3::new(c[0], c[1], c[2]), DVec3::new(c[3], c[4], c[5])))
         .collect();
-    let (points_s, classes) = if runs("points") > 0 {
+    let (points_s, classes) = if runs("points") > 0 && !points.is_empty() {
         let (s, c) = best_of(runs("points"), || {
             accel.classify_batch(&points, Method::Parity)
         });
@@ -142,7 +170,7 @@ fn queries(dir: &Path, name: &str) -> Result<()> {
             exact as f64 / k
         );
     }
-    let (rays_s, hits) = if runs("rays") > 0 {
+    let (rays_s, hits) = if runs("rays") > 0 && !rays.is_empty() {
         let (s, h) = best_of(runs("rays"), || accel.first_hit_batch(&rays));
         (s, h?)
     } else {
@@ -157,14 +185,14 @@ fn queries(dir: &Path, name: &str) -> Result<()> {
                 Containment::OnBoundary => 2,
             })
             .collect();
-        write_answers(&dir.join(format!("{name}.wingedge.points.u8")), codes)?;
+        write_answers(&dir.join(format!("{stem}.wingedge.points.u8")), codes)?;
     }
     if !hits.is_empty() {
         let ts = hits
             .iter()
             .flat_map(|h| h.map_or(f64::INFINITY, |c| c.t).to_le_bytes())
             .collect();
-        write_answers(&dir.join(format!("{name}.wingedge.rays.f64")), ts)?;
+        write_answers(&dir.join(format!("{stem}.wingedge.rays.f64")), ts)?;
         let face_index: HashMap<FaceId, u32> = solid
             .faces()
             .enumerate()
@@ -179,7 +207,7 @@ fn queries(dir: &Path, name: &str) -> Result<()> {
                 .to_le_bytes()
             })
             .collect();
-        write_answers(&dir.join(format!("{name}.wingedge.hitface.u32")), faces)?;
+        write_answers(&dir.join(format!("{stem}.wingedge.hitface.u32")), faces)?;
     }
     let count = |want: Containment| classes.iter().filter(|&&c| c == want).count();
     // After the queries, so that the point grid (built by the first point
@@ -189,6 +217,7 @@ fn queries(dir: &Path, name: &str) -> Result<()> {
         "{}",
         json!({
             "mesh": name,
+            "set": in_set.then(|| &stem[name.len() + 1..]),
             "threads": rayon::current_num_threads(),
             "triangles": stats.triangles,
             "load_s": load_s,

@@ -62,6 +62,43 @@ class Tables(unittest.TestCase):
             report.render_table(record)
 
 
+class QuerySets(unittest.TestCase):
+    """A record with a harder query set: its own table rows, and the README's table by query set."""
+
+    def _record(self):
+        record = _load("peers.json")
+        base = next(r for r in record["queries"] if r["mesh"] == "spot" and r["library"] == "wingedge"
+                    and r["task"] == "rays")
+        ours = dict(base, set="grazing", seconds=0.5, setup_s=0.002, differs=0, first_differing=[])
+        open3d = dict(base, library="open3d RaycastingScene", precision="f32", set="grazing", seconds=0.25,
+                      setup_s=0.003, differs=3, first_differing=[1, 2, 3], checked=3, peer_wrong=1,
+                      wingedge_wrong=2, control_wrong=0, max_t_gap=1e-5)
+        record["queries"] += [ours, open3d]
+        record["exact"]["spot@grazing"] = {"rays": {"disputed": 3, "settled": 13, "control": 10,
+                                                    "wingedge_wrong": 2, "said": {}, "seconds": 0.1,
+                                                    "answers": {}}}
+        return record
+
+    def test_the_set_has_rows_of_its_own_and_the_base_table_is_unchanged(self):
+        table = report.render_table(self._record())
+        self.assertTrue(table.startswith(report.render_table(_load("peers.json")).split("\n\nExact")[0]))
+        self.assertIn("| spot (5,856) | rays grazing along faces | open3d RaycastingScene (f32, 2 thr) | 0.003 "
+                      "| 4 M/s | **2.00×** | 3 of 1,000,000; elsewhere \\|Δt\\| ≤ 1e-05 "
+                      "| wingedge 2, open3d 1 wrong |", table)
+        self.assertIn("| spot@grazing | first-hit rays | 3 | 13 | 2 |", table)
+
+    def test_the_summary_gives_each_set_a_column_with_the_ratio_to_open3d(self):
+        summary = report.render_summary(self._record())
+        self.assertIn("| mesh (triangles) | uniform points | points near, 1e-3 | points near, 1e-6 "
+                      "| rays from outside | rays from inside | rays at vertices | grazing rays "
+                      "| build s (open3d) |", summary)
+        spot = next(line for line in summary.splitlines() if line.startswith("| spot "))
+        cells = [c.strip() for c in spot.split("|")[1:-1]]
+        self.assertEqual(cells[7], "2 **0.50×**")
+        self.assertEqual(cells[2], "—")
+        self.assertIn("wingedge answered 2 wrong", summary)
+
+
 class Writer(unittest.TestCase):
     PAGE = "# Title\n\nprose\n\n<!-- peers:begin (generated) -->\nold table\n<!-- peers:end -->\n\nmore prose\n"
 

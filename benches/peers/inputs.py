@@ -12,6 +12,21 @@ Python peers see in memory. Next to `<name>.obj` go:
                         towards a uniform point in the box
     <name>.json         how it was made (recipe, seed, counts, volume)
 
+and, for the harder query sets (`SETS`), `<name>.<set>.points.f64` or
+`<name>.<set>.rays.f64` in the same layouts:
+
+    near1e-3, near1e-6  points at 1e-3 (1e-6) of the box diagonal from a
+                        surface point (a uniform point of a triangle picked
+                        by area), in a uniform random direction
+    inside              rays from uniform points in the box, in uniform
+                        random directions (many start inside the solid)
+    vertices            rays from the sphere around the box, aimed at a
+                        random vertex of the mesh
+    grazing             rays along a triangle's plane: through a uniform
+                        point of a random triangle, in a direction that is a
+                        random combination of two of its edges (in the plane
+                        up to rounding), starting a box diagonal back
+
 Everything is seeded; a directory whose `<name>.json` already describes the
 same recipe and query count is reused as is.
 """
@@ -31,7 +46,14 @@ RECIPES = {
                 "(r 0.4, 128 segments): a CAD-like part with long thin fan triangles, genus 2",
     "fandisk": "the team's real model fandisk.obj (a CAD part, 12,946 triangles), as read",
     "spot": "the team's real model spot.obj (a scanned-and-remeshed cow, 5,856 triangles), as read",
+    "spot_x4": "spot.obj with every triangle split in four at its edge midpoints (exact in f64): "
+               "23,424 triangles",
+    "fandisk_x2": "fandisk.obj with triangles paired greedily across a shared edge (in file order) and "
+                  "each pair split in four at that edge's midpoint (exact in f64): 25,498 triangles",
 }
+
+# The query sets beyond the uniform points and sphere rays: name -> task.
+SETS = {"near1e-3": "points", "near1e-6": "points", "inside": "rays", "vertices": "rays", "grazing": "rays"}
 
 # The team's real-world models (not part of the repository: the comparison
 # reads them from the shared folder next to it when they are asked for).
@@ -64,6 +86,77 @@ def _model(name):
     mesh = m3d.Mesh64(vert_properties=np.ascontiguousarray(vertices),
                       tri_verts=np.ascontiguousarray(triangles, dtype=np.uint64))
     return m3d.Manifold(mesh)
+
+
+def _manifold(vertices, triangles):
+    mesh = m3d.Mesh64(vert_properties=np.ascontiguousarray(vertices),
+                      tri_verts=np.ascontiguousarray(triangles, dtype=np.uint64))
+    return m3d.Manifold(mesh)
+
+
+def _split_in_four(name):
+    """A real model with every triangle split in four at its edge midpoints.
+
+    `(a + b) / 2` is exact in `f64`, so the surface is the same point set and
+    a closed solid stays closed, with the same volume.
+    """
+    vertices, triangles = read_obj(os.path.join(MODELS, name + ".obj"))
+    vertices = list(map(tuple, vertices.tolist()))
+    midpoint = {}
+
+    def mid(a, b):
+        key = (min(a, b), max(a, b))
+        if key not in midpoint:
+            vertices.append(tuple((x + y) / 2 for x, y in zip(vertices[a], vertices[b])))
+            midpoint[key] = len(vertices) - 1
+        return midpoint[key]
+
+    out = []
+    for a, b, c in triangles.tolist():
+        ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+        out += [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
+    return _manifold(np.array(vertices), np.array(out))
+
+
+def _split_pairs(name):
+    """A real model with about twice its triangles: triangles are paired
+    greedily (in file order, each with its first unpaired neighbour across
+    an edge) and each pair's shared edge is split at its exact midpoint,
+    which splits both triangles in two. Unpaired triangles stay as they
+    are; no other edge is touched, so the mesh stays conforming and closed."""
+    vertices, triangles = read_obj(os.path.join(MODELS, name + ".obj"))
+    vertices = list(map(tuple, vertices.tolist()))
+    triangles = triangles.tolist()
+    by_edge = {}
+    for k, tri in enumerate(triangles):
+        for i in range(3):
+            by_edge.setdefault(frozenset((tri[i], tri[(i + 1) % 3])), []).append(k)
+    partner = {}
+    for k, tri in enumerate(triangles):
+        if k in partner:
+            continue
+        for i in range(3):
+            edge = frozenset((tri[i], tri[(i + 1) % 3]))
+            other = [j for j in by_edge[edge] if j != k and j not in partner]
+            if other:
+                partner[k], partner[other[0]] = edge, edge
+                break
+    out, midpoint = [], {}
+    for k, (a, b, c) in enumerate(triangles):
+        edge = partner.get(k)
+        if edge is None:
+            out.append((a, b, c))
+            continue
+        if edge not in midpoint:
+            p, q = tuple(edge)
+            vertices.append(tuple((x + y) / 2 for x, y in zip(vertices[p], vertices[q])))
+            midpoint[edge] = len(vertices) - 1
+        m = midpoint[edge]
+        # Rotate the corners so that the split edge runs a -> b.
+        while frozenset((a, b)) != edge:
+            a, b, c = b, c, a
+        out += [(a, m, c), (m, b, c)]
+    return _manifold(np.array(vertices), np.array(out))
 
 
 def _sphere(segments):
@@ -138,6 +231,8 @@ MAKERS = {
     "csg_diff": _csg_diff,
     "fandisk": lambda: _model("fandisk"),
     "spot": lambda: _model("spot"),
+    "spot_x4": lambda: _split_in_four("spot"),
+    "fandisk_x2": lambda: _split_pairs("fandisk"),
 }
 
 
@@ -164,6 +259,71 @@ def _queries(bmin, bmax, n, seed):
     directions = bmin + (bmax - bmin) * rng.random((n, 3)) - origins
     directions /= np.linalg.norm(directions, axis=1, keepdims=True)
     return points, np.hstack([origins, directions])
+
+
+def _area_weighted_surface_points(vertices, triangles, n, rng):
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    area = np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    pick = rng.choice(len(triangles), size=n, p=area / area.sum())
+    u, v = rng.random(n), rng.random(n)
+    flip = u + v > 1
+    u[flip], v[flip] = 1 - u[flip], 1 - v[flip]
+    return a[pick] + u[:, None] * (b[pick] - a[pick]) + v[:, None] * (c[pick] - a[pick])
+
+
+def _unit_vectors(n, rng):
+    d = rng.normal(size=(n, 3))
+    return d / np.linalg.norm(d, axis=1, keepdims=True)
+
+
+def query_set(vertices, triangles, name, n, seed):
+    """The `n` queries of the set `name` (see `SETS`) on a mesh, seeded."""
+    rng = np.random.default_rng([seed, zlib.crc32(name.encode())])
+    bmin, bmax = vertices.min(0), vertices.max(0)
+    diagonal = float(np.linalg.norm(bmax - bmin))
+    if name.startswith("near"):
+        surface = _area_weighted_surface_points(vertices, triangles, n, rng)
+        return surface + float(name[len("near"):]) * diagonal * _unit_vectors(n, rng)
+    if name == "inside":
+        origins = bmin + (bmax - bmin) * rng.random((n, 3))
+        return np.hstack([origins, _unit_vectors(n, rng)])
+    if name == "vertices":
+        origins = 0.5 * (bmin + bmax) + 0.75 * diagonal * _unit_vectors(n, rng)
+        directions = vertices[rng.integers(len(vertices), size=n)] - origins
+        return np.hstack([origins, directions / np.linalg.norm(directions, axis=1, keepdims=True)])
+    if name == "grazing":
+        pick = rng.integers(len(triangles), size=n)
+        a, b, c = (vertices[triangles[pick, k]] for k in range(3))
+        u, v = rng.random(n), rng.random(n)
+        flip = u + v > 1
+        u[flip], v[flip] = 1 - u[flip], 1 - v[flip]
+        through = a + u[:, None] * (b - a) + v[:, None] * (c - a)
+        directions = rng.normal(size=(n, 1)) * (b - a) + rng.normal(size=(n, 1)) * (c - a)
+        directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+        return np.hstack([through - diagonal * directions, directions])
+    raise SystemExit("unknown query set %r (known: %s)" % (name, ", ".join(SETS)))
+
+
+def make_sets(directory, name, n_queries, sets):
+    """Writes (or reuses) the query sets `sets` of the mesh `name` already made in `directory`."""
+    meta_path = os.path.join(directory, name + ".json")
+    with open(meta_path) as f:
+        meta = json.load(f)
+    made = meta.setdefault("sets", {})
+    vertices, triangles = None, None
+    for s in sets:
+        path = os.path.join(directory, "%s.%s.%s.f64" % (name, s, SETS[s]))
+        if made.get(s) == n_queries and os.path.exists(path):
+            continue
+        if vertices is None:
+            vertices, triangles = read_obj(os.path.join(directory, name + ".obj"))
+        if os.path.lexists(path):
+            os.remove(path)
+        query_set(vertices, triangles, s, n_queries, meta["seed"]).astype("<f8").tofile(path)
+        made[s] = n_queries
+    with open(meta_path, "w") as f:
+        json.dump(meta, f, indent=1)
+    return meta
 
 
 def make(directory, name, n_queries):

@@ -80,24 +80,33 @@ def libigl_fwn(vertices, triangles, points):
 
 
 def open3d_scene(vertices, triangles, points, rays):
-    """open3d's RaycastingScene (Embree, `f32`): `compute_occupancy` and `cast_rays`."""
+    """open3d's RaycastingScene (Embree, `f32`): `compute_occupancy` and `cast_rays`.
+
+    `points` or `rays` may be `None` (a query set of one kind): that task is
+    left out of the result.
+    """
     v32 = o3d.core.Tensor(vertices.astype(np.float32))
     f32 = o3d.core.Tensor(triangles.astype(np.uint32))
-    p32 = o3d.core.Tensor(points.astype(np.float32))
-    r32 = o3d.core.Tensor(rays.astype(np.float32))
+    probe = o3d.core.Tensor(vertices[:1].astype(np.float32))
 
     def build():
         scene = o3d.t.geometry.RaycastingScene(nthreads=THREADS)
         scene.add_triangles(v32, f32)
-        scene.compute_occupancy(p32[:1], nthreads=THREADS)  # commits the scene
+        scene.compute_occupancy(probe, nthreads=THREADS)  # commits the scene
         return scene
 
     setup_s, scene = best_of_3(build)
-    points_s, occupancy = best_of_3(lambda: scene.compute_occupancy(p32, nthreads=THREADS).numpy())
-    rays_s, t = best_of_3(lambda: scene.cast_rays(r32, nthreads=THREADS)["t_hit"].numpy())
     common = {"library": "open3d RaycastingScene", "precision": "f32", "threads": THREADS, "setup_s": setup_s}
-    return [dict(common, task="points", seconds=points_s, queries=len(points), answers=occupancy > 0.5),
-            dict(common, task="rays", seconds=rays_s, queries=len(rays), answers=t.astype(np.float64))]
+    rows = []
+    if points is not None:
+        p32 = o3d.core.Tensor(points.astype(np.float32))
+        points_s, occupancy = best_of_3(lambda: scene.compute_occupancy(p32, nthreads=THREADS).numpy())
+        rows.append(dict(common, task="points", seconds=points_s, queries=len(points), answers=occupancy > 0.5))
+    if rays is not None:
+        r32 = o3d.core.Tensor(rays.astype(np.float32))
+        rays_s, t = best_of_3(lambda: scene.cast_rays(r32, nthreads=THREADS)["t_hit"].numpy())
+        rows.append(dict(common, task="rays", seconds=rays_s, queries=len(rays), answers=t.astype(np.float64)))
+    return rows
 
 
 def manifold3d_rays(vertices, triangles, rays, budget_s):

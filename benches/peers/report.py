@@ -105,14 +105,31 @@ def _settings(record):
     return settings
 
 
-def _query_groups(record):
-    """(mesh, task, wingedge's row, every row) for each mesh and query task, in run order."""
-    rows = record["queries"]
-    for mesh in dict.fromkeys(r["mesh"] for r in rows):
+SET_WORDS = {"near1e-3": "points at 1e-3 of the diagonal from the surface",
+             "near1e-6": "points at 1e-6 of the diagonal from the surface",
+             "inside": "rays from inside the box, random directions",
+             "vertices": "rays aimed at vertices", "grazing": "rays grazing along faces"}
+# The README's columns: the uniform points and sphere rays (no set), then the sets.
+SUMMARY_COLUMNS = [("points", None, "uniform points"), ("points", "near1e-3", "points near, 1e-3"),
+                   ("points", "near1e-6", "points near, 1e-6"), ("rays", None, "rays from outside"),
+                   ("rays", "inside", "rays from inside"), ("rays", "vertices", "rays at vertices"),
+                   ("rays", "grazing", "grazing rays")]
+
+
+def _key(row):
+    """A row's key in `record["exact"]`: the mesh, or `mesh@set` for a harder query set."""
+    return row["mesh"] + ("@" + row["set"] if row.get("set") else "")
+
+
+def _query_groups(record, with_sets=False):
+    """(key, task, wingedge's row, every row) for each mesh (and query set,
+    when `with_sets`) and query task, in run order."""
+    rows = [r for r in record["queries"] if with_sets or not r.get("set")]
+    for key in dict.fromkeys(_key(r) for r in rows):
         for task in ("points", "rays"):
-            group = [r for r in rows if r["mesh"] == mesh and r["task"] == task]
+            group = [r for r in rows if _key(r) == key and r["task"] == task]
             if group:
-                yield mesh, task, next(r for r in group if r["library"] == "wingedge"), group
+                yield key, task, next(r for r in group if r["library"] == "wingedge"), group
 
 
 # ---------------------------------------------------------------- the full table
@@ -130,6 +147,24 @@ def _query_lines(record):
                 mesh, format(r["triangles"], ","), TASK_WORDS[task], _label(r), r["setup_s"], rate_text,
                 "1" if r is ours else _ratio(rate / our_rate), differ,
                 _exact_cell(r, record["exact"][mesh][task])))
+    return lines
+
+
+def _set_lines(record):
+    lines = []
+    for key, task, ours, group in _query_groups(record, with_sets=True):
+        if not ours.get("set"):
+            continue
+        our_rate, _ = _rate(ours)
+        for r in group:
+            rate, rate_text = _rate(r)
+            differ = "%s of %s" % (format(r["differs"], ","), format(r.get("answered", r["queries"]), ","))
+            if task == "rays" and r["library"] != "wingedge":
+                differ += "; elsewhere \\|Δt\\| ≤ %.1g" % r["max_t_gap"]
+            lines.append("| %s (%s) | %s | %s | %.3f | %s | %s | %s | %s |" % (
+                r["mesh"], format(r["triangles"], ","), SET_WORDS.get(r["set"], r["set"]), _label(r),
+                r["setup_s"], rate_text, "1" if r is ours else _ratio(rate / our_rate), differ,
+                _exact_cell(r, record["exact"][key][task])))
     return lines
 
 
@@ -200,6 +235,16 @@ def render_table(record):
            "|---|---|---|---:|---:|---:|---|---|"]
     out += _query_lines(record)
     out += _validation_lines(record)
+    sets = _set_lines(record)
+    if sets:
+        out += ["",
+                "The harder query sets, wingedge and open3d taking turns in the same run (%d rounds, each "
+                "keeping its best):" % settings["rounds"],
+                "",
+                "| mesh (triangles) | queries | library (precision, threads) | setup s | throughput "
+                "| ÷ wingedge | answers that differ from wingedge | exact arithmetic on those: who is wrong |",
+                "|---|---|---|---:|---:|---:|---|---|"]
+        out += sets
     out += ["",
             "Exact arbitration (rational arithmetic, independent of every library): per mesh and task, "
             "the disputed queries (up to %d) plus a control sample of unanimous ones." % settings["arbitrate"],
@@ -209,7 +254,7 @@ def render_table(record):
     for mesh, by_task in record["exact"].items():
         for task, v in by_task.items():
             control_wrong = ["%s %d" % (r["library"], r["control_wrong"]) for r in record["queries"]
-                             if r["mesh"] == mesh and r["task"] == task and r["control_wrong"]]
+                             if _key(r) == mesh and r["task"] == task and r["control_wrong"]]
             out.append("| %s | %s | %d | %d | %d | %d queries: %s | %.1f |" % (
                 mesh, TASK_WORDS[task], v["disputed"], v["settled"], v["wingedge_wrong"], v["control"],
                 ", ".join(control_wrong) or "none", v["seconds"]))
@@ -243,8 +288,55 @@ def _build_cell(ours, group):
     return text
 
 
+def _open3d_cell(ours, group):
+    """wingedge's rate and how many times open3d's it is, or wingedge's rate alone."""
+    open3d = [r for r in group if r["library"].startswith("open3d")]
+    text = "%.3g" % _rate(ours)[0]
+    if open3d:
+        text += " **%.2f×**" % (_rate(ours)[0] / _rate(open3d[0])[0])
+    return text
+
+
+def render_goal_summary(record):
+    """The README's short table when the run has the harder query sets:
+    per mesh and query set, wingedge's rate and its ratio to open3d's."""
+    info = record["machine"]
+    cells = {}
+    for _, task, ours, group in _query_groups(record, with_sets=True):
+        cells[(ours["mesh"], task, ours.get("set"))] = _open3d_cell(ours, group)
+        if not ours.get("set"):
+            cells[(ours["mesh"], "build")] = "%.3f" % ours["setup_s"] + "".join(
+                " (%.3f)" % r["setup_s"] for r in group if r["library"].startswith("open3d"))
+    settled = sum(v["settled"] for by in record["exact"].values() for v in by.values())
+    wrong = sum(v["wingedge_wrong"] for by in record["exact"].values() for v in by.values())
+    load = info["load"]
+    out = ["Measured %s on %s (%d cores), %d threads, wingedge and open3d taking turns in one run "
+           "(load average %.1f at its start, %.1f at its end). Each cell: wingedge's millions of queries per "
+           "second and, in bold, that rate over open3d's. Of %s queries settled by exact rational "
+           "arithmetic (disputed ones and a control sample), wingedge answered %d wrong."
+           % (info["date"], info["cpu"], info["cores"], info["threads"], load[0], load[1],
+              format(settled, ","), wrong),
+           "",
+           "| mesh (triangles) | " + " | ".join(words for _, _, words in SUMMARY_COLUMNS)
+           + " | build s (open3d) |",
+           "|---|" + "---:|" * (len(SUMMARY_COLUMNS) + 1)]
+    triangles = {}
+    for r in record["queries"]:
+        triangles.setdefault(r["mesh"], r["triangles"])
+    for mesh, count in triangles.items():
+        out.append("| %s (%s) | %s | %s |" % (
+            mesh, format(count, ","),
+            " | ".join(cells.get((mesh, task, query_set), "—") for task, query_set, _ in SUMMARY_COLUMNS),
+            cells.get((mesh, "build"), "—")))
+    return "\n".join(out) + "\n"
+
+
 def render_summary(record):
-    """The README's short table: per mesh, wingedge's rates and the fastest peer's, as a ratio."""
+    """The README's short table: per mesh, wingedge's rates and the fastest peer's, as a ratio.
+
+    A run with the harder query sets gets `render_goal_summary` instead."""
+    if any(r.get("set") for r in record["queries"]):
+        return render_goal_summary(record)
     info = record["machine"]
     rows = {}
     for mesh, task, ours, group in _query_groups(record):

@@ -6,12 +6,16 @@
 builds the examples and the parry harness (`cargo build --release --examples`,
 `cargo build --release -p wingedge-peers-parry`), makes the inputs
 (seeded; see inputs.py) under OUT/inputs — the meshes sphere_80k, torus_knot
-and sphere_1m, and the real models fandisk and spot when the team's shared
-models folder is next to the repository — then for each mesh:
+and sphere_1m, and the real models fandisk and spot and their exact
+midpoint refinements fandisk_x2 and spot_x4 when the team's shared models
+folder is next to the repository — then for each mesh:
 
   (a) point classification of 1M points uniform in the mesh's box,
   (b) first-hit ray casting of 1M rays from a sphere around the box,
   (c) import + validation of the mesh's OBJ file,
+  (d) the harder query sets (--sets; 1M queries each): points near the
+      surface, rays from inside the box, rays aimed at vertices, rays
+      grazing along faces — wingedge and open3d only,
 
 by wingedge (examples/peers_wingedge.rs), parry3d and parry3d-f64
 (benches/peers/parry/, a crate of its own in the workspace), trimesh with
@@ -34,7 +38,7 @@ library) decides which is right, for up to --arbitrate such queries per mesh
 and task, plus a control sample of queries on which everyone agrees.
 
 The table goes to stdout and OUT/peers.md; everything measured to
-OUT/peers.json. The inputs take about 0.4 GB under OUT and are reused by
+OUT/peers.json. The inputs take about 2 GB under OUT and are reused by
 the next run.
 
 With --booleans CASES (default `spheres`; `none` to skip, `spheres,models`
@@ -72,7 +76,7 @@ BUILD_COMMANDS = [["cargo", "build", "--release", "--examples", "--bins"],
 # The issue's three shared meshes, then the team's real models that fit in
 # the caches (a CAD part and a remeshed scan) when their folder is there.
 DEFAULT_MESHES = ["sphere_80k", "torus_knot", "sphere_1m"] + (
-    ["fandisk", "spot"] if os.path.isdir(inputs.MODELS) else [])
+    ["fandisk", "spot", "fandisk_x2", "spot_x4"] if os.path.isdir(inputs.MODELS) else [])
 T_TOLERANCE = 1e-4  # relative, for comparing first-hit parameters
 VALIDATE_ROUNDS = 3
 
@@ -119,7 +123,7 @@ def max_t_gap(ours, peer):
 def arbitrate(mesh, points, rays, ours, rows, limit, rng):
     """Exact answers for the queries some row differs on, plus a unanimous control sample."""
     verdicts = {}
-    for task in ("points", "rays"):
+    for task in [t for t in ("points", "rays") if t in ours]:
         peers = [r for r in rows if r["task"] == task and r["library"] != "wingedge"]
         disputed = sorted(set().union(*[set(r["differs"].tolist()) for r in peers])) if peers else []
         unanimous = np.setdiff1d(np.arange(len(ours[task])), disputed)
@@ -230,6 +234,43 @@ def queries_for_mesh(name, directory, args, rng):
     return rows, verdicts
 
 
+def set_for_mesh(name, query_set, directory, args, rng):
+    """wingedge and open3d, taking turns, on one of the harder query sets
+    (inputs.SETS) of a mesh; their disputes settled exactly."""
+    vertices, triangles = inputs.read_obj(os.path.join(directory, name + ".obj"))
+    task = inputs.SETS[query_set]
+    stem = "%s.%s" % (name, query_set)
+    width = 3 if task == "points" else 6
+    queries = np.fromfile(os.path.join(directory, "%s.%s.f64" % (stem, task)), "<f8").reshape(-1, width)
+    ours_lines, open3d_runs = [], []
+    for round_ in range(args.rounds):
+        log(stem, "wingedge, round %d of %d" % (round_ + 1, args.rounds))
+        ours_lines.append(run_json_lines([os.path.join(EXAMPLES, "peers_wingedge"), "queries", directory,
+                                          "%s@%s" % (name, query_set)])[0])
+        log(stem, "open3d, round %d of %d" % (round_ + 1, args.rounds))
+        open3d_runs.append(python_peers.open3d_scene(
+            vertices, triangles, queries if task == "points" else None, queries if task == "rays" else None))
+    seconds = min(line[task + "_s"] for line in ours_lines)
+    answers = (np.fromfile(os.path.join(directory, stem + ".wingedge.points.u8"), np.uint8) if task == "points"
+               else np.fromfile(os.path.join(directory, stem + ".wingedge.rays.f64"), "<f8"))
+    rows = [dict(library="wingedge", precision="f64, exact signs", threads=ours_lines[0]["threads"], task=task,
+                 setup_s=min(line["accel_s"] for line in ours_lines), seconds=seconds,
+                 queries=ours_lines[0][task], answers=answers)]
+    rows += best_rows(open3d_runs)
+    for r in rows:
+        r["mesh"] = name
+        r["set"] = query_set
+        r["triangles"] = len(triangles)
+        r["differs"] = (points_differ if task == "points" else rays_differ)(answers, r["answers"])
+        if task == "rays":
+            r["max_t_gap"] = max_t_gap(answers, r["answers"])
+    log(stem, "exact arbitration")
+    points = queries if task == "points" else None
+    rays = queries if task == "rays" else None
+    verdicts = arbitrate(exact.Mesh(vertices, triangles), points, rays, {task: answers}, rows, args.arbitrate, rng)
+    return rows, verdicts
+
+
 def validate_python_peers(path):
     """One fresh-process measurement: trimesh.load, then manifold3d's Manifold from its arrays."""
     import manifold3d as m3d
@@ -328,6 +369,9 @@ def main():
     ap.add_argument("--arbitrate", type=int, default=200, help="disputed queries settled exactly per mesh and task")
     ap.add_argument("--rounds", type=int, default=3,
                     help="rounds in which wingedge and open3d take turns (each keeps its best)")
+    ap.add_argument("--sets", default=",".join(inputs.SETS),
+                    help="the harder query sets run by wingedge and open3d on every mesh, comma-separated "
+                    "(default: all of %(default)s; none to skip; not with --inputs)")
     ap.add_argument("--no-build", action="store_true", help="skip cargo build (examples and parry harness already built)")
     ap.add_argument("--booleans", default="spheres",
                     help="boolean cases after the query table: none, or a comma list of spheres, models")
@@ -356,6 +400,12 @@ def main():
         rows += mesh_rows
         log(name, "validation")
         validations[name] = validation_for_mesh(name, directory)
+        sets = [] if args.inputs or args.sets == "none" else [q for q in args.sets.split(",") if q]
+        if sets:
+            metas[name] = inputs.make_sets(directory, name, args.queries, sets)
+        for query_set in sets:
+            set_rows, verdicts["%s@%s" % (name, query_set)] = set_for_mesh(name, query_set, directory, args, rng)
+            rows += set_rows
     info = machine()
     info["minutes"] = (time.perf_counter() - started) / 60
     info["load"] = (load_at_start, os.getloadavg()[0])

@@ -6,7 +6,8 @@
 //! need `det[d, a − o, b − o]`, where `d` is not a difference of two points
 //! that could be handed to `orient3d` without rounding `o + d`. This module
 //! evaluates such determinants exactly: a floating-point filter with
-//! Shewchuk's error bounds first, then, only when the filter cannot decide,
+//! Shewchuk's error bounds first, then a compensated second filter
+//! (`compensated`), then, only when neither can decide,
 //! exact expansion arithmetic (Shewchuk 1997: `two_sum`, `two_product` via
 //! FMA, `grow_expansion`). Fallbacks are counted in the same per-thread
 //! counter as the other predicates ([`exact_fallbacks`](super::exact_fallbacks)).
@@ -20,8 +21,9 @@
 
 use glam::{DVec2, DVec3};
 
+use super::compensated;
 use super::dyadic::{self, Dyadic, in_safe_range};
-use super::expansion::Expansion;
+use super::expansion::{Expansion, two_sum};
 use super::predicates::{UNDERFLOW, count_fallback};
 use super::{Sign, larger, orient2d};
 
@@ -63,6 +65,11 @@ impl Diff {
 
     fn expansion(self) -> Expansion {
         Expansion::difference(self.plus, self.minus)
+    }
+
+    /// `plus − minus − rounded()`, exactly (`two_sum`).
+    fn tail(self) -> f64 {
+        two_sum(self.plus, -self.minus).1
     }
 
     fn dyadic(self) -> Dyadic {
@@ -122,8 +129,19 @@ pub fn det3_sign(rows: [[Diff; 3]; 3]) -> Sign {
         return Sign::of(det);
     }
     count_fallback();
+    // A row or a column of exact zeros (a ray lying in an axis-aligned
+    // face: every row's component along that axis is zero): exactly zero.
+    let zero = |d: &Diff| d.plus == d.minus;
+    if (0..3).any(|k| rows[k].iter().all(zero) || rows.iter().all(|r| zero(&r[k]))) {
+        return Sign::Zero;
+    }
     if !entries.iter().all(|e| e.in_safe_range()) {
         return dyadic::det3_sign(&rows.map(|r| r.map(Diff::dyadic)));
+    }
+    // Near-singular but not singular (a ray grazing a face or passing next
+    // to a vertex): decided in about twice the working precision.
+    if let Some(sign) = compensated::det3_sign(m, rows.map(|r| r.map(Diff::tail)), permanent) {
+        return sign;
     }
     const PERMS: [([usize; 3], bool); 6] = [
         ([0, 1, 2], false),

@@ -6,6 +6,7 @@
 
 mod aabb;
 mod box_triangle;
+mod compensated;
 mod dot;
 pub(crate) mod dyadic;
 pub mod exact;

@@ -194,6 +194,12 @@ pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
 #[inline(never)]
 fn exact_orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     count_fallback();
+    // Three points on one axis-parallel line (a polygon edge along an axis,
+    // a ray in an axis-aligned face): a column of zero differences, so the
+    // determinant is exactly zero.
+    if (a.x == c.x && b.x == c.x) || (a.y == c.y && b.y == c.y) {
+        return Sign::Zero;
+    }
     if !in_safe_range(&[a.x, a.y, b.x, b.y, c.x, c.y]) {
         let d = Dyadic::difference;
         return det2_sign(&d(a.x, c.x), &d(a.y, c.y), &d(b.x, c.x), &d(b.y, c.y));
@@ -250,6 +256,11 @@ pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
 #[inline(never)]
 fn exact_orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     count_fallback();
+    // Four points in one axis-aligned plane: exactly coplanar (a column of
+    // zero differences).
+    if (0..3).any(|k| a[k] == d[k] && b[k] == d[k] && c[k] == d[k]) {
+        return Sign::Zero;
+    }
     let coordinates = [a, b, c, d].map(|p| p.to_array());
     if !in_safe_range(coordinates.as_flattened()) {
         // det[b − a, c − a, d − a]: our sign convention directly.

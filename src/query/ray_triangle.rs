@@ -138,9 +138,19 @@ impl Accel {
         if sides.certainly_mixed() {
             return origin_check();
         }
-        let s0 = match sides.certainly_uniform() {
-            Some(s) => s,
+        let (s0, side) = match sides.certainly_uniform() {
+            Some(s) => (s, None),
             None => {
+                // The origin in the triangle's plane: whatever the edge
+                // signs, the answer is the origin check (below, a zero
+                // side leads there too). Asked first here, where the edge
+                // signs are uncertain: a ray lying in a face's plane makes
+                // every edge sign an exact zero, each costly to prove and to
+                // break by perturbation, for a triangle it cannot cross.
+                let side = orient3d(*a, *b, *c, *o);
+                if side == Sign::Zero {
+                    return origin_check();
+                }
                 let s0 = line_side_filter_scalar(dd, u, v)
                     .unwrap_or_else(|| line_side_sos(*o, *d, *a, *b));
                 let s1 = line_side_filter_scalar(dd, v, w)
@@ -153,10 +163,10 @@ impl Accel {
                 if s2 != s0 {
                     return origin_check();
                 }
-                s0
+                (s0, Some(side))
             }
         };
-        match orient3d(*a, *b, *c, *o) {
+        match side.unwrap_or_else(|| orient3d(*a, *b, *c, *o)) {
             Sign::Zero => origin_check(),
             side if side == -s0 => TriHit::Cross(s0),
             _ => TriHit::Miss,
