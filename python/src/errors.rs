@@ -33,6 +33,16 @@ create_exception!(
      an open solid asked for parity): the message names the query's index."
 );
 
+create_exception!(
+    wingedge,
+    BooleanError,
+    WingedgeError,
+    "A boolean that produced no solid: an operand that is not a valid closed \
+     solid (named, with its defects), a result pinched along an edge (which \
+     has no winged-edge form), or a bad set expression (the offending part \
+     named by its place)."
+);
+
 /// Adds the exception classes to the module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -40,6 +50,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ObjError", py.get_type::<ObjError>())?;
     m.add("ValidationError", py.get_type::<ValidationError>())?;
     m.add("QueryError", py.get_type::<QueryError>())?;
+    m.add("BooleanError", py.get_type::<BooleanError>())?;
     Ok(())
 }
 
@@ -56,4 +67,9 @@ pub(crate) fn build(e: wingedge::mesh::BuildError) -> PyErr {
 /// A build error of the solid read from `path`, naming the file.
 pub(crate) fn build_in(path: &std::path::Path, e: wingedge::mesh::BuildError) -> PyErr {
     ValidationError::new_err(format!("{}: not a winged-edge solid: {e}", path.display()))
+}
+
+/// A boolean's error as a Python exception, with the crate's message.
+pub(crate) fn boolean(e: wingedge::boolean::BooleanError) -> PyErr {
+    BooleanError::new_err(e.to_string())
 }
