@@ -69,7 +69,18 @@ pub(crate) fn build_in(path: &std::path::Path, e: wingedge::mesh::BuildError) ->
     ValidationError::new_err(format!("{}: not a winged-edge solid: {e}", path.display()))
 }
 
-/// A boolean's error as a Python exception, with the crate's message.
+/// A boolean's error as a Python exception, with the crate's message; a
+/// result refused for an edge of more than two faces is said to be pinched
+/// there, which is what such an edge means for a boolean's result.
 pub(crate) fn boolean(e: wingedge::boolean::BooleanError) -> PyErr {
-    BooleanError::new_err(e.to_string())
+    let pinched = matches!(&e, wingedge::boolean::BooleanError::NotBuilt(why)
+        if why.contains("manifold edge"));
+    let mut message = e.to_string();
+    if pinched {
+        message.push_str(
+            " (the result is pinched along that edge: the operands' volumes meet only \
+             there, and a solid pinched along an edge has no winged-edge form, so it is refused)",
+        );
+    }
+    BooleanError::new_err(message)
 }
