@@ -53,8 +53,7 @@ pub(crate) fn combine(
     solids: Vec<PyRef<'_, PySolid>>,
     expression: &Bound<'_, PyAny>,
 ) -> PyResult<PySolid> {
-    let expression =
-        expression::parse(expression, solids.len()).map_err(BooleanError::new_err)?;
+    let expression = expression::parse(expression, solids.len()).map_err(BooleanError::new_err)?;
     let operands = solids.iter().map(|s| s.inner.clone()).collect();
     evaluate(py, operands, &expression)
 }
@@ -131,9 +130,7 @@ pub(crate) fn result_inner(
     for (f, face) in solid.faces() {
         let before = polygons.len();
         if face.rings.is_empty() {
-            polygons.push(Polygon::new(
-                solid.face_outer_vertices(f).map(|v| index[v]),
-            ));
+            polygons.push(Polygon::new(solid.face_outer_vertices(f).map(|v| index[v])));
         } else {
             let triangles = solid
                 .try_triangulate_face(f)

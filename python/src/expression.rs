@@ -152,4 +152,3 @@ fn describe(part: &Bound<'_, PyAny>) -> String {
         .unwrap_or_default();
     format!("{short}{ellipsis} ({kind})")
 }
-

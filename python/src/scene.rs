@@ -18,8 +18,8 @@ use wingedge::render::{RenderOptions, render};
 use wingedge::scene::Scene;
 
 use crate::arrays;
-use crate::errors::{self, WingedgeError};
 use crate::boolean::result_inner;
+use crate::errors::{self, WingedgeError};
 use crate::solid::{PySolid, code};
 
 create_exception!(
