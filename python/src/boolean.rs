@@ -42,7 +42,7 @@ pub(crate) fn boolean(
         }
     };
     let expression = Expression::of(operation, Expression::Operand(0), Expression::Operand(1));
-    evaluate(py, vec![a.inner.clone(), b.inner.clone()], &expression)
+    run(py, vec![a.inner.clone(), b.inner.clone()], &expression)
 }
 
 /// The set `expression` (nested tuples over indices into `solids`, see
@@ -55,22 +55,19 @@ pub(crate) fn combine(
 ) -> PyResult<PySolid> {
     let expression = expression::parse(expression, solids.len()).map_err(BooleanError::new_err)?;
     let operands = solids.iter().map(|s| s.inner.clone()).collect();
-    evaluate(py, operands, &expression)
+    run(py, operands, &expression)
 }
 
 /// Runs `combine` on the operands' solids without the interpreter lock and
 /// hands the result over with its face origins.
-fn evaluate(
-    py: Python<'_>,
-    operands: Vec<Arc<Inner>>,
-    expression: &Expression,
-) -> PyResult<PySolid> {
+fn run(py: Python<'_>, operands: Vec<Arc<Inner>>, expression: &Expression) -> PyResult<PySolid> {
     let inner = py.detach(|| {
         let solids: Vec<&Solid> = operands.iter().map(|o| &o.solid).collect();
         let result = wingedge::boolean::combine(&solids, expression, BooleanOptions::default())
             .map_err(errors::boolean)?;
         // Each face's origin: the operand, and the operand face's index in
-        // that operand's face order (what its ray casts report).
+        // that operand's face order (what its ray casts report). Every face
+        // of a result has one; `[-1, -1]` would mark a face without.
         let origin = |face: FaceId| -> [i64; 2] {
             result
                 .solid

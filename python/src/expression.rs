@@ -1,8 +1,8 @@
 //! Set expressions written as nested Python tuples, read into the crate's
 //! [`Expression`].
 //!
-//! An expression is an operand's index (an `int` naming a solid of the
-//! list) or a tuple (or list) `(operation, x, y, ...)` with `operation` one
+//! An expression is an operand's index (an `int`, or a numpy integer,
+//! naming a solid of the list) or a tuple (or list) `(operation, x, y, ...)` with `operation` one
 //! of `"union"`, `"intersection"`, `"difference"` and at least two
 //! sub-expressions after it: `("difference", 0, ("union", 1, 2))`. More than
 //! two operands read as the operation applied left to right
@@ -13,7 +13,7 @@
 //! Python would index it: `expression[2][0]`.
 
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyInt, PyList, PyString, PyTuple};
+use pyo3::types::{PyBool, PyList, PyString, PyTuple};
 use wingedge::boolean::{Expression, Operation};
 
 /// How deeply tuples may nest: deeper input is refused rather than risk
@@ -43,25 +43,12 @@ fn parse_at(
             describe(part)
         ));
     }
-    if part.is_instance_of::<PyInt>() {
-        return match part.extract::<usize>() {
-            Ok(k) if k < count => Ok(Expression::Operand(k)),
-            _ => Err(format!(
-                "{place}: operand {} names no solid; {count} solids were given (indices 0 to {})",
-                describe(part),
-                count as i64 - 1
-            )),
-        };
-    }
     let items: Vec<Bound<'_, PyAny>> = if let Ok(t) = part.cast::<PyTuple>() {
         t.iter().collect()
     } else if let Ok(l) = part.cast::<PyList>() {
         l.iter().collect()
     } else {
-        return Err(format!(
-            "{place}: expected an operand index or a tuple (operation, x, y, ...), got {}",
-            describe(part)
-        ));
+        return operand(part, count, place);
     };
     if depth >= MAX_DEPTH {
         return Err(format!(
@@ -103,6 +90,31 @@ fn parse_at(
             Expression::of(operation, first, balanced(Operation::Union, rest))
         }
     })
+}
+
+/// An operand's index: a Python `int` or anything with `__index__` (a
+/// numpy integer), below `count`.
+fn operand(part: &Bound<'_, PyAny>, count: usize, place: &str) -> Result<Expression, String> {
+    // `operator.index`: ints and numpy integers, never a float.
+    let index = part
+        .py()
+        .import("operator")
+        .and_then(|m| m.getattr("index"))
+        .and_then(|index| index.call1((part,)));
+    let Ok(index) = index else {
+        return Err(format!(
+            "{place}: expected an operand index or a tuple (operation, x, y, ...), got {}",
+            describe(part)
+        ));
+    };
+    match index.extract::<i64>() {
+        Ok(k) if usize::try_from(k).is_ok_and(|k| k < count) => Ok(Expression::Operand(k as usize)),
+        _ => Err(format!(
+            "{place}: operand {} names no solid; {count} solids were given (indices 0 to {})",
+            describe(part),
+            count as i64 - 1
+        )),
+    }
 }
 
 /// `x₀ op x₁ op …` for an associative `op`, grouped as a balanced tree

@@ -123,6 +123,9 @@ def test_combine_of_three_operands_equals_the_chained_operators():
     # Lists work as tuples, and a bare index is that operand as it is.
     union = wingedge.combine([a, b, c], ["union", 0, 1, 2])
     assert union.volume == pytest.approx(((a | b) | c).volume, rel=1e-12)
+    # numpy integers name operands too.
+    indices = ("difference", *np.arange(3))
+    assert wingedge.combine([a, b, c], indices).volume == pytest.approx(flat.volume, rel=1e-12)
     alone = wingedge.combine([a, b], 1)
     assert alone.volume == b.volume
     np.testing.assert_array_equal(alone.face_origins[:, 0], 1)
@@ -136,6 +139,7 @@ def test_combine_of_three_operands_equals_the_chained_operators():
         (("union", 0), "expression: a union needs at least two operands, got 1"),
         (("union", 0, ("intersection", 1, 5)), r"expression\[2\]\[2\]: operand 5 .* names no solid"),
         (("difference", 0, -1), r"expression\[2\]: operand -1 .* names no solid"),
+        (("difference", 0, 2**70), r"expression\[2\]: operand 1180591620717411303424 .* names no solid"),
         (("union", 0, True), r"expression\[2\]: True \(bool\) is a bool"),
         (("union", 0, 1.0), r"expression\[2\]: expected an operand index .* got 1.0 \(float\)"),
         ((), "expression: an empty tuple"),
