@@ -4,6 +4,11 @@
 //! pass; and the conversion of a result into what a Python `Solid` owns,
 //! which `Scene.evaluate` shares.
 //!
+//! Each operand is proven a valid closed solid once, on its first use, and
+//! the verdict is kept with it (a result counts as proven: it was before it
+//! was returned), so a solid used in many booleans, or a chain `a | b | c`,
+//! is validated once rather than in every call.
+//!
 //! A result face with rings (a face with a hole, such as the top of a
 //! drilled block) has no place in a polygon soup, which is what a Python
 //! `Solid` keeps (for `to_arrays`, pickling and validation): it is handed
@@ -14,8 +19,9 @@
 use std::sync::Arc;
 
 use pyo3::prelude::*;
+use rayon::prelude::*;
 use slotmap::SecondaryMap;
-use wingedge::boolean::{BooleanOptions, Expression, Operation};
+use wingedge::boolean::{BooleanError as CoreError, BooleanOptions, Expression, Operation};
 use wingedge::mesh::{FaceId, Polygon, PolygonSoup, Solid, VertexId};
 
 use crate::errors::{self, BooleanError};
@@ -62,9 +68,15 @@ pub(crate) fn combine(
 /// hands the result over with its face origins.
 fn run(py: Python<'_>, operands: Vec<Arc<Inner>>, expression: &Expression) -> PyResult<PySolid> {
     let inner = py.detach(|| {
+        prove_operands(&operands, expression).map_err(errors::boolean)?;
         let solids: Vec<&Solid> = operands.iter().map(|o| &o.solid).collect();
-        let result = wingedge::boolean::combine(&solids, expression, BooleanOptions::default())
-            .map_err(errors::boolean)?;
+        // Every operand named was proven above.
+        let options = BooleanOptions {
+            check_operands: false,
+            ..BooleanOptions::default()
+        };
+        let result =
+            wingedge::boolean::combine(&solids, expression, options).map_err(errors::boolean)?;
         // Each face's origin: the operand, and the operand face's index in
         // that operand's face order (what its ray casts report). Every face
         // of a result has one; `[-1, -1]` would mark a face without.
@@ -86,6 +98,43 @@ fn run(py: Python<'_>, operands: Vec<Arc<Inner>>, expression: &Expression) -> Py
     Ok(PySolid {
         inner: Arc::new(inner),
     })
+}
+
+/// Proves every operand the expression names a valid closed solid (the
+/// check `combine` makes with `check_operands`), each at most once in its
+/// life, in parallel.
+///
+/// # Errors
+///
+/// `InvalidOperand` for the first operand, by index, that is not one, with
+/// the validator's located defects.
+fn prove_operands(operands: &[Arc<Inner>], expression: &Expression) -> Result<(), CoreError> {
+    let named: Vec<usize> = expression
+        .operands()
+        .into_iter()
+        .filter(|&k| k < operands.len())
+        .collect();
+    let verdicts: Vec<Result<(), CoreError>> = named
+        .par_iter()
+        .map(|&k| {
+            let inner = &operands[k];
+            let verdict = inner
+                .proof
+                .get_or_init(|| wingedge::boolean::prove(&inner.solid).map(|_| ()));
+            match verdict {
+                Ok(()) => Ok(()),
+                Err(CoreError::InvalidResult { validity, report }) => {
+                    Err(CoreError::InvalidOperand {
+                        operand: k,
+                        validity: validity.clone(),
+                        report: report.clone(),
+                    })
+                }
+                Err(other) => Err(other.clone()),
+            }
+        })
+        .collect();
+    verdicts.into_iter().collect()
 }
 
 /// What a Python `Solid` owns for a solid a boolean (or a tree's
@@ -150,5 +199,9 @@ pub(crate) fn result_inner(
     let rebuilt = Solid::try_from_soup(&soup).map_err(|e| defect(e.to_string()))?;
     let mut inner = Inner::new(rebuilt, soup, None, None);
     inner.origins = origin.map(|_| origins);
+    // Proven valid by the boolean: the same vertices, and the same faces
+    // but for those with rings, now the exact triangulations the proof
+    // itself checked.
+    let _ = inner.proof.set(Ok(()));
     Ok(inner)
 }

@@ -10,6 +10,9 @@
 //! - `face_index[f]` is the position of face `f` in the solid's face order,
 //!   the index every answer reports.
 //! - The accel is built on first use and shared by every later query.
+//! - `proof`, once set, is the validator's verdict on `solid` as a boolean
+//!   operand (set at once to `Ok` for a boolean's result, which was proven
+//!   valid before it was handed over).
 //! - `origins`, when present (a boolean's result), has one row per face in
 //!   the solid's face order: the operand's index and the face's index in
 //!   that operand's face order.
@@ -43,6 +46,9 @@ pub(crate) struct Inner {
     accel: OnceLock<Accel>,
     /// Where each face came from, for a boolean's result.
     pub(crate) origins: Option<Vec<[i64; 2]>>,
+    /// Whether the solid is a valid closed solid, as booleans need: proven
+    /// once, on first use as an operand.
+    pub(crate) proof: OnceLock<Result<(), wingedge::boolean::BooleanError>>,
 }
 
 impl Inner {
@@ -61,6 +67,7 @@ impl Inner {
             face_index,
             accel: OnceLock::new(),
             origins: None,
+            proof: OnceLock::new(),
         }
     }
 
