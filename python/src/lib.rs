@@ -11,6 +11,7 @@ mod arrays;
 mod boolean;
 mod errors;
 mod expression;
+mod face_index;
 mod report;
 mod scene;
 mod solid;

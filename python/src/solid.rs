@@ -23,7 +23,6 @@ use std::sync::{Arc, OnceLock};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use slotmap_key::FaceIndex;
 use wingedge::geom::triangulate::triangulate_3d;
 use wingedge::geom::{Ray, Tolerance};
 use wingedge::glam::DVec3;
@@ -33,6 +32,7 @@ use wingedge::query::{Accel, Containment, Method, Transition};
 
 use crate::arrays;
 use crate::errors;
+use crate::face_index::FaceIndex;
 
 /// What a Python `Solid` owns.
 pub(crate) struct Inner {
@@ -125,32 +125,6 @@ fn triangulate_soup(soup: &PolygonSoup) -> PyResult<Vec<i64>> {
         );
     }
     Ok(out)
-}
-
-mod slotmap_key {
-    //! Face ids to answer indices.
-    use slotmap::SecondaryMap;
-    use wingedge::mesh::{FaceId, Solid};
-
-    /// The position of every face in the solid's face order: an array
-    /// indexed by the key's slot, so a million lookups cost a million loads.
-    pub(crate) struct FaceIndex(SecondaryMap<FaceId, i64>);
-
-    impl FaceIndex {
-        pub(crate) fn new(solid: &Solid) -> FaceIndex {
-            FaceIndex(
-                solid
-                    .faces()
-                    .enumerate()
-                    .map(|(i, (f, _))| (f, i as i64))
-                    .collect(),
-            )
-        }
-
-        pub(crate) fn of(&self, face: FaceId) -> i64 {
-            self.0.get(face).copied().unwrap_or(-1)
-        }
-    }
 }
 
 /// A winged-edge solid: Baumgart's structure, built from a polygon soup,
