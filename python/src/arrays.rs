@@ -146,3 +146,25 @@ pub(crate) fn soup(
     }
     Ok(PolygonSoup::new(positions, polygons))
 }
+
+/// Face origins from an `(m, 2)` int64 array, one row per face
+/// (`[operand, face]`), as a boolean's result carries them.
+///
+/// # Errors
+///
+/// `ValueError` when the array is not of shape `(faces, 2)`.
+pub(crate) fn origins(array: &PyReadonlyArray2<'_, i64>, faces: usize) -> PyResult<Vec<[i64; 2]>> {
+    let shape = array.shape();
+    if shape != [faces, 2] {
+        return Err(PyValueError::new_err(format!(
+            "origins must have shape ({faces}, 2), one row per face, got ({}, {})",
+            shape[0], shape[1]
+        )));
+    }
+    Ok(array
+        .as_array()
+        .rows()
+        .into_iter()
+        .map(|r| [r[0], r[1]])
+        .collect())
+}

@@ -33,6 +33,16 @@ create_exception!(
      an open solid asked for parity): the message names the query's index."
 );
 
+create_exception!(
+    wingedge,
+    BooleanError,
+    WingedgeError,
+    "A boolean that produced no solid: an operand that is not a valid closed \
+     solid (named, with its defects), a result pinched along an edge (which \
+     has no winged-edge form), or a bad set expression (the offending part \
+     named by its place)."
+);
+
 /// Adds the exception classes to the module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -40,6 +50,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ObjError", py.get_type::<ObjError>())?;
     m.add("ValidationError", py.get_type::<ValidationError>())?;
     m.add("QueryError", py.get_type::<QueryError>())?;
+    m.add("BooleanError", py.get_type::<BooleanError>())?;
     Ok(())
 }
 
@@ -56,4 +67,20 @@ pub(crate) fn build(e: wingedge::mesh::BuildError) -> PyErr {
 /// A build error of the solid read from `path`, naming the file.
 pub(crate) fn build_in(path: &std::path::Path, e: wingedge::mesh::BuildError) -> PyErr {
     ValidationError::new_err(format!("{}: not a winged-edge solid: {e}", path.display()))
+}
+
+/// A boolean's error as a Python exception, with the crate's message; a
+/// result refused for an edge of more than two faces is said to be pinched
+/// there, which is what such an edge means for a boolean's result.
+pub(crate) fn boolean(e: wingedge::boolean::BooleanError) -> PyErr {
+    let pinched = matches!(&e, wingedge::boolean::BooleanError::NotBuilt(why)
+        if why.contains("manifold edge"));
+    let mut message = e.to_string();
+    if pinched {
+        message.push_str(
+            " (the result is pinched along that edge: the operands' volumes meet only \
+             there, and a solid pinched along an edge has no winged-edge form, so it is refused)",
+        );
+    }
+    BooleanError::new_err(message)
 }

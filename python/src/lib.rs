@@ -8,7 +8,10 @@
 #![warn(missing_docs)]
 
 mod arrays;
+mod boolean;
 mod errors;
+mod expression;
+mod face_index;
 mod report;
 mod scene;
 mod solid;
@@ -28,6 +31,8 @@ fn _wingedge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solid::cuboid, m)?)?;
     m.add_function(wrap_pyfunction!(solid::prism, m)?)?;
     m.add_function(wrap_pyfunction!(solid::sphere, m)?)?;
+    m.add_function(wrap_pyfunction!(boolean::boolean, m)?)?;
+    m.add_function(wrap_pyfunction!(boolean::combine, m)?)?;
     m.add_function(wrap_pyfunction!(report::validate_path, m)?)?;
     m.add_function(wrap_pyfunction!(report::validate_solid, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -1,6 +1,6 @@
 //! `wingedge.Scene`: a CSG tree from the JSON scene format, answered by ray
 //! casting (Roth's method): point classes, first hits, spans, volume and
-//! images.
+//! images; or evaluated to a solid by exact booleans.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -10,7 +10,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rayon::prelude::*;
-use wingedge::csg::Stats;
+use wingedge::csg::{EvaluateError, EvaluateOptions, Stats, evaluate};
 use wingedge::geom::Ray;
 use wingedge::glam::DVec3;
 use wingedge::query::QueryError as CoreQueryError;
@@ -18,8 +18,9 @@ use wingedge::render::{RenderOptions, render};
 use wingedge::scene::Scene;
 
 use crate::arrays;
+use crate::boolean::result_inner;
 use crate::errors::{self, WingedgeError};
-use crate::solid::code;
+use crate::solid::{PySolid, code};
 
 create_exception!(
     wingedge,
@@ -192,6 +193,29 @@ impl PyScene {
         bytes
             .into_pyarray(py)
             .reshape([height as usize, width as usize, 3])
+    }
+
+    /// The tree evaluated to one valid solid by exact booleans (boundary
+    /// evaluation in one pass over all leaves); spheres and cylinders are
+    /// inscribed polyhedra within `tolerance` of their radius (the crate's
+    /// default when `None`). The interpreter lock is released meanwhile.
+    #[pyo3(signature = (tolerance=None))]
+    fn evaluate(&self, py: Python<'_>, tolerance: Option<f64>) -> PyResult<PySolid> {
+        let mut options = EvaluateOptions::default();
+        if let Some(tolerance) = tolerance {
+            options.tolerance = tolerance;
+        }
+        let csg = &self.scene.csg;
+        let inner = py.detach(|| {
+            let evaluated = evaluate(csg, &options).map_err(|e| match e {
+                EvaluateError::Leaf { .. } => SceneError::new_err(e.to_string()),
+                other => errors::BooleanError::new_err(other.to_string()),
+            })?;
+            result_inner(&evaluated.solid, None)
+        })?;
+        Ok(PySolid {
+            inner: Arc::new(inner),
+        })
     }
 
     fn __repr__(&self) -> String {

@@ -10,6 +10,12 @@
 //! - `face_index[f]` is the position of face `f` in the solid's face order,
 //!   the index every answer reports.
 //! - The accel is built on first use and shared by every later query.
+//! - `proof`, once set, is the validator's verdict on `solid` as a boolean
+//!   operand (set at once to `Ok` for a boolean's result, which was proven
+//!   valid before it was handed over).
+//! - `origins`, when present (a boolean's result), has one row per face in
+//!   the solid's face order: the operand's index and the face's index in
+//!   that operand's face order.
 
 use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
@@ -17,7 +23,6 @@ use std::sync::{Arc, OnceLock};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use slotmap_key::FaceIndex;
 use wingedge::geom::triangulate::triangulate_3d;
 use wingedge::geom::{Ray, Tolerance};
 use wingedge::glam::DVec3;
@@ -27,6 +32,7 @@ use wingedge::query::{Accel, Containment, Method, Transition};
 
 use crate::arrays;
 use crate::errors;
+use crate::face_index::FaceIndex;
 
 /// What a Python `Solid` owns.
 pub(crate) struct Inner {
@@ -38,10 +44,15 @@ pub(crate) struct Inner {
     pub(crate) path: Option<PathBuf>,
     face_index: FaceIndex,
     accel: OnceLock<Accel>,
+    /// Where each face came from, for a boolean's result.
+    pub(crate) origins: Option<Vec<[i64; 2]>>,
+    /// Whether the solid is a valid closed solid, as booleans need: proven
+    /// once, on first use as an operand.
+    pub(crate) proof: OnceLock<Result<(), wingedge::boolean::BooleanError>>,
 }
 
 impl Inner {
-    fn new(
+    pub(crate) fn new(
         solid: Solid,
         soup: PolygonSoup,
         vertex_lines: Option<Vec<usize>>,
@@ -55,7 +66,21 @@ impl Inner {
             path,
             face_index,
             accel: OnceLock::new(),
+            origins: None,
+            proof: OnceLock::new(),
         }
+    }
+
+    /// The empty solid (no faces): what a boolean returns when nothing is
+    /// left.
+    pub(crate) fn empty() -> Inner {
+        Inner::new(Solid::default(), PolygonSoup::default(), None, None)
+    }
+
+    /// The position of `face` in the solid's face order (`-1` for a face
+    /// of another solid).
+    pub(crate) fn face_index_of(&self, face: wingedge::mesh::FaceId) -> i64 {
+        self.face_index.of(face)
     }
 
     fn from_soup(soup: PolygonSoup) -> PyResult<Inner> {
@@ -102,32 +127,6 @@ fn triangulate_soup(soup: &PolygonSoup) -> PyResult<Vec<i64>> {
     Ok(out)
 }
 
-mod slotmap_key {
-    //! Face ids to answer indices.
-    use slotmap::SecondaryMap;
-    use wingedge::mesh::{FaceId, Solid};
-
-    /// The position of every face in the solid's face order: an array
-    /// indexed by the key's slot, so a million lookups cost a million loads.
-    pub(crate) struct FaceIndex(SecondaryMap<FaceId, i64>);
-
-    impl FaceIndex {
-        pub(crate) fn new(solid: &Solid) -> FaceIndex {
-            FaceIndex(
-                solid
-                    .faces()
-                    .enumerate()
-                    .map(|(i, (f, _))| (f, i as i64))
-                    .collect(),
-            )
-        }
-
-        pub(crate) fn of(&self, face: FaceId) -> i64 {
-            self.0.get(face).copied().unwrap_or(-1)
-        }
-    }
-}
-
 /// A winged-edge solid: Baumgart's structure, built from a polygon soup,
 /// with exact inside/outside and ray queries.
 #[pyclass(name = "NativeSolid", module = "wingedge._wingedge", frozen)]
@@ -161,18 +160,53 @@ impl PySolid {
     /// A solid from vertices `(n, 3)` and faces (an `(m, k)` integer array or
     /// a flat index array with per-face sizes), each face counter-clockwise
     /// seen from outside. The wrapper `Solid.from_arrays` accepts lists.
+    /// `origins`, an `(m, 2)` int64 array, restores a boolean result's
+    /// face origins (as pickling hands them back).
     #[staticmethod]
+    #[pyo3(signature = (vertices, sizes, indices, origins=None))]
     fn _from_flat(
         py: Python<'_>,
         vertices: PyReadonlyArray2<'_, f64>,
         sizes: PyReadonlyArray1<'_, i64>,
         indices: PyReadonlyArray1<'_, i64>,
+        origins: Option<PyReadonlyArray2<'_, i64>>,
     ) -> PyResult<PySolid> {
         let soup = arrays::soup(&vertices, &sizes, &indices)?;
-        let inner = py.detach(|| Inner::from_soup(soup))?;
+        let origins = origins
+            .map(|o| arrays::origins(&o, soup.polygons.len()))
+            .transpose()?;
+        let mut inner = py.detach(|| Inner::from_soup(soup))?;
+        inner.origins = origins;
         Ok(PySolid {
             inner: Arc::new(inner),
         })
+    }
+
+    /// The empty solid (no vertices, no faces), with no face origins, or
+    /// with an empty origins array when `origins` is true (an empty
+    /// boolean result, unpickled).
+    #[staticmethod]
+    fn _empty(origins: bool) -> PySolid {
+        let mut inner = Inner::empty();
+        if origins {
+            inner.origins = Some(Vec::new());
+        }
+        PySolid {
+            inner: Arc::new(inner),
+        }
+    }
+
+    /// For a boolean's result, an `(m, 2)` int64 array with a row per face
+    /// in face order: the operand's index and the index of the operand's
+    /// face this face is part of, in that operand's face order; `None`
+    /// for any other solid.
+    #[getter]
+    fn face_origins<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyArray2<i64>>>> {
+        let Some(origins) = &self.inner.origins else {
+            return Ok(None);
+        };
+        let flat: Vec<i64> = origins.iter().flatten().copied().collect();
+        Ok(Some(flat.into_pyarray(py).reshape([origins.len(), 2])?))
     }
 
     /// Vertices `(n, 3)` float64, face sizes `(m,)` int64 and the flat face

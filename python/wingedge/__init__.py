@@ -20,7 +20,14 @@ from typing import List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _wingedge
-from ._wingedge import ObjError, QueryError, SceneError, ValidationError, WingedgeError
+from ._wingedge import (
+    BooleanError,
+    ObjError,
+    QueryError,
+    SceneError,
+    ValidationError,
+    WingedgeError,
+)
 
 __version__ = _wingedge.__version__
 
@@ -32,6 +39,7 @@ __all__ = [
     "Violation",
     "load_obj",
     "validate",
+    "combine",
     "builtin",
     "tetrahedron",
     "cube",
@@ -46,6 +54,7 @@ __all__ = [
     "ValidationError",
     "QueryError",
     "SceneError",
+    "BooleanError",
 ]
 
 
@@ -106,7 +115,7 @@ class Solid:
         self._native = native
 
     def __reduce__(self):
-        return (_rebuild_solid, self._native._to_flat())
+        return (_rebuild_solid, (*self._native._to_flat(), self._native.face_origins))
 
     # -- construction ---------------------------------------------------
 
@@ -147,6 +156,38 @@ class Solid:
         lambda self: np.array(self._native.bounds, dtype=np.float64),
         doc="Bounding box as a (2, 3) array: min corner, max corner.",
     )
+    face_origins = property(
+        lambda self: self._native.face_origins,
+        doc="For a boolean's result, an (F, 2) int64 array, a row per face in "
+        "face order: the operand's index (0 for self, 1 for other in "
+        "a.union(other); the list index in combine) and the index of the "
+        "operand's face this face is part of, in that operand's face order. "
+        "None for any other solid (a scene's evaluation included).",
+    )
+
+    # -- booleans -----------------------------------------------------------
+
+    def union(self, other: "Solid") -> "Solid":
+        """``self ∪ other`` as a new valid solid, exact (see :func:`combine`).
+        Also ``self | other``."""
+        return Solid(_wingedge.boolean(self._native, _native_of(other, "other"), "union"))
+
+    def intersection(self, other: "Solid") -> "Solid":
+        """``self ∩ other`` as a new valid solid, exact. Also ``self & other``."""
+        return Solid(_wingedge.boolean(self._native, _native_of(other, "other"), "intersection"))
+
+    def difference(self, other: "Solid") -> "Solid":
+        """``self − other`` as a new valid solid, exact. Also ``self - other``."""
+        return Solid(_wingedge.boolean(self._native, _native_of(other, "other"), "difference"))
+
+    def __or__(self, other):
+        return self.union(other) if isinstance(other, Solid) else NotImplemented
+
+    def __and__(self, other):
+        return self.intersection(other) if isinstance(other, Solid) else NotImplemented
+
+    def __sub__(self, other):
+        return self.difference(other) if isinstance(other, Solid) else NotImplemented
 
     # -- queries ------------------------------------------------------------
 
@@ -341,13 +382,51 @@ class Scene:
         """A shaded, ray-cast image as a ``(height, width, 3)`` uint8 array."""
         return self._native.render(int(width), int(height))
 
+    def evaluate(self, tolerance: Optional[float] = None) -> Solid:
+        """The tree as one valid :class:`Solid`, by exact booleans over all
+        its leaves in one pass (boundary evaluation). Spheres and cylinders
+        become inscribed polyhedra within ``tolerance`` times their radius
+        (default 1e-3); half-spaces are clipped to the tree's bounds. Raises
+        ``SceneError`` naming a leaf that cannot be made a polyhedron, and
+        ``BooleanError`` when a leaf is not a valid solid or the result
+        cannot be one. The result has no :attr:`Solid.face_origins`."""
+        return Solid(self._native.evaluate(None if tolerance is None else float(tolerance)))
+
     def __repr__(self) -> str:
         return repr(self._native)
 
 
-def _rebuild_solid(vertices, sizes, indices) -> Solid:
-    """Unpickles a :class:`Solid` from the soup it was built from."""
-    return Solid(_wingedge.NativeSolid._from_flat(vertices, sizes, indices))
+def _rebuild_solid(vertices, sizes, indices, origins=None) -> Solid:
+    """Unpickles a :class:`Solid` from the soup it was built from (and a
+    boolean result's face origins)."""
+    if sizes.size == 0:
+        return Solid(_wingedge.NativeSolid._empty(origins is not None))
+    return Solid(_wingedge.NativeSolid._from_flat(vertices, sizes, indices, origins))
+
+
+def _native_of(solid, name: str) -> "_wingedge.NativeSolid":
+    if not isinstance(solid, Solid):
+        raise TypeError(f"{name} must be a wingedge.Solid, got {type(solid).__name__}")
+    return solid._native
+
+
+def combine(solids: Sequence[Solid], expression) -> Solid:
+    """The regularized set ``expression`` of ``solids`` as one valid
+    :class:`Solid`, evaluated in one exact pass: every solid's surface is cut
+    by every other's, and no constructed point is rounded before the result
+    is written.
+
+    ``expression`` is an ``int`` naming a solid by its index in ``solids``,
+    or a tuple ``(operation, x, y, ...)`` of ``"union"``, ``"intersection"``
+    or ``"difference"`` and two or more sub-expressions, applied left to
+    right: ``("difference", 0, ("union", 1, 2))`` is ``s0 − (s1 ∪ s2)``.
+    A bad expression raises ``BooleanError`` naming the offending part as
+    ``expression[2][0]``; an operand that is not a valid closed solid
+    raises ``BooleanError`` naming its index and defects. The result's
+    :attr:`Solid.face_origins` name operands by their index in ``solids``.
+    The interpreter lock is released while the boolean runs."""
+    natives = [_native_of(s, f"solids[{i}]") for i, s in enumerate(solids)]
+    return Solid(_wingedge.combine(natives, expression))
 
 
 @dataclass

@@ -29,6 +29,11 @@ class ValidationError(WingedgeError):
 class QueryError(WingedgeError):
     """A query that cannot be answered: the message names the query's index."""
 
+class BooleanError(WingedgeError):
+    """A boolean that produced no solid: an invalid operand (named, with its
+    defects), a result pinched along an edge, or a bad set expression (the
+    offending part named by its place)."""
+
 class SceneError(WingedgeError):
     """A scene file or document that cannot be loaded: the message names the
     file and the JSON path."""
@@ -37,9 +42,15 @@ class NativeSolid:
     """A winged-edge solid with its exact query accel (built on first use)."""
 
     @staticmethod
-    def _from_flat(vertices: _F64, sizes: _I64, indices: _I64) -> NativeSolid:
+    def _from_flat(
+        vertices: _F64, sizes: _I64, indices: _I64, origins: Optional[_I64] = None
+    ) -> NativeSolid:
         """A solid from vertices ``(n, 3)``, face sizes ``(m,)`` and the flat
-        face index array; raises ``ValidationError`` naming the polygon."""
+        face index array (and a boolean result's ``(m, 2)`` face origins);
+        raises ``ValidationError`` naming the polygon."""
+    @staticmethod
+    def _empty(origins: bool) -> NativeSolid:
+        """The empty solid (with an empty origins array when ``origins``)."""
     def _to_flat(self) -> Tuple[_F64, _I64, _I64]:
         """The soup the solid was built from: vertices, face sizes, indices."""
     def _triangles(self) -> Tuple[_F64, _I64]:
@@ -72,6 +83,9 @@ class NativeSolid:
     def bounds(self) -> Tuple[_Vec3, _Vec3]: ...
     @property
     def path(self) -> Optional[str]: ...
+    @property
+    def face_origins(self) -> Optional[_I64]:
+        """A boolean result's ``(F, 2)`` rows ``[operand, operand face]``, else None."""
 
 class NativeSoupWinding:
     """A polygon soup's fanned triangles and their accel (need not be a solid)."""
@@ -115,6 +129,8 @@ class NativeScene:
         """``(volume, spacing used, rays cast, closed form or None)``."""
     def render(self, width: int, height: int) -> npt.NDArray[np.uint8]:
         """A ray-cast image ``(height, width, 3)``."""
+    def evaluate(self, tolerance: Optional[float] = None) -> NativeSolid:
+        """The tree as one valid solid by exact booleans."""
 
 def load_obj(path: _Path, weld: Optional[object] = None, max_face_corners: Optional[int] = None) -> NativeSolid:
     """Reads an OBJ file into a solid; ``ObjError`` names the file and line."""
@@ -126,6 +142,10 @@ def prism(profile: Sequence[_Vec3], sweep: _Vec3) -> NativeSolid:
     """A planar polygon swept along a vector."""
 def sphere(rings: int) -> NativeSolid:
     """A triangulated UV sphere of radius 1."""
+def boolean(a: NativeSolid, b: NativeSolid, operation: str) -> NativeSolid:
+    """``a op b`` for ``"union"``, ``"intersection"`` or ``"difference"``."""
+def combine(solids: Sequence[NativeSolid], expression: object) -> NativeSolid:
+    """A set expression of nested tuples over indices into ``solids``."""
 def validate_path(path: _Path, weld: Optional[object] = None, planarity: Optional[float] = None) -> str:
     """The JSON report ``validate --json`` prints for a file."""
 def validate_solid(solid: NativeSolid, planarity: Optional[float] = None) -> str:
