@@ -28,20 +28,7 @@ use super::expression::Expression;
 use super::intersect::projection;
 use super::operand::Prepared;
 use super::points::{PointTable, PointView};
-use super::select::{covered, keep};
-
-/// Where a patch lies against the other operand.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Label {
-    /// Strictly inside.
-    Inside,
-    /// Strictly outside.
-    Outside,
-    /// On its surface, both normals pointing the same way.
-    OnSame,
-    /// On its surface, the normals opposite.
-    OnOpposite,
-}
+use super::select::{Label, covered, keep};
 
 /// A piece of an operand's triangle.
 #[derive(Clone, Copy, Debug)]

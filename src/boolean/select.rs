@@ -16,8 +16,20 @@
 //! sees them swapped and turns over accordingly).
 
 use super::BooleanError;
-use super::classify::Label;
 use super::expression::Expression;
+
+/// Where a patch lies against the other operand.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Label {
+    /// Strictly inside.
+    Inside,
+    /// Strictly outside.
+    Outside,
+    /// On its surface, both normals pointing the same way.
+    OnSame,
+    /// On its surface, the normals opposite.
+    OnOpposite,
+}
 
 /// Whether a patch of operand `own` bounds the result of `expression`, and
 /// if so whether it is turned over (`Some(true)`); `label(k)` is the
