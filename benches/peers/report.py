@@ -134,19 +134,24 @@ def _query_groups(record, with_sets=False):
 
 # ---------------------------------------------------------------- the full table
 
+def _table_row(r, ours, task, what, exact):
+    """One library's row of a query table: mesh, `what` was asked, setup,
+    rate, ratio to wingedge, disagreements and their exact settling."""
+    our_rate, _ = _rate(ours)
+    rate, rate_text = _rate(r)
+    differ = "%s of %s" % (format(r["differs"], ","), format(r.get("answered", r["queries"]), ","))
+    if task == "rays" and r["library"] != "wingedge":
+        differ += "; elsewhere \\|Δt\\| ≤ %.1g" % r["max_t_gap"]
+    return "| %s (%s) | %s | %s | %.3f | %s | %s | %s | %s |" % (
+        r["mesh"], format(r["triangles"], ","), what, _label(r), r["setup_s"], rate_text,
+        "1" if r is ours else _ratio(rate / our_rate), differ, _exact_cell(r, exact))
+
+
 def _query_lines(record):
     lines = []
     for mesh, task, ours, group in _query_groups(record):
-        our_rate, _ = _rate(ours)
         for r in group:
-            rate, rate_text = _rate(r)
-            differ = "%s of %s" % (format(r["differs"], ","), format(r.get("answered", r["queries"]), ","))
-            if task == "rays" and r["library"] != "wingedge":
-                differ += "; elsewhere \\|Δt\\| ≤ %.1g" % r["max_t_gap"]
-            lines.append("| %s (%s) | %s | %s | %.3f | %s | %s | %s | %s |" % (
-                mesh, format(r["triangles"], ","), TASK_WORDS[task], _label(r), r["setup_s"], rate_text,
-                "1" if r is ours else _ratio(rate / our_rate), differ,
-                _exact_cell(r, record["exact"][mesh][task])))
+            lines.append(_table_row(r, ours, task, TASK_WORDS[task], record["exact"][mesh][task]))
     return lines
 
 
@@ -155,16 +160,9 @@ def _set_lines(record):
     for key, task, ours, group in _query_groups(record, with_sets=True):
         if not ours.get("set"):
             continue
-        our_rate, _ = _rate(ours)
         for r in group:
-            rate, rate_text = _rate(r)
-            differ = "%s of %s" % (format(r["differs"], ","), format(r.get("answered", r["queries"]), ","))
-            if task == "rays" and r["library"] != "wingedge":
-                differ += "; elsewhere \\|Δt\\| ≤ %.1g" % r["max_t_gap"]
-            lines.append("| %s (%s) | %s | %s | %.3f | %s | %s | %s | %s |" % (
-                r["mesh"], format(r["triangles"], ","), SET_WORDS.get(r["set"], r["set"]), _label(r),
-                r["setup_s"], rate_text, "1" if r is ours else _ratio(rate / our_rate), differ,
-                _exact_cell(r, record["exact"][key][task])))
+            what = SET_WORDS.get(r["set"], r["set"])
+            lines.append(_table_row(r, ours, task, what, record["exact"][key][task]))
     return lines
 
 

@@ -6,16 +6,14 @@ Volumes and genus are checked against manifold3d, a test requirement
 skipped.
 """
 
-import os
 import pickle
-import re
 
 import manifold3d as m3d
 import numpy as np
 import pytest
 
 import wingedge
-from conftest import ROOT
+from conftest import run_python_block
 
 OPERATIONS = ("union", "intersection", "difference")
 
@@ -221,16 +219,7 @@ def test_a_scene_evaluates_to_a_solid():
 
 
 def test_the_booleans_example_of_the_python_page_runs(capsys):
-    text = (ROOT / "docs" / "python.md").read_text()
-    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
-    assert len(blocks) == 1
-    here = os.getcwd()
-    os.chdir(ROOT)
-    try:
-        scope = {}
-        exec(compile(blocks[0], "docs/python.md", "exec"), scope)
-    finally:
-        os.chdir(here)
+    run_python_block("docs/python.md")
     lines = capsys.readouterr().out.splitlines()
     assert lines[0] == "6.0 1"
     assert lines[1] == "[[0, 0], [0, 2]]"

@@ -107,29 +107,9 @@ pub(super) fn det3_sign(h: [[f64; 3]; 3], l: [[f64; 3]; 3], permanent: f64) -> O
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::exact::{Diff, det3_sign as exact_det3_sign};
-    use crate::geom::expansion::Expansion;
-
-    /// The exact sign by expansion arithmetic alone.
-    fn expansion_sign(rows: [[Diff; 3]; 3]) -> Sign {
-        const PERMS: [([usize; 3], bool); 6] = [
-            ([0, 1, 2], false),
-            ([1, 2, 0], false),
-            ([2, 0, 1], false),
-            ([0, 2, 1], true),
-            ([1, 0, 2], true),
-            ([2, 1, 0], true),
-        ];
-        let mut total = Expansion::default();
-        for (p, negative) in PERMS {
-            let e = |d: Diff| Expansion::difference(d.plus, d.minus);
-            let prod = e(rows[0][p[0]])
-                .mul(&e(rows[1][p[1]]))
-                .mul(&e(rows[2][p[2]]));
-            total.grow_expansion(&prod, negative);
-        }
-        total.sign()
-    }
+    use crate::geom::exact::{
+        Diff, det3_sign as exact_det3_sign, det3_sign_by_expansion as expansion_sign,
+    };
 
     #[test]
     fn decided_signs_are_the_exact_ones_on_near_singular_matrices() {

@@ -143,6 +143,14 @@ pub fn det3_sign(rows: [[Diff; 3]; 3]) -> Sign {
     if let Some(sign) = compensated::det3_sign(m, rows.map(|r| r.map(Diff::tail)), permanent) {
         return sign;
     }
+    det3_sign_by_expansion(rows)
+}
+
+/// The exact sign of a 3×3 determinant of differences by expansion
+/// arithmetic alone (no filter): the last resort of [`det3_sign`] and the
+/// reference its filters are tested against.
+#[must_use]
+pub(crate) fn det3_sign_by_expansion(rows: [[Diff; 3]; 3]) -> Sign {
     const PERMS: [([usize; 3], bool); 6] = [
         ([0, 1, 2], false),
         ([1, 2, 0], false),

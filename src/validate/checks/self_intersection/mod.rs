@@ -146,6 +146,11 @@ mod tests {
         let report =
             crate::validate::validate_soup(&soup, None, &crate::validate::Options::default())
                 .unwrap();
+        intersecting(&report)
+    }
+
+    /// The pairs of faces a report names as intersecting.
+    fn intersecting(report: &crate::validate::Report) -> Vec<Vec<usize>> {
         report
             .of(crate::validate::Rule::SelfIntersection)
             .map(|v| v.faces.clone())
@@ -172,11 +177,7 @@ mod tests {
         let faces = vec![vec![0, 1, 2], vec![3, 4, 5], vec![6, 7, 8]];
         let soup = crate::mesh::PolygonSoup::new(p, faces);
         let near = |changed: [bool; 3]| -> Vec<Vec<usize>> {
-            crate::validate::validate_soup_near_changed(&soup, &changed)
-                .unwrap()
-                .of(crate::validate::Rule::SelfIntersection)
-                .map(|v| v.faces.clone())
-                .collect()
+            intersecting(&crate::validate::validate_soup_near_changed(&soup, &changed).unwrap())
         };
         assert_eq!(near([true, false, false]), vec![vec![0, 1]]);
         assert_eq!(near([false, true, false]), vec![vec![0, 1]]);
