@@ -1,4 +1,4 @@
-//! Point-in-convex-polyhedron by the face planes (the seed's method 2).
+//! Point-in-convex-polyhedron by the face planes (the normals test).
 
 use glam::DVec3;
 

@@ -16,14 +16,14 @@ const SORTED_BATCH: usize = 8192;
 /// How to decide inside/outside.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Method {
-    /// Parity of the crossings of a ray along `x` (the seed's method 1),
+    /// Parity of the crossings of a ray along `x` (the ray-crossing test),
     /// exact, ties broken by symbolic perturbation: the `+x` ray, or the `−x`
     /// ray when that meets fewer triangles, which has the same parity.
     /// Needs a closed surface.
     #[default]
     Parity,
-    /// Inside iff strictly on the inner side of every face (the seed's method
-    /// 2). Needs a convex solid; anything else is an error.
+    /// Inside iff strictly on the inner side of every face's plane (the
+    /// normals test). Needs a convex solid; anything else is an error.
     Normals,
     /// The generalized winding number (sum of solid angles over `4π`),
     /// thresholded at ½; defined for open and overlapping input too. On a
