@@ -106,3 +106,19 @@ impl Tally for TraversalStats {
 /// The best crossing of a first-hit query so far: rounded `t`, triangle,
 /// and the sign of its crossing (`+` for an exit).
 pub(super) type BestHit = Option<(f64, u32, Sign)>;
+
+/// The nearest crossing a first-hit walk has found so far: its rounded `t`
+/// with a bound on that rounding's error (`+∞` when none is known), its
+/// triangle and sign. Crossings whose `t` intervals overlap are ordered
+/// exactly ([`first_hit`](super::first_hit)).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Nearest {
+    /// The rounded `t` (clamped to the smallest positive `f64`).
+    pub t: f64,
+    /// `|t − exact t|` is at most this.
+    pub error: f64,
+    /// The triangle.
+    pub triangle: u32,
+    /// `+` for an exit.
+    pub sign: Sign,
+}

@@ -23,7 +23,7 @@ use crate::spatial::bvh::{
 use crate::spatial::raw::prefetch::prefetch_bytes;
 
 use super::accel::Accel;
-use super::ray_answers::{BestHit, Crossing};
+use super::ray_answers::{BestHit, Crossing, Nearest};
 use super::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
 use super::tri_packet::{PacketRay, TriPacket};
 use super::triangle_records::YzTri;
@@ -67,7 +67,7 @@ struct Walk {
     rays_box: RayBox,
     /// The ray as the leaves' miss filter sees it.
     packet_ray: PacketRay,
-    best: BestHit,
+    best: Option<Nearest>,
     /// The best crossing's `t` (`+∞` before any).
     t_limit: f64,
     /// `t_limit` as the slab tests see it ([`RayBox::limit`]).
@@ -161,7 +161,15 @@ impl Walk {
     #[cold]
     #[inline(never)]
     fn answer_alone(&mut self, r: &Ray, accel: &Accel) {
-        self.best = accel.first_best(r, &mut ());
+        // Final: nothing is compared with it any more.
+        self.best = accel
+            .first_best(r, &mut ())
+            .map(|(t, triangle, sign)| Nearest {
+                t,
+                error: 0.0,
+                triangle,
+                sign,
+            });
         self.t_scale = 1.0;
         self.pending = (0, 0);
         self.top = 0;
@@ -276,7 +284,9 @@ impl Accel {
             }
             let w = &mut walks[order[k]];
             if self.step::<ASK_AHEAD>(lanes, w) {
-                best[w.ray] = w.best.map(|(t, i, s)| (unscaled_t(t, w.t_scale), i, s));
+                best[w.ray] = w
+                    .best
+                    .map(|n| (unscaled_t(n.t, w.t_scale), n.triangle, n.sign));
                 if fed < rays.len() {
                     w.start(lanes, fed, &rays[fed], self);
                     fed += 1;

@@ -15,6 +15,12 @@ use super::ray_scaling::pow2;
 /// have lost `n` to underflow.
 const PLANE_T_DENOMINATOR: f64 = pow2(-600);
 
+/// The rounding error of `n·(a − o)` and `n·d` in [`Accel::plane_t_bounded`],
+/// relative to the sum of their monomials' magnitudes: `16 u` (eight
+/// roundings at most along any monomial's path, doubled for the magnitudes
+/// being computed from rounded values).
+const T_TERMS_ERROR: f64 = 16.0 * (f64::EPSILON / 2.0);
+
 /// [`Accel::plane_t`] for triangles or distances of extreme size: the
 /// corners and origin are first scaled down by `2⁻⁶⁴` if any coordinate is
 /// beyond `2¹⁰⁰⁰` (so that differences cannot overflow), then the edges and
@@ -108,6 +114,43 @@ impl Accel {
         } else {
             plane_t_rescaled(self.tris[i as usize].corners(), ray)
         }
+    }
+
+    /// [`Accel::plane_t`] and a bound on its rounding error (`+∞` when the
+    /// denominator is not certainly far from zero, or when the rescaled
+    /// computation was needed). The bound follows the operations: each
+    /// difference, product and sum rounds once, so the numerator `n·(a − o)`
+    /// and the denominator `n·d` are each within `16 u` of the sum of the
+    /// magnitudes of their monomials, and the quotient's error follows.
+    #[inline(always)]
+    pub(super) fn plane_t_bounded(&self, ray: &Ray, i: u32) -> (f64, f64) {
+        let [a, b, c] = self.tris[i as usize].corners();
+        let (u, v, e) = (b - a, c - a, a - ray.origin);
+        let n = u.cross(v);
+        let den = n.dot(ray.direction);
+        let num = n.dot(e);
+        let t = num / den;
+        if !(den.abs() >= PLANE_T_DENOMINATOR && t.is_finite()) {
+            return (plane_t_rescaled([a, b, c], ray), f64::INFINITY);
+        }
+        let (ua, va) = (u.abs(), v.abs());
+        let magnitude = glam::DVec3::new(
+            ua.y * va.z + ua.z * va.y,
+            ua.z * va.x + ua.x * va.z,
+            ua.x * va.y + ua.y * va.x,
+        );
+        let num_error = T_TERMS_ERROR * magnitude.dot(e.abs()) + f64::MIN_POSITIVE;
+        let den_error = T_TERMS_ERROR * magnitude.dot(ray.direction.abs());
+        let den_abs = den.abs();
+        if den_abs <= 2.0 * den_error {
+            return (t, f64::INFINITY);
+        }
+        let quotient =
+            (num.abs() * den_error + den_abs * num_error) / (den_abs * (den_abs - den_error));
+        (
+            t,
+            quotient * (1.0 + 8.0 * f64::EPSILON) + 2.0 * f64::EPSILON * t.abs(),
+        )
     }
 
     /// How `ray` meets triangle `i`; with `ORIGIN = false` the (costlier)
