@@ -47,7 +47,27 @@ impl Accel {
         self.traverse(ray, exact, f64::INFINITY, tally, |i, t_max| {
             self.consider_for_first_hit(ray, decide, i, &mut best, t_max)
         });
-        best.map(|n| (unscaled_t(n.t, t_scale), n.triangle, n.sign))
+        best.map(|n| {
+            (
+                unscaled_t(self.accurate_t(ray, n), t_scale),
+                n.triangle,
+                n.sign,
+            )
+        })
+    }
+
+    /// The nearest crossing's `t` along `ray`, accurate: its rounded value
+    /// when the error bound is within a few units in the last place, else
+    /// the exact quotient `n·(a − o) / n·d` rounded once (a ray within a
+    /// rounding of the face's plane, where the rounded quotient can be off
+    /// in its third digit).
+    pub(super) fn accurate_t(&self, ray: &Ray, n: Nearest) -> f64 {
+        if n.error <= 4.0 * f64::EPSILON * n.t {
+            return n.t;
+        }
+        let (num, den) = plane_parts(self.tris[n.triangle as usize].corners(), ray);
+        let t = num.quotient_to_f64(&den);
+        if t > 0.0 { t } else { f64::MIN_POSITIVE }
     }
 
     /// Tests triangle `i` for the first hit of `ray`, updating `best`;

@@ -284,9 +284,10 @@ impl Accel {
             }
             let w = &mut walks[order[k]];
             if self.step::<ASK_AHEAD>(lanes, w) {
-                best[w.ray] = w
-                    .best
-                    .map(|n| (unscaled_t(n.t, w.t_scale), n.triangle, n.sign));
+                best[w.ray] = w.best.map(|n| {
+                    let t = self.accurate_t(&w.scaled, n);
+                    (unscaled_t(t, w.t_scale), n.triangle, n.sign)
+                });
                 if fed < rays.len() {
                     w.start(lanes, fed, &rays[fed], self);
                     fed += 1;
