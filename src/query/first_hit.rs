@@ -57,12 +57,12 @@ impl Accel {
     }
 
     /// The nearest crossing's `t` along `ray`, accurate: its rounded value
-    /// when the error bound is within a few units in the last place, else
-    /// the exact quotient `n·(a − o) / n·d` rounded once (a ray within a
-    /// rounding of the face's plane, where the rounded quotient can be off
-    /// in its third digit).
+    /// when the error bound is within [`T_ACCURACY`] of it (as the crossing
+    /// lists report it), else the exact quotient `n·(a − o) / n·d` rounded
+    /// once (a ray within a rounding of the face's plane, where the rounded
+    /// quotient can be off in its third digit).
     pub(super) fn accurate_t(&self, ray: &Ray, n: Nearest) -> f64 {
-        if n.error <= 4.0 * f64::EPSILON * n.t {
+        if n.error <= T_ACCURACY * n.t {
             return n.t;
         }
         let (num, den) = plane_parts(self.tris[n.triangle as usize].corners(), ray);
@@ -156,6 +156,10 @@ impl Accel {
     }
 }
 
+/// The relative error a first hit's rounded `t` may keep: `2⁻³⁰`. Beyond
+/// it the exact quotient is computed.
+pub(super) const T_ACCURACY: f64 = 1.0 / (1u64 << 30) as f64;
+
 /// The exact numerator `n·(a − o)` and denominator `n·d` of the ray's
 /// crossing with the plane of `[a, b, c]`, `n = (b − a) × (c − a)`.
 fn plane_parts([a, b, c]: [DVec3; 3], ray: &Ray) -> (Dyadic, Dyadic) {
@@ -220,16 +224,26 @@ mod tests {
             expected.push(exact);
         }
         let batch = accel.first_hit_batch(&rays).unwrap();
+        let mut inaccurate = 0;
         for (k, ray) in rays.iter().enumerate() {
-            let one = accel.first_hit(ray).unwrap().map(|c| c.triangle);
-            assert_eq!(one, expected[k], "ray {k}: {ray:?}");
-            assert_eq!(
-                batch[k].map(|c| c.triangle),
-                expected[k],
-                "ray {k} in a batch"
-            );
+            let one = accel.first_hit(ray).unwrap();
+            assert_eq!(one.map(|c| c.triangle), expected[k], "ray {k}: {ray:?}");
+            assert_eq!(batch[k], one, "ray {k} in a batch");
+            // `t` within `T_ACCURACY` of the exact one.
+            if let (Some(c), Some(i)) = (one, expected[k]) {
+                let (num, den) = plane_parts(accel.tris[i as usize].corners(), ray);
+                let exact_t = num.quotient_to_f64(&den);
+                assert!(
+                    (c.t - exact_t).abs() <= T_ACCURACY * exact_t,
+                    "ray {k}: t {} vs {exact_t}",
+                    c.t
+                );
+                let rounded_t = accel.t_of(ray, i);
+                inaccurate += usize::from((rounded_t - exact_t).abs() > T_ACCURACY * exact_t);
+            }
         }
         assert!(rounded_differs > 0, "no ray where rounded t misorders");
+        assert!(inaccurate > 0, "no ray whose rounded t is inaccurate");
         println!(
             "{rounded_differs} of {} rays where rounded t picks another triangle",
             rays.len()
