@@ -185,11 +185,7 @@ pub fn compare_exactly(a: &CrossingPlane, b: &CrossingPlane, ray: &Ray) -> Optio
     } else {
         difference.reversed()
     };
-    Some(match sign {
-        Sign::Negative => Ordering::Less,
-        Sign::Zero => Ordering::Equal,
-        Sign::Positive => Ordering::Greater,
-    })
+    Some(sign.ordering())
 }
 
 /// Whether `t₁ ± s₁` and `t₂ ± s₂` are certainly apart, and which way:

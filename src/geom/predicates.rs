@@ -40,6 +40,17 @@ pub enum Sign {
 }
 
 impl Sign {
+    /// The order this sign says (of a difference `a − b`: how `a` compares
+    /// with `b`).
+    #[must_use]
+    pub fn ordering(self) -> std::cmp::Ordering {
+        match self {
+            Sign::Negative => std::cmp::Ordering::Less,
+            Sign::Zero => std::cmp::Ordering::Equal,
+            Sign::Positive => std::cmp::Ordering::Greater,
+        }
+    }
+
     /// The sign of `value`; `NaN` is treated as [`Sign::Zero`].
     #[must_use]
     pub fn of(value: f64) -> Sign {

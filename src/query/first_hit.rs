@@ -147,12 +147,7 @@ impl Accel {
         let parts = |k: u32| plane_parts(self.tris[k as usize].corners(), ray);
         let ((ni, di), (nj, dj)) = (parts(i), parts(j));
         let difference = &(&ni * &dj) - &(&nj * &di);
-        let sign = difference.sign() * (&di * &dj).sign();
-        match sign {
-            crate::geom::Sign::Negative => Ordering::Less,
-            crate::geom::Sign::Zero => Ordering::Equal,
-            crate::geom::Sign::Positive => Ordering::Greater,
-        }
+        (difference.sign() * (&di * &dj).sign()).ordering()
     }
 }
 

@@ -110,7 +110,7 @@ pub(super) type BestHit = Option<(f64, u32, Sign)>;
 /// The nearest crossing a first-hit walk has found so far: its rounded `t`
 /// with a bound on that rounding's error (`+∞` when none is known), its
 /// triangle and sign. Crossings whose `t` intervals overlap are ordered
-/// exactly ([`first_hit`](super::first_hit)).
+/// exactly by the first-hit walk.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Nearest {
     /// The rounded `t` (clamped to the smallest positive `f64`).

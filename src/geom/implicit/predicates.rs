@@ -133,15 +133,11 @@ pub(crate) fn compare_axis(
     b: &impl HasHomogeneous,
     axis: usize,
 ) -> Ordering {
-    let sign = decide(
+    decide(
         || compare_in(&a.filter(), &b.filter(), axis),
         || compare_in::<Dyadic>(&a.exact(), &b.exact(), axis),
-    );
-    match sign {
-        Sign::Negative => Ordering::Less,
-        Sign::Zero => Ordering::Equal,
-        Sign::Positive => Ordering::Greater,
-    }
+    )
+    .ordering()
 }
 
 /// The exact lexicographic order (`x`, then `y`, then `z`) of two points:
