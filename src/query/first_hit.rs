@@ -10,16 +10,13 @@
 
 use std::cmp::Ordering;
 
-use glam::DVec3;
-
 use crate::geom::Ray;
-use crate::geom::dyadic::Dyadic;
 use crate::spatial::raw::prefetch::prefetch;
 
 use super::accel::Accel;
 use super::ray_answers::{BestHit, Crossing, Nearest, Tally};
 use super::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
-use super::ray_triangle::TriHit;
+use super::ray_triangle::{TriHit, plane_parts};
 
 impl Accel {
     /// The first hit of `ray` (checked valid), walking one ray at a time.
@@ -49,25 +46,11 @@ impl Accel {
         });
         best.map(|n| {
             (
-                unscaled_t(self.accurate_t(ray, n), t_scale),
+                unscaled_t(self.accurate_t(ray, n.triangle, n.t, n.error), t_scale),
                 n.triangle,
                 n.sign,
             )
         })
-    }
-
-    /// The nearest crossing's `t` along `ray`, accurate: its rounded value
-    /// when the error bound is within [`T_ACCURACY`] of it (as the crossing
-    /// lists report it), else the exact quotient `n·(a − o) / n·d` rounded
-    /// once (a ray within a rounding of the face's plane, where the rounded
-    /// quotient can be off in its third digit).
-    pub(super) fn accurate_t(&self, ray: &Ray, n: Nearest) -> f64 {
-        if n.error <= T_ACCURACY * n.t {
-            return n.t;
-        }
-        let (num, den) = plane_parts(self.tris[n.triangle as usize].corners(), ray);
-        let t = num.quotient_to_f64(&den);
-        if t > 0.0 { t } else { f64::MIN_POSITIVE }
     }
 
     /// Tests triangle `i` for the first hit of `ray`, updating `best`;
@@ -151,32 +134,11 @@ impl Accel {
     }
 }
 
-/// The relative error a first hit's rounded `t` may keep: `2⁻³⁰`. Beyond
-/// it the exact quotient is computed.
-pub(super) const T_ACCURACY: f64 = 1.0 / (1u64 << 30) as f64;
-
-/// The exact numerator `n·(a − o)` and denominator `n·d` of the ray's
-/// crossing with the plane of `[a, b, c]`, `n = (b − a) × (c − a)`.
-fn plane_parts([a, b, c]: [DVec3; 3], ray: &Ray) -> (Dyadic, Dyadic) {
-    let exact = |v: DVec3| [v.x, v.y, v.z].map(Dyadic::of);
-    let minus = |p: DVec3, q: DVec3| {
-        let (p, q) = (exact(p), exact(q));
-        [&p[0] - &q[0], &p[1] - &q[1], &p[2] - &q[2]]
-    };
-    let (u, v, e) = (minus(b, a), minus(c, a), minus(a, ray.origin));
-    let n = [
-        &(&u[1] * &v[2]) - &(&u[2] * &v[1]),
-        &(&u[2] * &v[0]) - &(&u[0] * &v[2]),
-        &(&u[0] * &v[1]) - &(&u[1] * &v[0]),
-    ];
-    let dot = |w: &[Dyadic; 3]| &(&(&n[0] * &w[0]) + &(&n[1] * &w[1])) + &(&n[2] * &w[2]);
-    (dot(&e), dot(&exact(ray.direction)))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::mesh::builders;
+    use crate::query::ray_triangle::T_ACCURACY;
 
     /// Rays nearly in the plane of a triangle of a sphere (tilted by about
     /// 10⁻¹² out of it), from outside and from inside: the first hit, by the
@@ -210,8 +172,9 @@ mod tests {
                 .min_by(|&x, &y| accel.exact_t_order(&ray, x, y).then(x.cmp(&y)));
             let rounded = crossed.iter().copied().min_by(|&x, &y| {
                 accel
-                    .t_of(&ray, x)
-                    .total_cmp(&accel.t_of(&ray, y))
+                    .plane_t_bounded(&ray, x)
+                    .0
+                    .total_cmp(&accel.plane_t_bounded(&ray, y).0)
                     .then(x.cmp(&y))
             });
             rounded_differs += usize::from(exact != rounded);
@@ -233,7 +196,7 @@ mod tests {
                     "ray {k}: t {} vs {exact_t}",
                     c.t
                 );
-                let rounded_t = accel.t_of(ray, i);
+                let rounded_t = accel.plane_t_bounded(ray, i).0;
                 inaccurate += usize::from((rounded_t - exact_t).abs() > T_ACCURACY * exact_t);
             }
         }

@@ -285,7 +285,7 @@ impl Accel {
             let w = &mut walks[order[k]];
             if self.step::<ASK_AHEAD>(lanes, w) {
                 best[w.ray] = w.best.map(|n| {
-                    let t = self.accurate_t(&w.scaled, n);
+                    let t = self.accurate_t(&w.scaled, n.triangle, n.t, n.error);
                     (unscaled_t(t, w.t_scale), n.triangle, n.sign)
                 });
                 if fed < rays.len() {

@@ -3,6 +3,8 @@
 
 use glam::DVec3;
 
+use crate::geom::dyadic::Dyadic;
+
 use crate::geom::exact::{line_side_filter_scalar, triangle_edge_sides};
 use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Ray, Sign, line_side_sos, orient3d};
@@ -11,7 +13,7 @@ use super::accel::Accel;
 use super::ray_answers::{Crossing, Transition};
 use super::ray_scaling::pow2;
 
-/// `2⁻⁶⁰⁰`: below this denominator [`Accel::plane_t`]'s plain formula may
+/// `2⁻⁶⁰⁰`: below this denominator [`Accel::plane_t_bounded`]'s plain formula may
 /// have lost `n` to underflow.
 const PLANE_T_DENOMINATOR: f64 = pow2(-600);
 
@@ -21,7 +23,7 @@ const PLANE_T_DENOMINATOR: f64 = pow2(-600);
 /// being computed from rounded values).
 const T_TERMS_ERROR: f64 = 16.0 * (f64::EPSILON / 2.0);
 
-/// [`Accel::plane_t`] for triangles or distances of extreme size: the
+/// [`Accel::plane_t_bounded`] for triangles or distances of extreme size: the
 /// corners and origin are first scaled down by `2⁻⁶⁴` if any coordinate is
 /// beyond `2¹⁰⁰⁰` (so that differences cannot overflow), then the edges and
 /// `a − o` are each scaled by a power of two to a largest component in
@@ -52,6 +54,28 @@ fn plane_t_rescaled([a, b, c]: [DVec3; 3], ray: &Ray) -> f64 {
     n.dot(w) / n.dot(ray.direction) / w_scale / pre
 }
 
+/// The relative error a reported crossing's rounded `t` may keep: `2⁻³⁰`.
+/// Beyond it the exact quotient is computed.
+pub(super) const T_ACCURACY: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// The exact numerator `n·(a − o)` and denominator `n·d` of the ray's
+/// crossing with the plane of `[a, b, c]`, `n = (b − a) × (c − a)`.
+pub(super) fn plane_parts([a, b, c]: [DVec3; 3], ray: &Ray) -> (Dyadic, Dyadic) {
+    let exact = |v: DVec3| [v.x, v.y, v.z].map(Dyadic::of);
+    let minus = |p: DVec3, q: DVec3| {
+        let (p, q) = (exact(p), exact(q));
+        [&p[0] - &q[0], &p[1] - &q[1], &p[2] - &q[2]]
+    };
+    let (u, v, e) = (minus(b, a), minus(c, a), minus(a, ray.origin));
+    let n = [
+        &(&u[1] * &v[2]) - &(&u[2] * &v[1]),
+        &(&u[2] * &v[0]) - &(&u[0] * &v[2]),
+        &(&u[0] * &v[1]) - &(&u[1] * &v[0]),
+    ];
+    let dot = |w: &[Dyadic; 3]| &(&(&n[0] * &w[0]) + &(&n[1] * &w[1])) + &(&n[2] * &w[2]);
+    (dot(&e), dot(&exact(ray.direction)))
+}
+
 /// How a ray meets one triangle.
 pub(super) enum TriHit {
     /// No crossing (or, for tests that skip it, the origin on the
@@ -80,48 +104,46 @@ impl Accel {
         }
     }
 
-    /// The rounded parameter of the crossing with triangle `i`'s plane,
-    /// clamped to the smallest positive `f64` (the crossing is known exactly
-    /// to be in front of the origin).
+    /// The parameter of the crossing with triangle `i`'s plane (known
+    /// exactly to be in front of the origin), accurate to [`T_ACCURACY`]
+    /// ([`Accel::accurate_t`]).
     pub(super) fn t_of(&self, ray: &Ray, i: u32) -> f64 {
-        let t = self.plane_t(ray, i);
+        let (t, error) = self.plane_t_bounded(ray, i);
+        self.accurate_t(ray, i, t, error)
+    }
+
+    /// The crossing's `t` along `ray` from its rounded value and error
+    /// bound: the rounded value (clamped to the smallest positive `f64`)
+    /// when the bound is within [`T_ACCURACY`] of it, else the exact
+    /// quotient `n·(a − o) / n·d` rounded once (a ray within a rounding of
+    /// the face's plane, where the rounded quotient can be off in its third
+    /// digit). Crossing lists and first hits both report this value.
+    pub(super) fn accurate_t(&self, ray: &Ray, i: u32, t: f64, error: f64) -> f64 {
+        let t = if error <= T_ACCURACY * t.abs() {
+            t
+        } else {
+            let (num, den) = plane_parts(self.tris[i as usize].corners(), ray);
+            num.quotient_to_f64(&den)
+        };
         if t > 0.0 { t } else { f64::MIN_POSITIVE }
     }
 
     /// The rounded parameter of the ray's crossing with triangle `i`'s
-    /// plane, unclamped (any sign, `±∞` or NaN for a parallel ray). `ray`
-    /// is scaled by [`unit_scaled`] (largest direction component in
-    /// `[1, 2)`).
+    /// plane, unclamped (any sign, `±∞` or NaN for a parallel ray), and a
+    /// bound on its rounding error. `ray` is scaled by [`unit_scaled`]
+    /// (largest direction component in `[1, 2)`).
     ///
     /// `t = n·(a − o) / n·d` with `n = (b − a) × (c − a)`. When the
     /// denominator is at least `2⁻⁶⁰⁰` and `t` is finite (nothing
-    /// overflowed), every
-    /// component of `n` that matters is far above the subnormal range and
-    /// the quotient is accurate; otherwise (triangles of size `1e-160` or
-    /// `1e200`, origins near `f64::MAX`) it is recomputed with the edges
-    /// and `a − o` brought to unit size by powers of two
-    /// ([`plane_t_rescaled`]).
-    #[inline(always)]
-    pub(super) fn plane_t(&self, ray: &Ray, i: u32) -> f64 {
-        let [a, b, c] = self.tris[i as usize].corners();
-        let n = (b - a).cross(c - a);
-        let den = n.dot(ray.direction);
-        let t = n.dot(a - ray.origin) / den;
-        // An overflow anywhere leaves `t` infinite or NaN (an infinite `n`
-        // meets a non-zero or a zero coordinate of `a − o`).
-        if den.abs() >= PLANE_T_DENOMINATOR && t.is_finite() {
-            t
-        } else {
-            plane_t_rescaled(self.tris[i as usize].corners(), ray)
-        }
-    }
-
-    /// [`Accel::plane_t`] and a bound on its rounding error (`+∞` when the
-    /// denominator is not certainly far from zero, or when the rescaled
-    /// computation was needed). The bound follows the operations: each
-    /// difference, product and sum rounds once, so the numerator `n·(a − o)`
-    /// and the denominator `n·d` are each within `16 u` of the sum of the
-    /// magnitudes of their monomials, and the quotient's error follows.
+    /// overflowed), every component of `n` that matters is far above the
+    /// subnormal range; otherwise (triangles of size `1e-160` or `1e200`,
+    /// origins near `f64::MAX`) it is recomputed with the edges and `a − o`
+    /// brought to unit size by powers of two ([`plane_t_rescaled`]) and the
+    /// bound is `+∞`, as it is when the denominator is not certainly far
+    /// from zero. The bound follows the operations: each difference,
+    /// product and sum rounds once, so the numerator and the denominator
+    /// are each within `16 u` of the sum of the magnitudes of their
+    /// monomials, and the quotient's error follows.
     #[inline(always)]
     pub(super) fn plane_t_bounded(&self, ray: &Ray, i: u32) -> (f64, f64) {
         let [a, b, c] = self.tris[i as usize].corners();
