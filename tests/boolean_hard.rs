@@ -44,17 +44,13 @@ fn cubes_sharing_an_edge_or_a_vertex() {
     assert_eq!(valid(&corner), 2.0);
     assert_eq!(corner.report.shells, 2);
     assert_eq!(corner.solid.vertex_count(), 16);
-    // Pinched along the edge: refused with the place named.
-    let err = a
-        .union(&cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]))
-        .unwrap_err();
-    assert!(
-        matches!(
-            err,
-            BooleanError::NotBuilt(_) | BooleanError::InvalidResult { .. }
-        ),
-        "{err}"
-    );
+    // Touching along the edge: two shells, each with its own edge (and
+    // vertices) along the shared one.
+    let edge = a.union(&cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0])).unwrap();
+    assert_eq!(valid(&edge), 2.0);
+    assert_eq!(edge.report.shells, 2);
+    assert_eq!(edge.solid.vertex_count(), 16);
+    assert_eq!(edge.solid.edge_count(), 24);
 }
 
 #[test]

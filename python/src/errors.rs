@@ -38,9 +38,9 @@ create_exception!(
     BooleanError,
     WingedgeError,
     "A boolean that produced no solid: an operand that is not a valid closed \
-     solid (named, with its defects), a result pinched along an edge (which \
-     has no winged-edge form), or a bad set expression (the offending part \
-     named by its place)."
+     solid (named, with its defects), a result that rounding would leave \
+     invalid (the located defect), or a bad set expression (the offending \
+     part named by its place)."
 );
 
 /// Adds the exception classes to the module.
@@ -69,18 +69,7 @@ pub(crate) fn build_in(path: &std::path::Path, e: wingedge::mesh::BuildError) ->
     ValidationError::new_err(format!("{}: not a winged-edge solid: {e}", path.display()))
 }
 
-/// A boolean's error as a Python exception, with the crate's message; a
-/// result refused for an edge of more than two faces is said to be pinched
-/// there, which is what such an edge means for a boolean's result.
+/// A boolean's error as a Python exception, with the crate's message.
 pub(crate) fn boolean(e: wingedge::boolean::BooleanError) -> PyErr {
-    let pinched = matches!(&e, wingedge::boolean::BooleanError::NotBuilt(why)
-        if why.contains("manifold edge"));
-    let mut message = e.to_string();
-    if pinched {
-        message.push_str(
-            " (the result is pinched along that edge: the operands' volumes meet only \
-             there, and a solid pinched along an edge has no winged-edge form, so it is refused)",
-        );
-    }
-    BooleanError::new_err(message)
+    BooleanError::new_err(e.to_string())
 }

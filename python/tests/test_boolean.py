@@ -176,14 +176,15 @@ def test_a_non_closed_operand_raises_boolean_error_naming_it():
     assert issubclass(wingedge.BooleanError, ValueError)
 
 
-def test_a_result_pinched_along_an_edge_is_refused_and_says_so():
+def test_results_touching_along_an_edge_or_at_a_corner_are_two_shells():
     a = wingedge.cuboid((0, 0, 0), (1, 1, 1))
-    b = wingedge.cuboid((1, 1, 0), (2, 2, 1))
-    with pytest.raises(wingedge.BooleanError, match="pinched along that edge"):
-        a | b
-    # Sharing only a corner is fine: two shells.
-    corner = a | wingedge.cuboid((1, 1, 1), (2, 2, 2))
-    assert corner.volume == 2.0 and corner.shells == 2
+    for other in [wingedge.cuboid((1, 1, 0), (2, 2, 1)), wingedge.cuboid((1, 1, 1), (2, 2, 2))]:
+        touching = a | other
+        assert touching.volume == 2.0 and touching.shells == 2
+        assert wingedge.validate(touching).valid
+        # Each box keeps its own vertices where they touch.
+        vertices, _ = touching.to_arrays()
+        assert len(vertices) == 16
 
 
 def test_empty_results_are_empty_solids():

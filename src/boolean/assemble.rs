@@ -192,7 +192,7 @@ pub(crate) fn build_and_prove(
         return Ok((solid, Vec::new(), report, 0.0));
     }
     let mut solid =
-        Solid::try_from_soup(soup).map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
+        Solid::try_from_touching_soup(soup).map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
     let changed = merge_faces(&mut solid, sources);
     let mut origins = Vec::new();
     let mut origin_index: HashMap<FaceOrigin, usize> = HashMap::default();

@@ -35,10 +35,15 @@ pub(crate) struct PieceSource {
 /// Merges every pair of neighbouring faces from the same operand face or
 /// exactly one plane facing one way ([`Solid::merge_faces_where`]), except
 /// faces at a point where the result touches itself (two vertices at one
-/// position: a sphere resting on a plate touches it at its pole). Merging
-/// every piece around such a point would leave it inside one face, where
-/// a face cannot keep a vertex, and the contact would turn into a vertex
-/// on a face.
+/// position: a sphere resting on a plate touches it at its pole, two cubes
+/// sharing an edge touch along it) unless that vertex is a corner, with
+/// at least three edges between faces that cannot merge. Merging every
+/// piece around a contact in a flat face would leave it inside one face,
+/// where a face cannot keep a vertex, and the contact would turn into a
+/// vertex on a face; at the end of a contact along an edge of a face, the
+/// vertex would be left with two edges and dropped, and the contact edge
+/// would end inside the other sheet's edge. At a corner the edges between
+/// faces that cannot merge stay, so the corner does.
 ///
 /// Returns the faces after the merge that hold a changed piece (see
 /// [`PieceSource::changed`]).
@@ -54,8 +59,28 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
         })
         .map(|(f, _)| f)
         .collect();
-    let touching = touching_vertices(solid);
     let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> = HashMap::default();
+    let mut mergeable = |l: &PieceSource, r: &PieceSource| {
+        l.origin == r.origin
+            || *coplanar_cache
+                .entry((l.origin, r.origin))
+                .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane))
+    };
+    let mut touching = touching_vertices(solid);
+    touching.retain(|&v| {
+        let creases = solid
+            .vertex_edges(v)
+            .filter(|&e| {
+                let edge = solid.edge(e);
+                let sides = (
+                    source_of(solid, edge.left_face),
+                    edge.right_face.and_then(|f| source_of(solid, f)),
+                );
+                !matches!(sides, (Some(l), Some(r)) if mergeable(&l, &r))
+            })
+            .count();
+        creases < 3
+    });
     // Faces allowed to merge, as pairs: a merged face holds a changed piece
     // when any face of its group did (an allowed merge that the Euler
     // operators then skip only makes the set larger).
@@ -71,10 +96,7 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
         {
             return false;
         }
-        let allowed = l.origin == r.origin
-            || *coplanar_cache
-                .entry((l.origin, r.origin))
-                .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane));
+        let allowed = mergeable(&l, &r);
         if allowed {
             merged.push((left, right));
         }

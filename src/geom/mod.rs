@@ -5,6 +5,7 @@
 //! extents) is a floating-point construction that never decides a sign.
 
 mod aabb;
+pub(crate) mod around_axis;
 mod box_triangle;
 mod compensated;
 mod dot;

@@ -14,10 +14,13 @@ use crate::geom::Plane;
 use crate::geom::triangulate::TriangulateError;
 
 use super::euler::EulerError;
+
+mod around_edge;
 use super::{
     Edge, EdgeId, EdgeUse, Face, FaceId, Loop, LoopId, LoopStart, PolygonSoup, Side, Solid, Vertex,
     VertexId,
 };
+use around_edge::{EdgeUse as AroundEdge, pair_around_edge};
 
 /// Why a polygon soup cannot be built into a winged-edge solid.
 ///
@@ -194,16 +197,51 @@ impl Solid {
     /// queries answer; validation reports the pinch and the open edges from
     /// the soup.
     pub fn try_from_soup(soup: &PolygonSoup) -> Result<Solid, BuildError> {
-        check_polygons(soup, RepeatedVertices::Refuse)?;
-        let mut halves = corner_half_edges(soup);
-        let mut outgoing = Outgoing::new(soup.positions.len(), &halves.from);
-        pair_twins(soup, &mut halves, &mut outgoing)?;
-        link_holes(&mut halves);
-        split_pinches(soup, &mut halves, &outgoing);
-        // Freed before the solid's tables are allocated (lowers the peak).
-        drop(outgoing);
-        Ok(assemble(soup, &halves))
+        build(soup, EdgeSharing::Manifold)
     }
+
+    /// Builds a solid from a soup whose sheets may touch along edges, as
+    /// the result of a boolean does (two cubes sharing an edge unite into
+    /// two cubes touching along it).
+    ///
+    /// As [`Solid::try_from_soup`], except for an edge used by `2k`
+    /// triangles, `k` running it each way: it becomes `k` edges, each
+    /// triangle paired with its neighbour around the edge on the side its
+    /// solid is on (angles compared exactly), and the vertices at its ends
+    /// are then split per fan like pinches. Each sheet is then closed on
+    /// its own; the copies touch.
+    ///
+    /// # Errors
+    ///
+    /// As [`Solid::try_from_soup`]; [`BuildError::NonManifoldEdge`] also
+    /// when the uses of such an edge cannot be paired: a polygon on it is
+    /// not a triangle, the uses do not alternate in direction around it
+    /// (sheets that would cross there), or two triangles on it lie at one
+    /// angle (a fold).
+    pub fn try_from_touching_soup(soup: &PolygonSoup) -> Result<Solid, BuildError> {
+        build(soup, EdgeSharing::Touching)
+    }
+}
+
+/// What an edge used by more than two polygons means to the builder.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum EdgeSharing {
+    /// It is refused: a face's edge has at most one other face.
+    Manifold,
+    /// Sheets touch along it: its triangles are paired around it.
+    Touching,
+}
+
+fn build(soup: &PolygonSoup, sharing: EdgeSharing) -> Result<Solid, BuildError> {
+    check_polygons(soup, RepeatedVertices::Refuse)?;
+    let mut halves = corner_half_edges(soup);
+    let mut outgoing = Outgoing::new(soup.positions.len(), &halves.from);
+    pair_twins(soup, &mut halves, &mut outgoing, sharing)?;
+    link_holes(&mut halves);
+    split_pinches(soup, &mut halves, &outgoing);
+    // Freed before the solid's tables are allocated (lowers the peak).
+    drop(outgoing);
+    Ok(assemble(soup, &halves))
 }
 
 /// Whether a polygon may visit a vertex twice.
@@ -363,14 +401,34 @@ impl Outgoing {
 /// once and searched by halving; the short lists of every other vertex are
 /// scanned. O(n log d) for n corners and valence d, where a scan of every
 /// list once per half-edge cost O(n d).
-fn pair_twins(soup: &PolygonSoup, h: &mut HalfEdges, out: &mut Outgoing) -> Result<(), BuildError> {
+fn pair_twins(
+    soup: &PolygonSoup,
+    h: &mut HalfEdges,
+    out: &mut Outgoing,
+    sharing: EdgeSharing,
+) -> Result<(), BuildError> {
     out.sort_by_end(&h.to);
     let line = |h: &HalfEdges, e: usize| soup.polygons[h.polygon[e]].attributes.line;
     for e in 0..h.face_count {
+        if h.twin[e] != usize::MAX {
+            // Paired with the other uses of a shared edge.
+            continue;
+        }
         let (a, b) = (h.from[e], h.to[e]);
         let same = out.towards(a, b, &h.to);
         let opposite = out.towards(b, a, &h.to);
         if same.len() + opposite.len() >= 3 {
+            let pairs = match sharing {
+                EdgeSharing::Touching => pair_touching(soup, h, a, b, &same, &opposite),
+                EdgeSharing::Manifold => None,
+            };
+            if let Some(pairs) = pairs {
+                for (g, t) in pairs {
+                    h.twin[g] = t;
+                    h.twin[t] = g;
+                }
+                continue;
+            }
             let mut users: Vec<usize> = same.iter().chain(&opposite).copied().collect();
             users.sort_unstable();
             return Err(BuildError::NonManifoldEdge {
@@ -391,6 +449,32 @@ fn pair_twins(soup: &PolygonSoup, h: &mut HalfEdges, out: &mut Outgoing) -> Resu
         }
     }
     Ok(())
+}
+
+/// The twins of the half-edges `same` (running `a → b`) and `opposite`
+/// around an edge that sheets touch along, when every polygon on it is a
+/// triangle and they pair (see [`pair_around_edge`]).
+fn pair_touching(
+    soup: &PolygonSoup,
+    h: &HalfEdges,
+    a: usize,
+    b: usize,
+    same: &[usize],
+    opposite: &[usize],
+) -> Option<Vec<(usize, usize)>> {
+    let uses: Vec<AroundEdge> = same
+        .iter()
+        .map(|&g| (g, true))
+        .chain(opposite.iter().map(|&g| (g, false)))
+        .map(|(g, forward)| {
+            (soup.polygons[h.polygon[g]].vertices.len() == 3).then(|| AroundEdge {
+                half_edge: g,
+                forward,
+                third: soup.positions[h.to[h.next[g]]],
+            })
+        })
+        .collect::<Option<_>>()?;
+    pair_around_edge(soup.positions[a], soup.positions[b], &uses)
 }
 
 /// Gives every face half-edge without a twin a twin running around its hole,

@@ -173,17 +173,22 @@ def named_meshes(rng):
 
 
 def random_leaf(rng):
-    kind = rng.integers(0, 3)
+    kind = rng.integers(0, 4)
     centre = rng.uniform(-0.6, 0.6, 3)
     if kind == 0:
         leaf = M.sphere(float(rng.uniform(0.6, 1.0)), int(rng.integers(16, 40)))
     elif kind == 1:
         size = rng.uniform(0.8, 1.6, 3)
         leaf = M.cube(tuple(size), center=True).rotate(tuple(rng.uniform(0, 90, 3)))
-    else:
+    elif kind == 2:
         r = float(rng.uniform(0.3, 0.7))
         leaf = M.cylinder(float(rng.uniform(1.0, 2.0)), r, r, int(rng.integers(12, 32)), center=True)
         leaf = leaf.rotate(tuple(rng.uniform(0, 90, 3)))
+    else:
+        # A torus: a circle revolved about the z axis, then turned.
+        tube = float(rng.uniform(0.15, 0.3))
+        ring = m3d.CrossSection.circle(tube, int(rng.integers(8, 16))).translate((float(rng.uniform(0.5, 0.8)), 0.0))
+        leaf = ring.revolve(int(rng.integers(16, 32))).rotate(tuple(rng.uniform(0, 90, 3)))
     return leaf.translate(tuple(centre))
 
 

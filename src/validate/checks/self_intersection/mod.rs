@@ -30,7 +30,7 @@
 //! duplicate faces are left out: other rules report them.
 
 mod apart;
-mod around_axis;
+mod coincident_edges;
 mod near;
 mod pair;
 mod sharing;
@@ -47,8 +47,11 @@ use triangles::{Triangle, triangulate};
 /// Every pair of faces that cross or touch without sharing a vertex.
 pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
     let triangles = triangulate(ctx);
-    let pairs = intersecting_face_pairs(ctx, &triangles);
-    violations(ctx, pairs)
+    let mut pairs = intersecting_face_pairs(ctx, &triangles);
+    pairs.extend(coincident_edges::crossing_along_coincident_edges(
+        ctx, &triangles,
+    ));
+    violations(ctx, sorted_once(pairs))
 }
 
 /// [`check`] restricted to pairs with at least one face marked in
@@ -56,8 +59,20 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
 /// not to meet each other ([`near`]).
 pub(crate) fn check_near_changed(ctx: &Context, changed: &[bool]) -> Vec<Violation> {
     let triangles = triangulate(ctx);
-    let pairs = near::pairs_near_changed(ctx, &triangles, changed);
-    violations(ctx, pairs)
+    let mut pairs = near::pairs_near_changed(ctx, &triangles, changed);
+    // Sheets crossing along coincident edges, changed faces or not: no
+    // pairwise test sees it.
+    pairs.extend(coincident_edges::crossing_along_coincident_edges(
+        ctx, &triangles,
+    ));
+    violations(ctx, sorted_once(pairs))
+}
+
+/// The pairs sorted, each once.
+fn sorted_once(mut pairs: Vec<(usize, usize)>) -> Vec<(usize, usize)> {
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
 }
 
 /// One violation per pair of faces.
@@ -496,6 +511,85 @@ mod tests {
             assert!(!want.is_empty(), "round {round}");
             assert_eq!(counted(p, f).0, want, "round {round}");
         }
+    }
+
+    /// The soups of several solids side by side, each with its own
+    /// vertices (coincident positions stay distinct vertices).
+    fn side_by_side(solids: &[crate::mesh::Solid]) -> (Vec<DVec3>, Vec<Vec<usize>>) {
+        let (mut positions, mut polygons) = (Vec::new(), Vec::new());
+        for solid in solids {
+            let soup = solid.to_soup();
+            let base = positions.len();
+            positions.extend(soup.positions);
+            polygons.extend(
+                soup.polygons
+                    .iter()
+                    .map(|p| p.vertices.iter().map(|&i| base + i).collect()),
+            );
+        }
+        (positions, polygons)
+    }
+
+    /// An octahedron with its equator the unit square's corners (±1, 0, 0),
+    /// (0, ±1, 0), apexes at heights `up` and `-down`.
+    fn bipyramid(up: f64, down: f64) -> crate::mesh::Solid {
+        let p = vec![
+            v(1., 0., 0.),
+            v(0., 1., 0.),
+            v(-1., 0., 0.),
+            v(0., -1., 0.),
+            v(0., 0., up),
+            v(0., 0., -down),
+        ];
+        let mut faces = Vec::new();
+        for k in 0..4 {
+            faces.push(vec![k, (k + 1) % 4, 4]);
+            faces.push(vec![(k + 1) % 4, k, 5]);
+        }
+        crate::mesh::Solid::try_from_polygons(&p, faces).unwrap()
+    }
+
+    /// Sheets that touch along coincident edges are no defect; sheets that
+    /// cross along a loop of them, or whose solids overlap there, are,
+    /// though every pair of their triangles meets only along an edge.
+    #[test]
+    fn sheets_touching_or_crossing_along_coincident_edges() {
+        use crate::mesh::builders::cuboid;
+        let a = cuboid(DVec3::ZERO, DVec3::ONE).unwrap();
+        let b = cuboid(v(1., 1., 0.), v(2., 2., 1.)).unwrap();
+        let (p, f) = side_by_side(&[a, b]);
+        let soup = crate::mesh::PolygonSoup::new(p.clone(), f.clone());
+        let report =
+            crate::validate::validate_soup(&soup, None, &crate::validate::Options::default())
+                .unwrap();
+        assert_eq!(
+            report.validity,
+            crate::validate::Validity::ValidSolid,
+            "{:?}",
+            report.violations
+        );
+        assert_eq!(report.shells, 2);
+        // Cubes sharing a face: two faces in one place.
+        let c = cuboid(v(0., 0., 0.), v(1., 1., 1.)).unwrap();
+        let d = cuboid(v(-1., 0., 0.), v(0., 1., 1.)).unwrap();
+        assert!(!report_for_solids(&[c, d]).is_empty());
+        // Equators at one place: crossing (one apex above the other's,
+        // the other below) and nested.
+        // At each equator edge, crossing: both wedges hold a face of the
+        // other; nested: the outer one holds the inner's.
+        for (solids, per_edge) in [
+            ([bipyramid(1., 2.), bipyramid(2., 1.)], 2),
+            ([bipyramid(1., 1.), bipyramid(2., 2.)], 1),
+        ] {
+            let pairs = report_for_solids(&solids);
+            assert_eq!(pairs.len(), 4 * per_edge, "{pairs:?}");
+            assert!(pairs.iter().all(|p| p[0] < 8 && p[1] >= 8), "{pairs:?}");
+        }
+    }
+
+    fn report_for_solids(solids: &[crate::mesh::Solid]) -> Vec<Vec<usize>> {
+        let (p, f) = side_by_side(solids);
+        report_for(p, f)
     }
 
     fn v(x: f64, y: f64, z: f64) -> DVec3 {

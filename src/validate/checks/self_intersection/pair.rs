@@ -47,18 +47,24 @@
 //! `uw`; when coplanar they overlap (a fold) iff `a` and `b` lie on the same
 //! side of `uw`.
 //!
+//! # Corners at one position
+//!
+//! Two shells, or two sheets of one shell, may touch at a point or along
+//! an edge where each has vertices of its own (spheres resting on a plate,
+//! two cubes sharing an edge, after a boolean). Corners at exactly one
+//! position count as shared: one such corner gets the rule for one shared
+//! vertex, two (coincident edges) the rule for a shared edge, so only a
+//! common point beyond the contact is a defect; three are two triangles in
+//! one place, a defect. Two sheets that touch at a point without crossing
+//! enclose disjoint solids there or one inside the other; the second is
+//! caught by the shells' nesting and orientation. Whether sheets cross
+//! along coincident edges depends on all the faces around the edge, not on
+//! a pair: [`coincident_edges`](super::coincident_edges) decides it.
+//!
 //! # Sharing nothing
 //!
-//! When exactly one corner of each lies at one position (two shells, or
-//! two sheets of one shell, touching at a point where each has a vertex —
-//! spheres resting on a plate, after a boolean): the rule for one shared
-//! vertex, so only a common point beyond it is a defect. Two sheets that
-//! touch at a point without crossing enclose disjoint solids there or one
-//! inside the other; the second is caught by the shells' nesting and
-//! orientation. Otherwise any common point is a defect (crossing or
-//! touching): [`triangles_intersect`]. Coincident edges (two corners at
-//! the same positions) stay defects: whether two sheets cross along an
-//! edge depends on all four faces around it.
+//! Any common point is a defect (crossing or touching):
+//! [`triangles_intersect`].
 
 use glam::{DVec2, DVec3};
 
@@ -72,36 +78,21 @@ use crate::geom::{Sign, collinear3d, orient2d, orient3d, triangles_intersect};
 pub(super) fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Triangle) -> bool {
     let pa = a.vertices.map(|v| ctx.position(v));
     let pb = b.vertices.map(|v| ctx.position(v));
-    let shared: smallvec::SmallVec<[(usize, usize); 3]> = (0..3)
-        .filter_map(|i| {
-            (0..3)
-                .find(|&j| b.vertices[j] == a.vertices[i])
-                .map(|j| (i, j))
-        })
-        .collect();
+    let shared = shared_corners(a, b, pa, pb);
     match shared[..] {
-        [] => match coincident_corner(pa, pb) {
-            // Two shells (or two sheets of one) touching at a point where
-            // each has a vertex: a contact, not a crossing, unless the
-            // triangles meet beyond it.
-            Some((i, j)) => corners_meet(
-                pa[i],
-                [pa[(i + 1) % 3], pa[(i + 2) % 3]],
-                [pb[(j + 1) % 3], pb[(j + 2) % 3]],
-            ),
-            None => triangles_intersect(pa, pb),
-        },
+        [] => triangles_intersect(pa, pb),
+        // One vertex, or (two shells or two sheets of one touching at a
+        // point where each has a vertex) one position: a contact, not a
+        // crossing, unless the triangles meet beyond it.
         [(i, j)] => corners_meet(
             pa[i],
             [pa[(i + 1) % 3], pa[(i + 2) % 3]],
             [pb[(j + 1) % 3], pb[(j + 2) % 3]],
         ),
-        [(i0, _), (i1, _)] => {
+        [(i0, j0), (i1, j1)] => {
             let (u, w) = (pa[i0], pa[i1]);
             let a_far = pa[3 - i0 - i1];
-            let b_far = pb[(0..3)
-                .find(|&k| !a.vertices.contains(&b.vertices[k]))
-                .unwrap_or(0)];
+            let b_far = pb[3 - j0 - j1];
             if orient3d(u, w, a_far, b_far) != Sign::Zero {
                 return false;
             }
@@ -110,26 +101,31 @@ pub(super) fn triangles_meet_beyond_shared(ctx: &Context, a: &Triangle, b: &Tria
             let sa = orient2d(u2, w2, projection.apply(a_far));
             sa != Sign::Zero && sa == orient2d(u2, w2, projection.apply(b_far))
         }
-        // The same three vertices: a duplicate, reported as such.
-        _ => false,
+        // The same three vertices: a duplicate, reported as such. Three
+        // positions with other vertices: two triangles in one place.
+        _ => a.shared_vertices(b) < 3,
     }
 }
 
-/// The corners `(i, j)` of two triangles that share no vertex when exactly
-/// one corner of each lies at one position (`pa[i] == pb[j]`, exactly).
-fn coincident_corner(pa: [DVec3; 3], pb: [DVec3; 3]) -> Option<(usize, usize)> {
-    let mut found = None;
-    for (i, p) in pa.iter().enumerate() {
-        for (j, q) in pb.iter().enumerate() {
-            if p == q {
-                if found.is_some() {
-                    return None;
-                }
-                found = Some((i, j));
-            }
-        }
-    }
-    found
+/// The corners `(i, j)` the two triangles share: the same vertex, or
+/// (sheets touching at a point or along an edge, each with its own
+/// vertices there) the same position, exactly. Corners of a triangle with
+/// two corners at one position match by vertex only.
+fn shared_corners(
+    a: &Triangle,
+    b: &Triangle,
+    pa: [DVec3; 3],
+    pb: [DVec3; 3],
+) -> smallvec::SmallVec<[(usize, usize); 3]> {
+    let distinct = |p: [DVec3; 3]| p[0] != p[1] && p[1] != p[2] && p[2] != p[0];
+    let by_position = distinct(pa) && distinct(pb);
+    (0..3)
+        .filter_map(|i| {
+            (0..3)
+                .find(|&j| b.vertices[j] == a.vertices[i] || (by_position && pb[j] == pa[i]))
+                .map(|j| (i, j))
+        })
+        .collect()
 }
 
 /// Whether the triangles `(v, a1, a2)` and `(v, b1, b2)` have a common

@@ -34,8 +34,8 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::super::super::context::Context;
-use super::around_axis::{AxisOrder, HalfTurn};
 use super::triangles::Triangle;
+use crate::geom::around_axis::{AxisOrder, HalfTurn};
 use crate::geom::{Sign, collinear3d, orient3d};
 
 /// Up to this many triangles around a vertex or an edge, every pair of them

@@ -1,7 +1,6 @@
-//! Exact angular order of points around a line, and the two uses the
-//! self-intersection check makes of it: the triangles around one edge that
-//! lie in one half-plane (a fold), and the triangles around one vertex
-//! whose corners can overlap.
+//! Exact angular order of points around a line: what pairs the faces
+//! around an edge (the builder's touching sheets, the validator's folds and
+//! coincident edges) and orders the corners around a vertex.
 //!
 //! Every comparison is an exact `orient3d` sign on input coordinates and on
 //! one chosen `f64` point that fixes the line; that point is a construction
@@ -23,7 +22,7 @@ use crate::geom::{Sign, collinear3d, orient3d};
 /// `origin ≠ toward`; `reference` and `second` are off the line and
 /// `orient3d(origin, toward, reference, second) ≠ 0`.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct AxisOrder {
+pub(crate) struct AxisOrder {
     origin: DVec3,
     toward: DVec3,
     reference: DVec3,
@@ -35,7 +34,7 @@ pub(super) struct AxisOrder {
 /// Where a point's projection is, from `reference`'s, turning the way
 /// [`AxisOrder::turn`] calls positive.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub(super) enum HalfTurn {
+pub(crate) enum HalfTurn {
     /// The same direction as the reference (angle 0).
     Along,
     /// Strictly between 0 and a half-turn.
