@@ -53,6 +53,59 @@ fn cubes_sharing_an_edge_or_a_vertex() {
     assert_eq!(edge.solid.edge_count(), 24);
 }
 
+/// The whole validator (every pair of faces, not only the changed ones the
+/// boolean's proof tests) on a result.
+fn fully_valid(result: &Boolean) {
+    let report = wingedge::validate::validate_soup(
+        &result.solid.to_soup(),
+        None,
+        &wingedge::validate::Options::default(),
+    )
+    .unwrap();
+    assert_eq!(
+        report.validity,
+        Validity::ValidSolid,
+        "{:?}",
+        report.violations
+    );
+}
+
+/// Touching along an edge inside one shell (two legs under a slab, meeting
+/// along an edge), and along a slanted edge at arbitrary coordinates.
+#[test]
+fn results_touching_along_an_edge() {
+    let legs = cuboid([0.0; 3], [1.0; 3])
+        .union(&cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]))
+        .unwrap();
+    let table = legs
+        .solid
+        .union(&cuboid([0.0, 0.0, 1.0], [2.0, 2.0, 2.0]))
+        .unwrap();
+    assert_eq!(valid(&table), 6.0);
+    assert_eq!((table.report.shells, table.report.genus), (1, Some(0)));
+    fully_valid(&table);
+    // Two tetrahedra on either side of the edge from p to q, each with its
+    // own two further corners.
+    let (p, q) = (DVec3::new(0.1, -0.3, 0.7), DVec3::new(1.3, 0.9, -0.2));
+    let tetrahedron = |c: DVec3, d: DVec3| {
+        let points = [p, q, c, d];
+        let mut faces = vec![vec![0, 1, 2], vec![0, 2, 3], vec![0, 3, 1], vec![1, 3, 2]];
+        let solid = Solid::try_from_polygons(&points, faces.clone()).unwrap();
+        if solid.volume() < 0.0 {
+            faces.iter_mut().for_each(|f| f.reverse());
+        }
+        Solid::try_from_polygons(&points, faces).unwrap()
+    };
+    let a = tetrahedron(DVec3::new(1.1, -0.4, 1.5), DVec3::new(0.9, 0.8, 1.3));
+    let b = tetrahedron(DVec3::new(0.2, 0.5, -1.1), DVec3::new(0.7, -0.6, -0.9));
+    let union = a.union(&b).unwrap();
+    assert!((valid(&union) - a.volume() - b.volume()).abs() < 1e-15);
+    assert_eq!(union.report.shells, 2);
+    assert_eq!(union.solid.vertex_count(), 8);
+    fully_valid(&union);
+    assert_eq!(a.intersection(&b).unwrap().solid.face_count(), 0);
+}
+
 #[test]
 fn a_cube_against_itself_turned_by_a_trillionth_of_a_radian() {
     let a = cuboid([-1.0; 3], [1.0; 3]);
