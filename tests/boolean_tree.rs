@@ -275,3 +275,58 @@ fn balls_resting_on_a_slab_union_to_touching_shells() {
     let volume = union.solid.volume();
     assert!((volume - sum).abs() < 1e-9 * sum, "{volume} vs {sum}");
 }
+
+/// Every face of an evaluated tree names the leaf it comes from and the
+/// face of that leaf's polyhedron: the faces lie in that face's plane,
+/// facing the same way for the block and the other way for the drill
+/// taken away from it (a mesh leaf and a moved box leaf).
+#[test]
+fn evaluated_faces_name_their_leaf_and_its_face() {
+    use std::path::Path;
+    use wingedge::csg::{EvaluateOptions, evaluate};
+    use wingedge::scene::Scene;
+    let scene = Scene::from_json(
+        r#"{"root": {"difference": [
+            {"mesh": "fixtures/valid/cube.obj"},
+            {"transform": {"translate": [0.25, 0.25, 0]},
+             "child": {"box": {"min": [-0.5, -0.5, -2], "max": [0.5, 0.5, 2]}}}]}}"#,
+        "drilled",
+        Path::new("."),
+    )
+    .expect("the scene");
+    let options = EvaluateOptions::default();
+    let evaluated = evaluate(&scene.csg, &options).expect("evaluated");
+    assert_eq!(evaluated.report.genus, Some(1));
+    let bounds = scene.csg.bounds();
+    let leaf_faces: Vec<Vec<DVec3>> = scene
+        .csg
+        .leaves()
+        .iter()
+        .map(|leaf| {
+            let solid = leaf
+                .primitive
+                .tessellate(options.tolerance, &bounds)
+                .expect("a polyhedron");
+            solid
+                .faces()
+                .map(|(_, f)| f.plane.expect("a plane").normal)
+                .collect()
+        })
+        .collect();
+    let mut from = [0, 0];
+    for (_, face) in evaluated.solid.faces() {
+        let origin = evaluated.origins[face.attributes.source_index.expect("an origin")];
+        let leaf = origin.leaf.0 as usize;
+        from[leaf] += 1;
+        let theirs = leaf_faces[leaf][origin.face];
+        let ours = face.plane.expect("a plane").normal;
+        let facing = if leaf == 0 { 1.0 } else { -1.0 };
+        assert!(
+            (ours - facing * theirs).length() < 1e-12,
+            "leaf {leaf} face {}: {ours} vs {theirs}",
+            origin.face
+        );
+    }
+    // The cube's six faces (two of them drilled) and the drill's four sides.
+    assert_eq!(from, [6, 4]);
+}

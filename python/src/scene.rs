@@ -211,7 +211,18 @@ impl PyScene {
                 EvaluateError::Leaf { .. } => SceneError::new_err(e.to_string()),
                 other => errors::BooleanError::new_err(other.to_string()),
             })?;
-            result_inner(&evaluated.solid, None)
+            // Each face's origin: the leaf (in the scene's leaf order) and
+            // the face of the leaf's polyhedron.
+            let origin = |face: wingedge::mesh::FaceId| -> [i64; 2] {
+                evaluated
+                    .solid
+                    .face(face)
+                    .attributes
+                    .source_index
+                    .and_then(|i| evaluated.origins.get(i))
+                    .map_or([-1, -1], |o| [i64::from(o.leaf.0), o.face as i64])
+            };
+            result_inner(&evaluated.solid, Some(&origin))
         })?;
         Ok(PySolid {
             inner: Arc::new(inner),

@@ -208,8 +208,15 @@ def test_a_scene_evaluates_to_a_solid():
                                  {"box": {"min": [1, 1, 1], "max": [3, 3, 3]}}]}}
     )
     solid = scene.evaluate()
-    assert solid.volume == 7.0 and solid.genus == 0 and solid.face_origins is None
+    assert solid.volume == 7.0 and solid.genus == 0
     assert wingedge.validate(solid).valid
+    # Each face names its leaf and the leaf's face: the first box keeps its
+    # three far faces whole and is cut on three; the second gives three.
+    origins = solid.face_origins
+    assert origins.shape == (solid.face_count, 2)
+    assert sorted(set(origins[:, 0].tolist())) == [0, 1]
+    assert (origins[:, 0] == 1).sum() == 3 and (origins[:, 0] == 0).sum() == 6
+    assert set(origins[:, 1].tolist()) <= set(range(6))
     ball = wingedge.Scene.from_dict({"root": {"sphere": {"center": [0, 0, 0], "radius": 1}}})
     coarse, fine = ball.evaluate(tolerance=0.05), ball.evaluate()
     # Inscribed polyhedra: below the ball's volume, closer when finer.

@@ -9,7 +9,7 @@ use std::time::Instant;
 use thiserror::Error;
 
 use super::tessellate::DEFAULT_TOLERANCE;
-use super::tree::{Csg, NodeIndex, NodeKind};
+use super::tree::{Csg, LeafId, NodeIndex, NodeKind};
 use super::{CsgOp, TessellateError};
 use crate::boolean::{BooleanError, BooleanOptions, BooleanStats, Expression, Operation, combine};
 use crate::mesh::Solid;
@@ -74,6 +74,20 @@ pub struct Evaluated {
     pub tessellate_seconds: f64,
     /// The number of operators in the tree (evaluated together).
     pub booleans: usize,
+    /// For each face of `solid` (by its `attributes.source_index`), the
+    /// leaf and the face of the leaf's polyhedron it is part of.
+    pub origins: Vec<LeafFace>,
+}
+
+/// Where a face of an evaluated tree comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct LeafFace {
+    /// The leaf.
+    pub leaf: LeafId,
+    /// The face's index in the faces of the leaf's polyhedron, in their
+    /// order (for a mesh leaf, the mesh's face order; for a primitive, its
+    /// tessellation's).
+    pub face: usize,
 }
 
 /// Evaluates `csg` to a valid solid.
@@ -98,12 +112,34 @@ pub fn evaluate(csg: &Csg, options: &EvaluateOptions) -> Result<Evaluated, Evalu
             source,
         }
     })?;
+    // Each operand's faces numbered in their order, for the operands that
+    // faces of the result come from.
+    let mut numbering: Vec<Option<rustc_hash::FxHashMap<crate::mesh::FaceId, usize>>> =
+        vec![None; leaves.solids.len()];
+    let origins = result
+        .origins
+        .iter()
+        .map(|origin| {
+            let faces = numbering[origin.operand].get_or_insert_with(|| {
+                leaves.solids[origin.operand]
+                    .faces()
+                    .enumerate()
+                    .map(|(i, (f, _))| (f, i))
+                    .collect()
+            });
+            LeafFace {
+                leaf: leaves.ids[origin.operand],
+                face: faces[&origin.face],
+            }
+        })
+        .collect();
     Ok(Evaluated {
         solid: result.solid,
         report: result.report,
         stats: result.stats,
         tessellate_seconds: leaves.tessellate_seconds,
         booleans: leaves.operators,
+        origins,
     })
 }
 
@@ -111,6 +147,8 @@ pub fn evaluate(csg: &Csg, options: &EvaluateOptions) -> Result<Evaluated, Evalu
 #[derive(Default)]
 struct Leaves {
     solids: Vec<Solid>,
+    /// The leaf of each solid.
+    ids: Vec<LeafId>,
     tessellate_seconds: f64,
     operators: usize,
 }
@@ -141,6 +179,7 @@ fn node(
                 source,
             })?;
             out.solids.push(solid);
+            out.ids.push(id);
             Ok((
                 Expression::Operand(out.solids.len() - 1),
                 leaf.label.clone(),

@@ -43,7 +43,7 @@ pub use cell_relation::{CellRelation, CellVerdict, LeafSides, LeafTileError};
 pub use classify::Neighbourhood;
 pub use crossing_order::{CrossingPlane, compare_exactly};
 pub use cylinder::{Cylinder, CylinderError};
-pub use evaluate::{EvaluateError, EvaluateOptions, Evaluated, evaluate};
+pub use evaluate::{EvaluateError, EvaluateOptions, Evaluated, LeafFace, evaluate};
 pub use halfspace::{HalfSpace, HalfSpaceError};
 pub use local_cone::{LocalPlane, MAX_PLANES_AT_A_POINT};
 pub use merge::{CsgOp, Hit, MergeState, merge, merge_by, oriented_normal};
