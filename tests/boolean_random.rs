@@ -1,7 +1,8 @@
 //! Seeded random pairs of solids on a coarse grid (so faces coincide,
 //! edges touch and corners meet far more often than by chance): every
-//! boolean is a valid solid or a refusal of a result that is not a
-//! 2-manifold, and the volumes add up.
+//! boolean is a valid solid (touching itself at points or along edges
+//! where the operands do) or, rarely, a refusal of a result that rounding
+//! to `f64` would break, and the volumes add up.
 
 use glam::{DAffine3, DVec3};
 use wingedge::boolean::{BooleanError, BooleanOptions, Operation, boolean};
@@ -70,7 +71,9 @@ fn random_pairs_on_a_grid_are_valid_and_add_up() {
                     made += 1;
                     volumes[k] = Some(r.solid.volume());
                 }
-                Err(BooleanError::NotBuilt(_) | BooleanError::InvalidResult { .. }) => refused += 1,
+                // Only where rounding the exact result would break it
+                // (faces of boxes turned by 45° a rounding apart).
+                Err(BooleanError::InvalidResult { .. }) => refused += 1,
                 Err(e) => panic!("case {case} {op:?}: {e}"),
             }
         }
@@ -89,9 +92,9 @@ fn random_pairs_on_a_grid_are_valid_and_add_up() {
             );
         }
     }
-    println!("{made} results, {refused} refused as not 2-manifold");
+    println!("{made} results, {refused} refused as broken by rounding");
     assert!(
-        refused * 10 < made,
+        refused * 100 < made,
         "{refused} refusals of {}",
         made + refused
     );
