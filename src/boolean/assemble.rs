@@ -8,7 +8,11 @@ use rustc_hash::FxHashMap as HashMap;
 use glam::DVec3;
 
 use crate::geom::implicit::rounded;
-use crate::mesh::{FaceId, Polygon, PolygonSoup, Solid};
+use rayon::prelude::*;
+use slotmap::SecondaryMap;
+use smallvec::SmallVec;
+
+use crate::mesh::{Face, FaceId, Polygon, PolygonSoup, Solid, VertexId};
 use crate::validate::{
     Options, Report, Validity, check_rings, validate_soup, validate_soup_near_changed,
 };
@@ -39,26 +43,35 @@ pub(crate) fn soup_of(
     pieces: &[KeptPiece],
     operands: &[Prepared],
 ) -> (PolygonSoup, Vec<PieceSource>) {
-    let mut index: HashMap<u32, usize> = HashMap::default();
-    let mut positions: Vec<DVec3> = Vec::new();
-    let mut constructed: Vec<bool> = Vec::new();
+    // Soup index of each point, numbered in order of first use.
+    let mut index: Vec<Option<usize>> = vec![None; table.canonical.len()];
+    let mut used: Vec<u32> = Vec::new();
     for piece in pieces {
         for &c in &piece.corners {
-            index.entry(c).or_insert_with(|| {
-                let point = table.get(c).definition();
-                positions.push(rounded(&point));
-                constructed.push(point.explicit().is_none());
-                positions.len() - 1
-            });
+            let slot = &mut index[c as usize];
+            if slot.is_none() {
+                *slot = Some(used.len());
+                used.push(c);
+            }
         }
     }
+    let (positions, constructed): (Vec<DVec3>, Vec<bool>) = used
+        .par_iter()
+        .map(|&c| match table.get(c).explicit() {
+            Some(p) => (p, false),
+            None => (rounded(&table.get(c).definition()), true),
+        })
+        .unzip();
     let snapped = snap(&positions, &constructed);
     // Each kept triangle after the snap, or `None` once it collapsed or
     // cancelled against its mirror image.
     let mut kept: Vec<Option<(Polygon, PieceSource)>> = Vec::with_capacity(pieces.len());
-    let mut seen: HashMap<[usize; 3], usize> = HashMap::default();
+    let mut seen: HashMap<[usize; 3], usize> =
+        HashMap::with_capacity_and_hasher(pieces.len(), Default::default());
     for piece in pieces {
-        let corners = piece.corners.map(|c| snapped[index[&c]]);
+        let corners = piece
+            .corners
+            .map(|c| snapped[index[c as usize].unwrap_or_default()]);
         if corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0] {
             continue;
         }
@@ -122,11 +135,19 @@ fn snap(positions: &[DVec3], constructed: &[bool]) -> Vec<usize> {
     if reach == 0.0 || !reach.is_finite() {
         return representative;
     }
-    let cell = |p: DVec3| ((p / reach).floor()).as_i64vec3();
-    let mut grid: HashMap<glam::I64Vec3, Vec<usize>> = HashMap::default();
-    for (i, &p) in positions.iter().enumerate() {
-        grid.entry(cell(p)).or_default().push(i);
-    }
+    let cell = |p: DVec3| ((p / reach).floor()).as_i64vec3().to_array();
+    // The points by grid cell (then by index): a cell's points are a run.
+    let mut grid: Vec<([i64; 3], usize)> = positions
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| (cell(p), i))
+        .collect();
+    grid.sort_unstable();
+    let in_cell = |c: [i64; 3]| {
+        let start = grid.partition_point(|&(d, _)| d < c);
+        let end = start + grid[start..].partition_point(|&(d, _)| d == c);
+        grid[start..end].iter().map(|&(_, j)| j)
+    };
     let find = |rep: &Vec<usize>, mut i: usize| {
         while rep[i] != i {
             i = rep[i];
@@ -141,10 +162,7 @@ fn snap(positions: &[DVec3], constructed: &[bool]) -> Vec<usize> {
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    let Some(near) = grid.get(&(c + glam::I64Vec3::new(dx, dy, dz))) else {
-                        continue;
-                    };
-                    for &j in near {
+                    for j in in_cell([c[0] + dx, c[1] + dy, c[2] + dz]) {
                         if j == i || (positions[j] - p).abs().max_element() > reach {
                             continue;
                         }
@@ -266,31 +284,35 @@ fn judged(solid: &Solid, report: Report) -> Result<Report, BooleanError> {
 
 /// The solid as a soup of the exact triangulations of its faces (rings
 /// included), which the soup validator can check; with `changed`, whether
-/// each triangle's face is in it.
+/// each triangle's face is in it. Faces are triangulated in parallel; the
+/// soup lists them in the solid's face order, and a face that cannot be
+/// triangulated is reported as the first such face in that order.
 fn triangulated(
     solid: &Solid,
     changed: Option<&rustc_hash::FxHashSet<FaceId>>,
 ) -> Result<(PolygonSoup, Vec<bool>), BooleanError> {
-    let mut index = HashMap::default();
+    let mut index: SecondaryMap<VertexId, usize> =
+        SecondaryMap::with_capacity(solid.vertex_count());
     let mut positions = Vec::with_capacity(solid.vertex_count());
     for (i, (v, vertex)) in solid.vertices().enumerate() {
         index.insert(v, i);
         positions.push(vertex.position);
     }
-    let mut polygons = Vec::new();
-    let mut polygon_changed = Vec::new();
-    for (f, face) in solid.faces() {
-        let triangles = solid
-            .try_triangulate_face(f)
-            .map_err(|e| BooleanError::InvalidResult {
-                validity: "a face is not a simple polygon after rounding".into(),
-                report: format!("face {f:?}: {e}"),
-            })?;
-        for t in triangles {
-            let mut polygon = Polygon::new(t.map(|v| index[&v]));
-            polygon.attributes = face.attributes.clone();
-            polygons.push(polygon);
-            polygon_changed.push(changed.is_none_or(|c| c.contains(&f)));
+    let faces: Vec<(FaceId, &Face)> = solid.faces().collect();
+    let triangles: Vec<Result<FaceTriangles, BooleanError>> = faces
+        .par_iter()
+        .map(|&(f, _)| face_triangles(solid, f, &index))
+        .collect();
+    let mut polygons = Vec::with_capacity(faces.len());
+    let mut polygon_changed = Vec::with_capacity(faces.len());
+    for (&(f, face), of_face) in faces.iter().zip(triangles) {
+        let is_changed = changed.is_none_or(|c| c.contains(&f));
+        for t in of_face? {
+            polygons.push(Polygon {
+                vertices: t.into_iter().collect(),
+                attributes: face.attributes.clone(),
+            });
+            polygon_changed.push(is_changed);
         }
     }
     Ok((
@@ -300,6 +322,28 @@ fn triangulated(
         },
         polygon_changed,
     ))
+}
+
+/// One face's triangles, as soup indices (most faces are one triangle).
+type FaceTriangles = SmallVec<[[usize; 3]; 1]>;
+
+/// The exact triangulation of face `f` ([`Solid::try_triangulate_face`]),
+/// its corners numbered by `index`; a triangle without its allocation.
+fn face_triangles(
+    solid: &Solid,
+    f: FaceId,
+    index: &SecondaryMap<VertexId, usize>,
+) -> Result<FaceTriangles, BooleanError> {
+    if let Some(triangle) = solid.face_as_triangle(f) {
+        return Ok(smallvec::smallvec![triangle.map(|v| index[v])]);
+    }
+    let triangles = solid
+        .try_triangulate_face(f)
+        .map_err(|e| BooleanError::InvalidResult {
+            validity: "a face is not a simple polygon after rounding".into(),
+            report: format!("face {f:?}: {e}"),
+        })?;
+    Ok(triangles.into_iter().map(|t| t.map(|v| index[v])).collect())
 }
 
 /// The first few defects of a report, one line each.

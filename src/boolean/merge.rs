@@ -108,22 +108,32 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
 
 /// The vertices that share their position with another vertex.
 fn touching_vertices(solid: &Solid) -> HashSet<VertexId> {
-    let mut by_position: HashMap<[u64; 3], Vec<VertexId>> = HashMap::default();
-    for (v, vertex) in solid.vertices() {
-        // −0 and +0 are one position.
-        let key = (vertex.position + DVec3::ZERO).to_array().map(f64::to_bits);
-        by_position.entry(key).or_default().push(v);
-    }
+    // −0 and +0 are one position.
+    let mut by_position: Vec<([u64; 3], VertexId)> = solid
+        .vertices()
+        .map(|(v, vertex)| {
+            let key = (vertex.position + DVec3::ZERO).to_array().map(f64::to_bits);
+            (key, v)
+        })
+        .collect();
+    by_position.sort_unstable_by_key(|&(key, _)| key);
     by_position
-        .into_values()
-        .filter(|vs| vs.len() > 1)
+        .chunk_by(|x, y| x.0 == y.0)
+        .filter(|run| run.len() > 1)
         .flatten()
+        .map(|&(_, v)| v)
         .collect()
 }
 
 /// Whether two triangles lie exactly in one plane and face the same way.
+///
+/// A corner of `b` at a corner of `a` lies in `a`'s plane without a test
+/// (`orient3d` would be exactly zero there, and would reach its exact
+/// fallback to say so): neighbouring pieces share two corners, so usually
+/// one `orient3d` decides.
 fn same_plane_same_way(a: &[DVec3; 3], b: &[DVec3; 3]) -> bool {
     if b.iter()
+        .filter(|p| !a.contains(p))
         .any(|&p| orient3d(a[0], a[1], a[2], p) != Sign::Zero)
     {
         return false;

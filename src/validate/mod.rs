@@ -106,7 +106,7 @@ pub fn validate_soup(
 ) -> Result<Report, ValidateError> {
     check_soup(soup)?;
     let lines = vertex_lines.filter(|l| l.len() == soup.positions.len());
-    Ok(run(soup, lines, options, None).0)
+    Ok(run(soup, lines, options, None, Keep::ReportOnly).0)
 }
 
 /// [`validate_soup`] with the default options, the self-intersection check
@@ -123,7 +123,14 @@ pub(crate) fn validate_soup_near_changed(
     changed: &[bool],
 ) -> Result<Report, ValidateError> {
     check_soup(soup)?;
-    Ok(run(soup, None, &Options::default(), Some(changed)).0)
+    Ok(run(
+        soup,
+        None,
+        &Options::default(),
+        Some(changed),
+        Keep::ReportOnly,
+    )
+    .0)
 }
 
 /// Validates an imported OBJ file and also returns the winged-edge solid
@@ -138,7 +145,13 @@ pub fn validate_and_build(
     options: &Options,
 ) -> Result<(Report, Option<Solid>), ValidateError> {
     check_soup(&import.soup)?;
-    Ok(run(&import.soup, Some(&import.vertex_lines), options, None))
+    Ok(run(
+        &import.soup,
+        Some(&import.vertex_lines),
+        options,
+        None,
+        Keep::Solid,
+    ))
 }
 
 fn check_soup(soup: &PolygonSoup) -> Result<(), ValidateError> {
@@ -172,21 +185,54 @@ fn check_soup(soup: &PolygonSoup) -> Result<(), ValidateError> {
     Ok(())
 }
 
+/// What a validation returns besides its report.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Keep {
+    /// The built solid too.
+    Solid,
+    /// The report only: the solid is built only where the verdict needs
+    /// it (see [`run`]).
+    ReportOnly,
+}
+
 /// Every rule on `soup`; the self-intersection check only on pairs with a
 /// face marked in `changed` when it is given.
+///
+/// Whether the faces build into a winged-edge solid is part of the
+/// verdict. With [`Keep::ReportOnly`] the solid is not built when the
+/// soup is clean ([`context::Context::is_clean`]), has a face, and the
+/// soup checks find nothing: then [`Solid::try_from_soup`] cannot fail, so
+/// the verdict is the same as if it had been built. Its errors each imply
+/// a soup violation or an unclean context: a polygon with fewer than three
+/// corners is not polygon-shaped (unclean); an index out of range or a
+/// non-finite position is refused before any rule runs; a polygon visiting
+/// a vertex twice is a [`Rule::DegenerateFace`] (or, twice in a row,
+/// unclean); an edge used three or more times is a
+/// [`Rule::EdgeInMoreThanTwoFaces`], an edge run twice one way a
+/// [`Rule::InconsistentOrientation`]; no polygons at all is excluded.
 fn run(
     soup: &PolygonSoup,
     vertex_lines: Option<&[usize]>,
     options: &Options,
     changed: Option<&[bool]>,
+    keep: Keep,
 ) -> (Report, Option<Solid>) {
     let start = std::time::Instant::now();
     // The soup usually needs no cleaning (no repeats in a row, no duplicate
     // or broken faces): build the solid from it while the context is made.
-    let (ctx, raw) = rayon::join(
-        || context::Context::new(soup, vertex_lines, options.tolerance),
-        || Solid::try_from_soup(soup),
-    );
+    let (ctx, raw) = match keep {
+        Keep::Solid => {
+            let (ctx, raw) = rayon::join(
+                || context::Context::new(soup, vertex_lines, options.tolerance),
+                || Solid::try_from_soup(soup),
+            );
+            (ctx, Some(raw))
+        }
+        Keep::ReportOnly => (
+            context::Context::new(soup, vertex_lines, options.tolerance),
+            None,
+        ),
+    };
     let prepared = start.elapsed().as_secs_f64();
     let soup_checks: [fn(&context::Context) -> Vec<Violation>; 13] = [
         checks::vertex_in_fewer_than_three_edges::check,
@@ -218,10 +264,13 @@ fn run(
         || {
             let violations: Vec<Violation> =
                 soup_checks.iter().flat_map(|check| check(&ctx)).collect();
+            let needs_build = !(ctx.is_clean() && violations.is_empty() && ctx.face_count() > 0);
             let (built, view) = rayon::join(
                 || match raw {
-                    Ok(solid) if ctx.is_clean() => Ok(solid),
-                    _ => solid_view::build(&ctx),
+                    Some(Ok(solid)) if ctx.is_clean() => Ok(Some(solid)),
+                    Some(_) => solid_view::build(&ctx).map(Some),
+                    None if needs_build => solid_view::build(&ctx).map(|_| None),
+                    None => Ok(None),
                 },
                 || solid_view::measure(&ctx),
             );
@@ -229,7 +278,7 @@ fn run(
         },
     );
     let (solid, built) = match built {
-        Ok((solid, view)) => (Some(solid), Ok(view)),
+        Ok((solid, view)) => (solid, Ok(view)),
         Err(why) => (None, Err(why)),
     };
     let (shells, genus, volume, not_built) = match built {
