@@ -63,44 +63,60 @@ pub(crate) fn soup_of(
         })
         .unzip();
     let snapped = snap(&positions, &constructed);
-    // Each kept triangle after the snap, or `None` once it collapsed or
-    // cancelled against its mirror image.
-    let mut kept: Vec<Option<(Polygon, PieceSource)>> = Vec::with_capacity(pieces.len());
+    // Each piece's corners after the snap, or `None` once it collapsed.
+    let corners: Vec<Option<[usize; 3]>> = pieces
+        .par_iter()
+        .map(|piece| {
+            let c = piece
+                .corners
+                .map(|c| snapped[index[c as usize].unwrap_or_default()]);
+            (c[0] != c[1] && c[1] != c[2] && c[2] != c[0]).then_some(c)
+        })
+        .collect();
+    // Whether each piece is kept: not collapsed, and not cancelled with an
+    // earlier one — a sliver pair collapsed by the snap, the same triangle
+    // wound both ways. In piece order, as each piece meets the latest
+    // kept piece with its mirror image's corners.
+    let mut alive: Vec<bool> = corners.iter().map(Option::is_some).collect();
     let mut seen: HashMap<[usize; 3], usize> =
         HashMap::with_capacity_and_hasher(pieces.len(), Default::default());
-    for piece in pieces {
-        let corners = piece
-            .corners
-            .map(|c| snapped[index[c as usize].unwrap_or_default()]);
-        if corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0] {
+    for (i, c) in corners.iter().enumerate() {
+        let Some(c) = c else {
             continue;
-        }
-        // A sliver pair collapsed by the snap: the same triangle wound both
-        // ways cancels.
-        let mirror = rotated_to_smallest([corners[0], corners[2], corners[1]]);
-        if let Some(&other) = seen.get(&mirror)
-            && kept[other].is_some()
-        {
-            kept[other] = None;
-            continue;
-        }
-        seen.insert(rotated_to_smallest(corners), kept.len());
-        let operand = &operands[piece.operand];
-        let mut polygon = Polygon::new(corners);
-        let face = operand.solid.face(piece.face);
-        polygon.attributes.group = face.attributes.group.clone();
-        polygon.attributes.material = face.attributes.material.clone();
-        let source = PieceSource {
-            origin: FaceOrigin {
-                operand: operand.index,
-                face: piece.face,
-            },
-            plane: piece.plane,
-            changed: piece.changed,
         };
-        kept.push(Some((polygon, source)));
+        let mirror = rotated_to_smallest([c[0], c[2], c[1]]);
+        if let Some(&other) = seen.get(&mirror)
+            && alive[other]
+        {
+            alive[other] = false;
+            alive[i] = false;
+            continue;
+        }
+        seen.insert(rotated_to_smallest(*c), i);
     }
-    let (polygons, sources) = kept.into_iter().flatten().unzip();
+    drop(seen);
+    let (polygons, sources): (Vec<Polygon>, Vec<PieceSource>) = pieces
+        .par_iter()
+        .zip(&corners)
+        .zip(&alive)
+        .filter_map(|((piece, c), &alive)| Some((piece, (*c).filter(|_| alive)?)))
+        .map(|(piece, c)| {
+            let operand = &operands[piece.operand];
+            let mut polygon = Polygon::new(c);
+            let face = operand.solid.face(piece.face);
+            polygon.attributes.group = face.attributes.group.clone();
+            polygon.attributes.material = face.attributes.material.clone();
+            let source = PieceSource {
+                origin: FaceOrigin {
+                    operand: operand.index,
+                    face: piece.face,
+                },
+                plane: piece.plane,
+                changed: piece.changed,
+            };
+            (polygon, source)
+        })
+        .unzip();
     (
         PolygonSoup {
             positions,
@@ -212,11 +228,32 @@ pub(crate) fn build_and_prove(
     let mut solid =
         Solid::try_from_soup(soup).map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
     let changed = merge_faces(&mut solid, sources);
+    // The faces' origins are numbered while the result is proven (the
+    // proof reads no source index).
+    let ((origins, renumbered), proved) = rayon::join(
+        || origins_of(&solid, sources),
+        || {
+            let clock = std::time::Instant::now();
+            prove_changed(&solid, &changed).map(|report| (report, clock.elapsed().as_secs_f64()))
+        },
+    );
+    let (report, proof_seconds) = proved?;
+    for (f, index) in renumbered {
+        let mut attributes = solid.face(f).attributes.clone();
+        attributes.source_index = Some(index);
+        solid.set_face_attributes(f, attributes);
+    }
+    Ok((solid, origins, report, proof_seconds))
+}
+
+/// Each operand face the result's faces came from, once, in the order of
+/// the faces; and for each face with a source, its index in that list.
+fn origins_of(solid: &Solid, sources: &[PieceSource]) -> (Vec<FaceOrigin>, Vec<(FaceId, usize)>) {
     let mut origins = Vec::new();
     let mut origin_index: HashMap<FaceOrigin, usize> = HashMap::default();
-    let faces: Vec<FaceId> = solid.faces().map(|(f, _)| f).collect();
-    for f in faces {
-        let Some(i) = solid.face(f).attributes.source_index else {
+    let mut renumbered = Vec::with_capacity(solid.face_count());
+    for (f, face) in solid.faces() {
+        let Some(i) = face.attributes.source_index else {
             continue;
         };
         let origin = sources[i].origin;
@@ -224,14 +261,9 @@ pub(crate) fn build_and_prove(
             origins.push(origin);
             origins.len() - 1
         });
-        let mut attributes = solid.face(f).attributes.clone();
-        attributes.source_index = Some(index);
-        solid.set_face_attributes(f, attributes);
+        renumbered.push((f, index));
     }
-    let clock = std::time::Instant::now();
-    let report = prove_changed(&solid, &changed)?;
-    let proof_seconds = clock.elapsed().as_secs_f64();
-    Ok((solid, origins, report, proof_seconds))
+    (origins, renumbered)
 }
 
 /// Validates a boolean's result like [`prove`], the self-intersection

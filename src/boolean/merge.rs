@@ -55,7 +55,8 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
         .map(|(f, _)| f)
         .collect();
     let touching = touching_vertices(solid);
-    let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> = HashMap::default();
+    let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> =
+        HashMap::with_capacity_and_hasher(solid.edge_count(), Default::default());
     // Faces allowed to merge, as pairs: a merged face holds a changed piece
     // when any face of its group did (an allowed merge that the Euler
     // operators then skip only makes the set larger).

@@ -427,6 +427,58 @@ mod tests {
         assert_eq!(r.validity, Validity::NotASurface);
     }
 
+    /// The report alone (solid built only where the verdict needs it)
+    /// says exactly what the report beside the built solid says, on soups
+    /// that build and on soups that each break one of the build's rules.
+    #[test]
+    fn a_report_without_the_solid_is_the_same_report() {
+        let valid = pyramid([0, 3, 2, 1]);
+        let bow_tie = pyramid([0, 2, 3, 1]);
+        let mut flipped = pyramid([0, 3, 2, 1]);
+        flipped.polygons[1].vertices.reverse();
+        let mut three_on_an_edge = pyramid([0, 3, 2, 1]);
+        three_on_an_edge
+            .polygons
+            .push(crate::mesh::Polygon::new([0, 1, 2]));
+        let mut repeated = pyramid([0, 3, 2, 1]);
+        repeated.polygons[0] = crate::mesh::Polygon::new([0, 3, 0, 2, 1]);
+        let mut in_a_row = pyramid([0, 3, 2, 1]);
+        in_a_row.polygons[0] = crate::mesh::Polygon::new([0, 3, 3, 2, 1]);
+        let mut too_few = pyramid([0, 3, 2, 1]);
+        too_few.polygons.push(crate::mesh::Polygon::new([0, 1]));
+        let empty = PolygonSoup::new(Vec::new(), Vec::<Vec<usize>>::new());
+        let soups = [
+            valid,
+            bow_tie,
+            flipped,
+            three_on_an_edge,
+            repeated,
+            in_a_row,
+            too_few,
+            empty,
+        ];
+        let mut not_built = 0;
+        for (k, soup) in soups.iter().enumerate() {
+            let options = Options::default();
+            let (with_solid, solid) = run(soup, None, &options, None, Keep::Solid);
+            let (alone, none) = run(soup, None, &options, None, Keep::ReportOnly);
+            assert!(none.is_none(), "soup {k}");
+            assert_eq!(solid.is_some(), with_solid.not_built.is_none(), "soup {k}");
+            not_built += usize::from(with_solid.not_built.is_some());
+            assert_eq!(alone.validity, with_solid.validity, "soup {k}");
+            assert_eq!(alone.violations, with_solid.violations, "soup {k}");
+            assert_eq!(alone.not_built, with_solid.not_built, "soup {k}");
+            assert_eq!(alone.shell_details, with_solid.shell_details, "soup {k}");
+            assert_eq!(
+                (alone.genus, alone.volume),
+                (with_solid.genus, with_solid.volume),
+                "soup {k}"
+            );
+        }
+        // Some of these soups do not build: the reason must still be said.
+        assert!(not_built >= 3, "{not_built}");
+    }
+
     #[test]
     fn bad_soups_are_errors_not_panics() {
         let mut soup = pyramid([0, 3, 2, 1]);
