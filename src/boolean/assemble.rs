@@ -34,6 +34,9 @@ pub(crate) struct KeptPiece {
     /// Whether the piece is less than its whole operand triangle (cut, or
     /// with points of another operand on it).
     pub changed: bool,
+    /// Whether the piece is the only one of its operand face: the face is
+    /// one triangle and the piece all of it.
+    pub alone: bool,
 }
 
 /// The soup of the kept pieces: each canonical point once, rounded; each
@@ -113,6 +116,7 @@ pub(crate) fn soup_of(
                 },
                 plane: piece.plane,
                 changed: piece.changed,
+                alone: piece.alone,
             };
             (polygon, source)
         })

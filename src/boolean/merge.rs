@@ -30,6 +30,10 @@ pub(crate) struct PieceSource {
     pub plane: [DVec3; 3],
     /// Whether the piece is less than its whole operand triangle.
     pub changed: bool,
+    /// Whether the piece is the only one of its operand face (the face is
+    /// one triangle, the piece all of it): then every face of the result
+    /// that has this origin has this source.
+    pub alone: bool,
 }
 
 /// Merges every pair of neighbouring faces from the same operand face or
@@ -55,8 +59,7 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
         .map(|(f, _)| f)
         .collect();
     let touching = touching_vertices(solid);
-    let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> =
-        HashMap::with_capacity_and_hasher(solid.edge_count(), Default::default());
+    let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> = HashMap::default();
     // Faces allowed to merge, as pairs: a merged face holds a changed piece
     // when any face of its group did (an allowed merge that the Euler
     // operators then skip only makes the set larger).
@@ -72,10 +75,19 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
         {
             return false;
         }
+        // The answer for two origins is the first one found (the pieces of
+        // one operand face may lie in different triangles of it, turned
+        // over or not), except where both pieces are the only ones of their
+        // origins: then every pair of those origins is this pair, and the
+        // answer is found again instead of looked up.
         let allowed = l.origin == r.origin
-            || *coplanar_cache
-                .entry((l.origin, r.origin))
-                .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane));
+            || if l.alone && r.alone {
+                same_plane_same_way(&l.plane, &r.plane)
+            } else {
+                *coplanar_cache
+                    .entry((l.origin, r.origin))
+                    .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane))
+            };
         if allowed {
             merged.push((left, right));
         }

@@ -26,8 +26,9 @@ pub struct FaceOrigin {
 /// # Invariants
 ///
 /// `triangles[t]` are indices into `positions`, counter-clockwise seen from
-/// outside, never of zero area; `faces[t]` is the face `t` came from;
-/// `order` lists triangle indices by BVH item position.
+/// outside, never of zero area; `faces[t]` is the face `t` came from, and
+/// a face's triangles are consecutive; `order` lists triangle indices by
+/// BVH item position.
 pub(crate) struct Prepared<'s> {
     pub solid: &'s Solid,
     /// The operand's index in the operands' list.
@@ -86,6 +87,15 @@ impl<'s> Prepared<'s> {
             bvh,
             order,
         })
+    }
+
+    /// Whether triangle `t` is the whole of its face (the face is a
+    /// triangle without rings).
+    #[must_use]
+    pub fn face_is_one_triangle(&self, t: u32) -> bool {
+        let t = t as usize;
+        let face = self.faces[t];
+        (t == 0 || self.faces[t - 1] != face) && self.faces.get(t + 1) != Some(&face)
     }
 
     /// The corners of triangle `t`.
