@@ -8,7 +8,11 @@ use rustc_hash::FxHashMap as HashMap;
 use glam::DVec3;
 
 use crate::geom::implicit::rounded;
-use crate::mesh::{FaceId, Polygon, PolygonSoup, Solid};
+use rayon::prelude::*;
+use slotmap::SecondaryMap;
+use smallvec::SmallVec;
+
+use crate::mesh::{Face, FaceId, Polygon, PolygonSoup, Solid, VertexId};
 use crate::validate::{
     Options, Report, Validity, check_rings, validate_soup, validate_soup_near_changed,
 };
@@ -30,6 +34,9 @@ pub(crate) struct KeptPiece {
     /// Whether the piece is less than its whole operand triangle (cut, or
     /// with points of another operand on it).
     pub changed: bool,
+    /// Whether the piece is the only one of its operand face: the face is
+    /// one triangle and the piece all of it.
+    pub alone: bool,
 }
 
 /// The soup of the kept pieces: each canonical point once, rounded; each
@@ -39,55 +46,81 @@ pub(crate) fn soup_of(
     pieces: &[KeptPiece],
     operands: &[Prepared],
 ) -> (PolygonSoup, Vec<PieceSource>) {
-    let mut index: HashMap<u32, usize> = HashMap::default();
-    let mut positions: Vec<DVec3> = Vec::new();
-    let mut constructed: Vec<bool> = Vec::new();
+    // Soup index of each point, numbered in order of first use.
+    let mut index: Vec<Option<usize>> = vec![None; table.canonical.len()];
+    let mut used: Vec<u32> = Vec::new();
     for piece in pieces {
         for &c in &piece.corners {
-            index.entry(c).or_insert_with(|| {
-                let point = table.get(c).definition();
-                positions.push(rounded(&point));
-                constructed.push(point.explicit().is_none());
-                positions.len() - 1
-            });
+            let slot = &mut index[c as usize];
+            if slot.is_none() {
+                *slot = Some(used.len());
+                used.push(c);
+            }
         }
     }
+    let (positions, constructed): (Vec<DVec3>, Vec<bool>) = used
+        .par_iter()
+        .map(|&c| match table.get(c).explicit() {
+            Some(p) => (p, false),
+            None => (rounded(&table.get(c).definition()), true),
+        })
+        .unzip();
     let snapped = snap(&positions, &constructed);
-    // Each kept triangle after the snap, or `None` once it collapsed or
-    // cancelled against its mirror image.
-    let mut kept: Vec<Option<(Polygon, PieceSource)>> = Vec::with_capacity(pieces.len());
-    let mut seen: HashMap<[usize; 3], usize> = HashMap::default();
-    for piece in pieces {
-        let corners = piece.corners.map(|c| snapped[index[&c]]);
-        if corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0] {
+    // Each piece's corners after the snap, or `None` once it collapsed.
+    let corners: Vec<Option<[usize; 3]>> = pieces
+        .par_iter()
+        .map(|piece| {
+            let c = piece
+                .corners
+                .map(|c| snapped[index[c as usize].unwrap_or_default()]);
+            (c[0] != c[1] && c[1] != c[2] && c[2] != c[0]).then_some(c)
+        })
+        .collect();
+    // Whether each piece is kept: not collapsed, and not cancelled with an
+    // earlier one — a sliver pair collapsed by the snap, the same triangle
+    // wound both ways. In piece order, as each piece meets the latest
+    // kept piece with its mirror image's corners.
+    let mut alive: Vec<bool> = corners.iter().map(Option::is_some).collect();
+    let mut seen: HashMap<[usize; 3], usize> =
+        HashMap::with_capacity_and_hasher(pieces.len(), Default::default());
+    for (i, c) in corners.iter().enumerate() {
+        let Some(c) = c else {
             continue;
-        }
-        // A sliver pair collapsed by the snap: the same triangle wound both
-        // ways cancels.
-        let mirror = rotated_to_smallest([corners[0], corners[2], corners[1]]);
-        if let Some(&other) = seen.get(&mirror)
-            && kept[other].is_some()
-        {
-            kept[other] = None;
-            continue;
-        }
-        seen.insert(rotated_to_smallest(corners), kept.len());
-        let operand = &operands[piece.operand];
-        let mut polygon = Polygon::new(corners);
-        let face = operand.solid.face(piece.face);
-        polygon.attributes.group = face.attributes.group.clone();
-        polygon.attributes.material = face.attributes.material.clone();
-        let source = PieceSource {
-            origin: FaceOrigin {
-                operand: operand.index,
-                face: piece.face,
-            },
-            plane: piece.plane,
-            changed: piece.changed,
         };
-        kept.push(Some((polygon, source)));
+        let mirror = rotated_to_smallest([c[0], c[2], c[1]]);
+        if let Some(&other) = seen.get(&mirror)
+            && alive[other]
+        {
+            alive[other] = false;
+            alive[i] = false;
+            continue;
+        }
+        seen.insert(rotated_to_smallest(*c), i);
     }
-    let (polygons, sources) = kept.into_iter().flatten().unzip();
+    drop(seen);
+    let (polygons, sources): (Vec<Polygon>, Vec<PieceSource>) = pieces
+        .par_iter()
+        .zip(&corners)
+        .zip(&alive)
+        .filter_map(|((piece, c), &alive)| Some((piece, (*c).filter(|_| alive)?)))
+        .map(|(piece, c)| {
+            let operand = &operands[piece.operand];
+            let mut polygon = Polygon::new(c);
+            let face = operand.solid.face(piece.face);
+            polygon.attributes.group = face.attributes.group.clone();
+            polygon.attributes.material = face.attributes.material.clone();
+            let source = PieceSource {
+                origin: FaceOrigin {
+                    operand: operand.index,
+                    face: piece.face,
+                },
+                plane: piece.plane,
+                changed: piece.changed,
+                alone: piece.alone,
+            };
+            (polygon, source)
+        })
+        .unzip();
     (
         PolygonSoup {
             positions,
@@ -122,11 +155,19 @@ fn snap(positions: &[DVec3], constructed: &[bool]) -> Vec<usize> {
     if reach == 0.0 || !reach.is_finite() {
         return representative;
     }
-    let cell = |p: DVec3| ((p / reach).floor()).as_i64vec3();
-    let mut grid: HashMap<glam::I64Vec3, Vec<usize>> = HashMap::default();
-    for (i, &p) in positions.iter().enumerate() {
-        grid.entry(cell(p)).or_default().push(i);
-    }
+    let cell = |p: DVec3| ((p / reach).floor()).as_i64vec3().to_array();
+    // The points by grid cell (then by index): a cell's points are a run.
+    let mut grid: Vec<([i64; 3], usize)> = positions
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| (cell(p), i))
+        .collect();
+    grid.sort_unstable();
+    let in_cell = |c: [i64; 3]| {
+        let start = grid.partition_point(|&(d, _)| d < c);
+        let end = start + grid[start..].partition_point(|&(d, _)| d == c);
+        grid[start..end].iter().map(|&(_, j)| j)
+    };
     let find = |rep: &Vec<usize>, mut i: usize| {
         while rep[i] != i {
             i = rep[i];
@@ -141,10 +182,7 @@ fn snap(positions: &[DVec3], constructed: &[bool]) -> Vec<usize> {
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    let Some(near) = grid.get(&(c + glam::I64Vec3::new(dx, dy, dz))) else {
-                        continue;
-                    };
-                    for &j in near {
+                    for j in in_cell([c[0] + dx, c[1] + dy, c[2] + dz]) {
                         if j == i || (positions[j] - p).abs().max_element() > reach {
                             continue;
                         }
@@ -194,11 +232,32 @@ pub(crate) fn build_and_prove(
     let mut solid =
         Solid::try_from_touching_soup(soup).map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
     let changed = merge_faces(&mut solid, sources);
+    // The faces' origins are numbered while the result is proven (the
+    // proof reads no source index).
+    let ((origins, renumbered), proved) = rayon::join(
+        || origins_of(&solid, sources),
+        || {
+            let clock = std::time::Instant::now();
+            prove_changed(&solid, &changed).map(|report| (report, clock.elapsed().as_secs_f64()))
+        },
+    );
+    let (report, proof_seconds) = proved?;
+    for (f, index) in renumbered {
+        let mut attributes = solid.face(f).attributes.clone();
+        attributes.source_index = Some(index);
+        solid.set_face_attributes(f, attributes);
+    }
+    Ok((solid, origins, report, proof_seconds))
+}
+
+/// Each operand face the result's faces came from, once, in the order of
+/// the faces; and for each face with a source, its index in that list.
+fn origins_of(solid: &Solid, sources: &[PieceSource]) -> (Vec<FaceOrigin>, Vec<(FaceId, usize)>) {
     let mut origins = Vec::new();
     let mut origin_index: HashMap<FaceOrigin, usize> = HashMap::default();
-    let faces: Vec<FaceId> = solid.faces().map(|(f, _)| f).collect();
-    for f in faces {
-        let Some(i) = solid.face(f).attributes.source_index else {
+    let mut renumbered = Vec::with_capacity(solid.face_count());
+    for (f, face) in solid.faces() {
+        let Some(i) = face.attributes.source_index else {
             continue;
         };
         let origin = sources[i].origin;
@@ -206,14 +265,9 @@ pub(crate) fn build_and_prove(
             origins.push(origin);
             origins.len() - 1
         });
-        let mut attributes = solid.face(f).attributes.clone();
-        attributes.source_index = Some(index);
-        solid.set_face_attributes(f, attributes);
+        renumbered.push((f, index));
     }
-    let clock = std::time::Instant::now();
-    let report = prove_changed(&solid, &changed)?;
-    let proof_seconds = clock.elapsed().as_secs_f64();
-    Ok((solid, origins, report, proof_seconds))
+    (origins, renumbered)
 }
 
 /// Validates a boolean's result like [`prove`], the self-intersection
@@ -266,31 +320,35 @@ fn judged(solid: &Solid, report: Report) -> Result<Report, BooleanError> {
 
 /// The solid as a soup of the exact triangulations of its faces (rings
 /// included), which the soup validator can check; with `changed`, whether
-/// each triangle's face is in it.
+/// each triangle's face is in it. Faces are triangulated in parallel; the
+/// soup lists them in the solid's face order, and a face that cannot be
+/// triangulated is reported as the first such face in that order.
 fn triangulated(
     solid: &Solid,
     changed: Option<&rustc_hash::FxHashSet<FaceId>>,
 ) -> Result<(PolygonSoup, Vec<bool>), BooleanError> {
-    let mut index = HashMap::default();
+    let mut index: SecondaryMap<VertexId, usize> =
+        SecondaryMap::with_capacity(solid.vertex_count());
     let mut positions = Vec::with_capacity(solid.vertex_count());
     for (i, (v, vertex)) in solid.vertices().enumerate() {
         index.insert(v, i);
         positions.push(vertex.position);
     }
-    let mut polygons = Vec::new();
-    let mut polygon_changed = Vec::new();
-    for (f, face) in solid.faces() {
-        let triangles = solid
-            .try_triangulate_face(f)
-            .map_err(|e| BooleanError::InvalidResult {
-                validity: "a face is not a simple polygon after rounding".into(),
-                report: format!("face {f:?}: {e}"),
-            })?;
-        for t in triangles {
-            let mut polygon = Polygon::new(t.map(|v| index[&v]));
-            polygon.attributes = face.attributes.clone();
-            polygons.push(polygon);
-            polygon_changed.push(changed.is_none_or(|c| c.contains(&f)));
+    let faces: Vec<(FaceId, &Face)> = solid.faces().collect();
+    let triangles: Vec<Result<FaceTriangles, BooleanError>> = faces
+        .par_iter()
+        .map(|&(f, _)| face_triangles(solid, f, &index))
+        .collect();
+    let mut polygons = Vec::with_capacity(faces.len());
+    let mut polygon_changed = Vec::with_capacity(faces.len());
+    for (&(f, face), of_face) in faces.iter().zip(triangles) {
+        let is_changed = changed.is_none_or(|c| c.contains(&f));
+        for t in of_face? {
+            polygons.push(Polygon {
+                vertices: t.into_iter().collect(),
+                attributes: face.attributes.clone(),
+            });
+            polygon_changed.push(is_changed);
         }
     }
     Ok((
@@ -300,6 +358,28 @@ fn triangulated(
         },
         polygon_changed,
     ))
+}
+
+/// One face's triangles, as soup indices (most faces are one triangle).
+type FaceTriangles = SmallVec<[[usize; 3]; 1]>;
+
+/// The exact triangulation of face `f` ([`Solid::try_triangulate_face`]),
+/// its corners numbered by `index`; a triangle without its allocation.
+fn face_triangles(
+    solid: &Solid,
+    f: FaceId,
+    index: &SecondaryMap<VertexId, usize>,
+) -> Result<FaceTriangles, BooleanError> {
+    if let Some(triangle) = solid.face_as_triangle(f) {
+        return Ok(smallvec::smallvec![triangle.map(|v| index[v])]);
+    }
+    let triangles = solid
+        .try_triangulate_face(f)
+        .map_err(|e| BooleanError::InvalidResult {
+            validity: "a face is not a simple polygon after rounding".into(),
+            report: format!("face {f:?}: {e}"),
+        })?;
+    Ok(triangles.into_iter().map(|t| t.map(|v| index[v])).collect())
 }
 
 /// The first few defects of a report, one line each.

@@ -30,6 +30,10 @@ pub(crate) struct PieceSource {
     pub plane: [DVec3; 3],
     /// Whether the piece is less than its whole operand triangle.
     pub changed: bool,
+    /// Whether the piece is the only one of its operand face (the face is
+    /// one triangle, the piece all of it): then every face of the result
+    /// that has this origin has this source.
+    pub alone: bool,
 }
 
 /// Merges every pair of neighbouring faces from the same operand face or
@@ -60,11 +64,20 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
         .map(|(f, _)| f)
         .collect();
     let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> = HashMap::default();
+    // The answer for two origins is the first one found (the pieces of one
+    // operand face may lie in different triangles of it, turned over or
+    // not), except where both pieces are the only ones of their origins:
+    // then every pair of those origins is this pair, and the answer is
+    // found again instead of looked up.
     let mut mergeable = |l: &PieceSource, r: &PieceSource| {
         l.origin == r.origin
-            || *coplanar_cache
-                .entry((l.origin, r.origin))
-                .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane))
+            || if l.alone && r.alone {
+                same_plane_same_way(&l.plane, &r.plane)
+            } else {
+                *coplanar_cache
+                    .entry((l.origin, r.origin))
+                    .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane))
+            }
     };
     let mut touching = touching_vertices(solid);
     touching.retain(|&v| {
@@ -130,22 +143,32 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
 
 /// The vertices that share their position with another vertex.
 fn touching_vertices(solid: &Solid) -> HashSet<VertexId> {
-    let mut by_position: HashMap<[u64; 3], Vec<VertexId>> = HashMap::default();
-    for (v, vertex) in solid.vertices() {
-        // −0 and +0 are one position.
-        let key = (vertex.position + DVec3::ZERO).to_array().map(f64::to_bits);
-        by_position.entry(key).or_default().push(v);
-    }
+    // −0 and +0 are one position.
+    let mut by_position: Vec<([u64; 3], VertexId)> = solid
+        .vertices()
+        .map(|(v, vertex)| {
+            let key = (vertex.position + DVec3::ZERO).to_array().map(f64::to_bits);
+            (key, v)
+        })
+        .collect();
+    by_position.sort_unstable_by_key(|&(key, _)| key);
     by_position
-        .into_values()
-        .filter(|vs| vs.len() > 1)
+        .chunk_by(|x, y| x.0 == y.0)
+        .filter(|run| run.len() > 1)
         .flatten()
+        .map(|&(_, v)| v)
         .collect()
 }
 
 /// Whether two triangles lie exactly in one plane and face the same way.
+///
+/// A corner of `b` at a corner of `a` lies in `a`'s plane without a test
+/// (`orient3d` would be exactly zero there, and would reach its exact
+/// fallback to say so): neighbouring pieces share two corners, so usually
+/// one `orient3d` decides.
 fn same_plane_same_way(a: &[DVec3; 3], b: &[DVec3; 3]) -> bool {
     if b.iter()
+        .filter(|p| !a.contains(p))
         .any(|&p| orient3d(a[0], a[1], a[2], p) != Sign::Zero)
     {
         return false;

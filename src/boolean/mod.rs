@@ -426,12 +426,14 @@ pub fn combine(
                 own.sort_unstable();
                 let mut corners = piece.corners;
                 corners.sort_unstable();
+                let changed = corners != own;
                 kept.push(assemble::KeptPiece {
                     corners: if flip { [x, z, y] } else { [x, y, z] },
                     operand: slot,
                     face: operand.faces[piece.triangle as usize],
                     plane: if flip { [p, r, q] } else { [p, q, r] },
-                    changed: corners != own,
+                    changed,
+                    alone: !changed && operand.face_is_one_triangle(piece.triangle),
                 });
             }
         }

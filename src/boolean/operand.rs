@@ -2,9 +2,8 @@
 //! triangulated (exactly, rings included), each triangle remembering its
 //! face, with a BVH over the triangles.
 
-use rustc_hash::FxHashMap as HashMap;
-
 use glam::DVec3;
+use slotmap::SecondaryMap;
 
 use crate::geom::Aabb;
 use crate::mesh::{FaceId, Solid, VertexId};
@@ -27,8 +26,9 @@ pub struct FaceOrigin {
 /// # Invariants
 ///
 /// `triangles[t]` are indices into `positions`, counter-clockwise seen from
-/// outside, never of zero area; `faces[t]` is the face `t` came from;
-/// `order` lists triangle indices by BVH item position.
+/// outside, never of zero area; `faces[t]` is the face `t` came from, and
+/// a face's triangles are consecutive; `order` lists triangle indices by
+/// BVH item position.
 pub(crate) struct Prepared<'s> {
     pub solid: &'s Solid,
     /// The operand's index in the operands' list.
@@ -44,16 +44,22 @@ pub(crate) struct Prepared<'s> {
 impl<'s> Prepared<'s> {
     /// Triangulates every face of `solid` and indexes the triangles.
     pub fn new(solid: &'s Solid, operand: usize) -> Result<Prepared<'s>, BooleanError> {
-        let mut index: HashMap<VertexId, u32> =
-            HashMap::with_capacity_and_hasher(solid.vertex_count(), Default::default());
+        let mut index: SecondaryMap<VertexId, u32> =
+            SecondaryMap::with_capacity(solid.vertex_count());
         let mut positions = Vec::with_capacity(solid.vertex_count());
         for (id, vertex) in solid.vertices() {
             index.insert(id, positions.len() as u32);
             positions.push(vertex.position);
         }
-        let mut triangles = Vec::new();
-        let mut faces = Vec::new();
+        let mut triangles = Vec::with_capacity(solid.face_count());
+        let mut faces = Vec::with_capacity(solid.face_count());
         for (face, _) in solid.faces() {
+            // Most faces are triangles: their own triangulation.
+            if let Some(t) = solid.face_as_triangle(face) {
+                triangles.push(t.map(|v| index[v]));
+                faces.push(face);
+                continue;
+            }
             let pieces = solid
                 .try_triangulate_face(face)
                 .map_err(|source| BooleanError::Face {
@@ -62,7 +68,7 @@ impl<'s> Prepared<'s> {
                     reason: source.to_string(),
                 })?;
             for t in pieces {
-                triangles.push(t.map(|v| index[&v]));
+                triangles.push(t.map(|v| index[v]));
                 faces.push(face);
             }
         }
@@ -81,6 +87,15 @@ impl<'s> Prepared<'s> {
             bvh,
             order,
         })
+    }
+
+    /// Whether triangle `t` is the whole of its face (the face is a
+    /// triangle without rings).
+    #[must_use]
+    pub fn face_is_one_triangle(&self, t: u32) -> bool {
+        let t = t as usize;
+        let face = self.faces[t];
+        (t == 0 || self.faces[t - 1] != face) && self.faces.get(t + 1) != Some(&face)
     }
 
     /// The corners of triangle `t`.

@@ -26,23 +26,8 @@ impl Solid {
         &self,
         face: FaceId,
     ) -> Result<Vec<[VertexId; 3]>, TriangulateError> {
-        // A triangle without rings is its own triangulation (when its
-        // corners are distinct and not collinear, which the general path
-        // checks).
-        if self.face(face).rings.is_empty() {
-            let mut corners = self.loop_vertices(self.face(face).outer);
-            if let (Some(a), Some(b), Some(c), None) = (
-                corners.next(),
-                corners.next(),
-                corners.next(),
-                corners.next(),
-            ) && a != b
-                && b != c
-                && c != a
-                && !crate::geom::collinear3d(self.position(a), self.position(b), self.position(c))
-            {
-                return Ok(vec![[a, b, c]]);
-            }
+        if let Some(triangle) = self.face_as_triangle(face) {
+            return Ok(vec![triangle]);
         }
         let loops: Vec<Vec<VertexId>> = self
             .face_loops(face)
@@ -56,5 +41,35 @@ impl Solid {
         let triangles = triangulate_3d(&points[0], &holes)?;
         let all: Vec<VertexId> = loops.into_iter().flatten().collect();
         Ok(triangles.into_iter().map(|t| t.map(|i| all[i])).collect())
+    }
+
+    /// The corners of `face` when it is a triangle without rings whose
+    /// corners are distinct and not on one line: then it is its own
+    /// triangulation ([`Solid::try_triangulate_face`] answers it without
+    /// the general path, which checks the other cases).
+    ///
+    /// # Panics
+    ///
+    /// If `face` is not a face of this solid.
+    #[must_use]
+    pub(crate) fn face_as_triangle(&self, face: FaceId) -> Option<[VertexId; 3]> {
+        let face = self.face(face);
+        if !face.rings.is_empty() {
+            return None;
+        }
+        let mut corners = self.loop_vertices(face.outer);
+        if let (Some(a), Some(b), Some(c), None) = (
+            corners.next(),
+            corners.next(),
+            corners.next(),
+            corners.next(),
+        ) && a != b
+            && b != c
+            && c != a
+            && !crate::geom::collinear3d(self.position(a), self.position(b), self.position(c))
+        {
+            return Some([a, b, c]);
+        }
+        None
     }
 }

@@ -106,7 +106,7 @@ pub fn validate_soup(
 ) -> Result<Report, ValidateError> {
     check_soup(soup)?;
     let lines = vertex_lines.filter(|l| l.len() == soup.positions.len());
-    Ok(run(soup, lines, options, None).0)
+    Ok(run(soup, lines, options, None, Keep::ReportOnly).0)
 }
 
 /// [`validate_soup`] with the default options, the self-intersection check
@@ -123,7 +123,14 @@ pub(crate) fn validate_soup_near_changed(
     changed: &[bool],
 ) -> Result<Report, ValidateError> {
     check_soup(soup)?;
-    Ok(run(soup, None, &Options::default(), Some(changed)).0)
+    Ok(run(
+        soup,
+        None,
+        &Options::default(),
+        Some(changed),
+        Keep::ReportOnly,
+    )
+    .0)
 }
 
 /// Validates an imported OBJ file and also returns the winged-edge solid
@@ -138,7 +145,13 @@ pub fn validate_and_build(
     options: &Options,
 ) -> Result<(Report, Option<Solid>), ValidateError> {
     check_soup(&import.soup)?;
-    Ok(run(&import.soup, Some(&import.vertex_lines), options, None))
+    Ok(run(
+        &import.soup,
+        Some(&import.vertex_lines),
+        options,
+        None,
+        Keep::Solid,
+    ))
 }
 
 fn check_soup(soup: &PolygonSoup) -> Result<(), ValidateError> {
@@ -172,21 +185,54 @@ fn check_soup(soup: &PolygonSoup) -> Result<(), ValidateError> {
     Ok(())
 }
 
+/// What a validation returns besides its report.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Keep {
+    /// The built solid too.
+    Solid,
+    /// The report only: the solid is built only where the verdict needs
+    /// it (see [`run`]).
+    ReportOnly,
+}
+
 /// Every rule on `soup`; the self-intersection check only on pairs with a
 /// face marked in `changed` when it is given.
+///
+/// Whether the faces build into a winged-edge solid is part of the
+/// verdict. With [`Keep::ReportOnly`] the solid is not built when the
+/// soup is clean ([`context::Context::is_clean`]), has a face, and the
+/// soup checks find nothing: then [`Solid::try_from_soup`] cannot fail, so
+/// the verdict is the same as if it had been built. Its errors each imply
+/// a soup violation or an unclean context: a polygon with fewer than three
+/// corners is not polygon-shaped (unclean); an index out of range or a
+/// non-finite position is refused before any rule runs; a polygon visiting
+/// a vertex twice is a [`Rule::DegenerateFace`] (or, twice in a row,
+/// unclean); an edge used three or more times is a
+/// [`Rule::EdgeInMoreThanTwoFaces`], an edge run twice one way a
+/// [`Rule::InconsistentOrientation`]; no polygons at all is excluded.
 fn run(
     soup: &PolygonSoup,
     vertex_lines: Option<&[usize]>,
     options: &Options,
     changed: Option<&[bool]>,
+    keep: Keep,
 ) -> (Report, Option<Solid>) {
     let start = std::time::Instant::now();
     // The soup usually needs no cleaning (no repeats in a row, no duplicate
     // or broken faces): build the solid from it while the context is made.
-    let (ctx, raw) = rayon::join(
-        || context::Context::new(soup, vertex_lines, options.tolerance),
-        || Solid::try_from_soup(soup),
-    );
+    let (ctx, raw) = match keep {
+        Keep::Solid => {
+            let (ctx, raw) = rayon::join(
+                || context::Context::new(soup, vertex_lines, options.tolerance),
+                || Solid::try_from_soup(soup),
+            );
+            (ctx, Some(raw))
+        }
+        Keep::ReportOnly => (
+            context::Context::new(soup, vertex_lines, options.tolerance),
+            None,
+        ),
+    };
     let prepared = start.elapsed().as_secs_f64();
     let soup_checks: [fn(&context::Context) -> Vec<Violation>; 13] = [
         checks::vertex_in_fewer_than_three_edges::check,
@@ -218,10 +264,13 @@ fn run(
         || {
             let violations: Vec<Violation> =
                 soup_checks.iter().flat_map(|check| check(&ctx)).collect();
+            let needs_build = !(ctx.is_clean() && violations.is_empty() && ctx.face_count() > 0);
             let (built, view) = rayon::join(
                 || match raw {
-                    Ok(solid) if ctx.is_clean() => Ok(solid),
-                    _ => solid_view::build(&ctx),
+                    Some(Ok(solid)) if ctx.is_clean() => Ok(Some(solid)),
+                    Some(_) => solid_view::build(&ctx).map(Some),
+                    None if needs_build => solid_view::build(&ctx).map(|_| None),
+                    None => Ok(None),
                 },
                 || solid_view::measure(&ctx),
             );
@@ -229,7 +278,7 @@ fn run(
         },
     );
     let (solid, built) = match built {
-        Ok((solid, view)) => (Some(solid), Ok(view)),
+        Ok((solid, view)) => (solid, Ok(view)),
         Err(why) => (None, Err(why)),
     };
     let (shells, genus, volume, not_built) = match built {
@@ -376,6 +425,58 @@ mod tests {
         assert_eq!(r.count(Rule::EdgeWithoutTwoDistinctVertices), 3);
         assert_eq!(r.count(Rule::FaceWithFewerThanThreeVertices), 1);
         assert_eq!(r.validity, Validity::NotASurface);
+    }
+
+    /// The report alone (solid built only where the verdict needs it)
+    /// says exactly what the report beside the built solid says, on soups
+    /// that build and on soups that each break one of the build's rules.
+    #[test]
+    fn a_report_without_the_solid_is_the_same_report() {
+        let valid = pyramid([0, 3, 2, 1]);
+        let bow_tie = pyramid([0, 2, 3, 1]);
+        let mut flipped = pyramid([0, 3, 2, 1]);
+        flipped.polygons[1].vertices.reverse();
+        let mut three_on_an_edge = pyramid([0, 3, 2, 1]);
+        three_on_an_edge
+            .polygons
+            .push(crate::mesh::Polygon::new([0, 1, 2]));
+        let mut repeated = pyramid([0, 3, 2, 1]);
+        repeated.polygons[0] = crate::mesh::Polygon::new([0, 3, 0, 2, 1]);
+        let mut in_a_row = pyramid([0, 3, 2, 1]);
+        in_a_row.polygons[0] = crate::mesh::Polygon::new([0, 3, 3, 2, 1]);
+        let mut too_few = pyramid([0, 3, 2, 1]);
+        too_few.polygons.push(crate::mesh::Polygon::new([0, 1]));
+        let empty = PolygonSoup::new(Vec::new(), Vec::<Vec<usize>>::new());
+        let soups = [
+            valid,
+            bow_tie,
+            flipped,
+            three_on_an_edge,
+            repeated,
+            in_a_row,
+            too_few,
+            empty,
+        ];
+        let mut not_built = 0;
+        for (k, soup) in soups.iter().enumerate() {
+            let options = Options::default();
+            let (with_solid, solid) = run(soup, None, &options, None, Keep::Solid);
+            let (alone, none) = run(soup, None, &options, None, Keep::ReportOnly);
+            assert!(none.is_none(), "soup {k}");
+            assert_eq!(solid.is_some(), with_solid.not_built.is_none(), "soup {k}");
+            not_built += usize::from(with_solid.not_built.is_some());
+            assert_eq!(alone.validity, with_solid.validity, "soup {k}");
+            assert_eq!(alone.violations, with_solid.violations, "soup {k}");
+            assert_eq!(alone.not_built, with_solid.not_built, "soup {k}");
+            assert_eq!(alone.shell_details, with_solid.shell_details, "soup {k}");
+            assert_eq!(
+                (alone.genus, alone.volume),
+                (with_solid.genus, with_solid.volume),
+                "soup {k}"
+            );
+        }
+        // Some of these soups do not build: the reason must still be said.
+        assert!(not_built >= 3, "{not_built}");
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Neighbouring faces merged into one by Euler operators: the clean-up
 //! of a boolean's triangle pieces and of triangulated caps.
 
-use std::collections::HashSet;
+use rustc_hash::FxHashSet as HashSet;
 
 use glam::DVec3;
 
