@@ -12,6 +12,7 @@ use crate::mesh::{FaceId, Solid};
 use crate::spatial::Bvh;
 use crate::spatial::raw::huge_pages::HugeVec;
 
+use super::cell_gaps::CellGaps;
 use super::convexity::{NotConvex, check_convexity};
 use super::fan::fan_triangles;
 use super::point_grid::{YzGrid, build_grid};
@@ -76,7 +77,7 @@ pub struct Accel {
     /// One per BVH leaf, the leaf's triangles in `f32` for the rays' miss
     /// filter; the leaf numbers of `bvh` index it.
     pub(super) packets: HugeVec<TriPacket>,
-    grid: std::sync::OnceLock<(YzGrid, Duration)>,
+    grid: std::sync::OnceLock<(YzGrid, CellGaps, Duration)>,
     pub(super) bounds: Aabb,
     pub(super) boundary_edges: usize,
     pub(super) convexity: std::sync::OnceLock<Result<(), NotConvex>>,
@@ -164,10 +165,10 @@ impl Accel {
     #[must_use]
     pub fn stats(&self) -> AccelStats {
         let mut stats = self.stats;
-        if let Some((grid, time)) = self.grid.get() {
+        if let Some((grid, gaps, time)) = self.grid.get() {
             stats.grid_cells = grid.ny * grid.nz;
             stats.grid_entries = grid.entries();
-            stats.memory_bytes += grid.memory_bytes();
+            stats.memory_bytes += grid.memory_bytes() + gaps.memory_bytes();
             stats.grid_build_time = *time;
         }
         stats
@@ -182,14 +183,24 @@ impl Accel {
 
     /// The `yz` grid, built on first use.
     pub(super) fn grid(&self) -> &YzGrid {
-        &self
-            .grid
-            .get_or_init(|| {
-                let start = Instant::now();
-                let grid = build_grid(&self.tris, self.bounds);
-                (grid, start.elapsed())
-            })
-            .0
+        self.grid_and_gaps().0
+    }
+
+    /// The `yz` grid and, on a closed surface, its cells' gaps along `x`
+    /// (none on an open one, where a gap's parity would not hold across
+    /// its column), built on first use.
+    pub(super) fn grid_and_gaps(&self) -> (&YzGrid, &CellGaps) {
+        let (grid, gaps, _) = self.grid.get_or_init(|| {
+            let start = Instant::now();
+            let grid = build_grid(&self.tris, self.bounds);
+            let gaps = if self.is_closed() {
+                CellGaps::find(&grid, &self.tris)
+            } else {
+                CellGaps::default()
+            };
+            (grid, gaps, start.elapsed())
+        });
+        (grid, gaps)
     }
 
     /// The bounding box of the solid's vertices.

@@ -36,6 +36,7 @@
 
 mod accel;
 mod boundary_tiles;
+mod cell_gaps;
 mod convexity;
 mod fan;
 mod first_hit;

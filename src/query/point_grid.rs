@@ -98,8 +98,16 @@ impl YzGrid {
     }
 }
 
-/// Grid cells per triangle.
-const CELLS_PER_TRIANGLE: f64 = 1.0;
+/// Grid cells per triangle on a small mesh: with the gaps along `x` of
+/// each cell's column (`cell_gaps`), smaller cells leave a point's ray
+/// fewer triangles between the gaps around it. A layout choice, not a
+/// tolerance: it decides no answer.
+const CELLS_PER_TRIANGLE_SMALL: f64 = 4.0;
+/// The most cells [`CELLS_PER_TRIANGLE_SMALL`] may ask for; a mesh with
+/// more triangles than this gets one cell per triangle (the grid's
+/// memory and build time then matter more than its last few tests per
+/// point).
+const FINE_GRID_CELLS: f64 = (1u64 << 18) as f64;
 /// The largest ratio of the grid's cell counts along `y` and `z`: a mesh
 /// that is flat in one of them still gets a grid of sensible shape. A layout
 /// choice, not a tolerance: it decides no answer.
@@ -161,7 +169,10 @@ pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
         (y1 - y0).max(f64::MIN_POSITIVE),
         (z1 - z0).max(f64::MIN_POSITIVE),
     );
-    let cells = (yz.len() as f64 * CELLS_PER_TRIANGLE).clamp(1.0, 64.0e6);
+    let triangles = yz.len() as f64;
+    let cells = (triangles * CELLS_PER_TRIANGLE_SMALL)
+        .min(triangles.max(FINE_GRID_CELLS))
+        .clamp(1.0, 64.0e6);
     let aspect = (wy / wz).clamp(1.0 / MAX_GRID_ASPECT, MAX_GRID_ASPECT);
     // At most 2¹⁴ cells either way (so a cell index fits `u16`).
     let ny = ((cells * aspect).sqrt().round() as usize).clamp(1, 1 << 14);

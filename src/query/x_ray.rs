@@ -4,6 +4,7 @@
 use glam::{DVec2, DVec3};
 
 use super::Accel;
+use super::cell_gaps::Between;
 use super::x_direction::{RayChoice, XDirection};
 use super::x_ray_triangle::{Step, triangle_step};
 use crate::spatial::rounding::{f32_down, f32_up, f64_below};
@@ -37,8 +38,23 @@ impl Accel {
         let Some(p) = self.probe_point(p) else {
             return XRay::Winding(0);
         };
-        let g = self.grid();
-        let (entries, extent) = g.cell_at(g.cell_index(p.y, p.z));
+        let (g, gaps) = self.grid_and_gaps();
+        let cell = g.cell_index(p.y, p.z);
+        let (listed, extent) = g.cell_at(cell);
+        // Parity may start from the gaps around `p` (see `CellGaps`): only
+        // the triangles between them can be crossed between `p` and either
+        // gap, and the gaps' counts stand for every triangle beyond. A cell
+        // without gaps gives all its triangles and counts of 0.
+        let between = match choice {
+            RayChoice::Fewer => gaps.around(cell, listed.len(), p.x),
+            RayChoice::Always(_) => Between {
+                first: 0,
+                end: listed.len(),
+                winding_below: 0,
+                winding_above: 0,
+            },
+        };
+        let entries = &listed[between.first..between.end];
         // The triangles that can meet the ray. Towards `−x`: those with
         // smallest `x` at most `p.x`, a prefix of the cell's list. Towards
         // `+x`: those with largest `x` at least `p.x`, whose listed `x` is at
@@ -50,6 +66,7 @@ impl Accel {
         // rather than searched (no branches), in `f32`: for an `f32` value
         // `v`, `v ≤ p.x` exactly when `v ≤ f32_down(p.x)` (the largest `f32`
         // not above `p.x`), and `v < reach` exactly when `v < f32_up(reach)`.
+        // The same holds of the part between two gaps.
         let x_down = f32_down(p.x);
         let reach = f32_up(f64_below(p.x - f64::from(extent)));
         let behind = || entries.iter().filter(|e| e.x <= x_down).count();
@@ -66,8 +83,14 @@ impl Accel {
                 }
             }
         };
+        // The crossings in front of `p`: towards `+x`, those found plus the
+        // upper gap's; towards `−x`, the lower gap's less those found
+        // behind `p` (each counted negated by `triangle_step`).
+        let mut winding = match direction {
+            XDirection::Plus => between.winding_above,
+            XDirection::Minus => between.winding_below,
+        };
         let q = DVec2::new(p.y, p.z);
-        let mut winding = 0i32;
         for e in candidates {
             match triangle_step(&self.tris[e.record as usize], p, q, direction) {
                 Step::Miss => {}
