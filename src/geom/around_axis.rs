@@ -116,3 +116,25 @@ impl AxisOrder {
         })
     }
 }
+
+/// The indices of `points` sorted by angle around the directed line from
+/// `origin` through `toward`, counterclockwise (right-handed about the
+/// line), starting from the first point's angle; `None` when the order is
+/// not strict: a point on the line, two points at one angle, or all of
+/// them in one plane with the line.
+pub(crate) fn sorted_around(origin: DVec3, toward: DVec3, points: &[DVec3]) -> Option<Vec<usize>> {
+    let (&first, rest) = points.split_first()?;
+    let order = AxisOrder::new(origin, toward, first, rest.iter().copied())?;
+    let mut sorted: Vec<(HalfTurn, usize)> = points
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| order.half_turn(p).map(|h| (h, i)))
+        .collect::<Option<_>>()?;
+    let mut tie = false;
+    sorted.sort_by(|&(ha, a), &(hb, b)| {
+        let o = order.compare((ha, points[a]), (hb, points[b]));
+        tie |= o == Ordering::Equal;
+        o
+    });
+    (!tie).then(|| sorted.into_iter().map(|(_, i)| i).collect())
+}

@@ -14,13 +14,11 @@
 //! backward triangle is solid, and it must close at the next triangle,
 //! which must run forward: the uses alternate, and each backward triangle
 //! is paired with the next one. Angles compared exactly
-//! ([`AxisOrder`]): no two triangles may lie at one angle.
-
-use std::cmp::Ordering;
+//! ([`sorted_around`]): no two triangles may lie at one angle.
 
 use glam::DVec3;
 
-use crate::geom::around_axis::{AxisOrder, HalfTurn};
+use crate::geom::around_axis::sorted_around;
 
 /// One use of the edge `a–b`: a triangle's half-edge, whether it runs
 /// `a → b`, and the triangle's third corner.
@@ -44,27 +42,18 @@ pub(super) fn pair_around_edge(
     if uses.len() < 2 || 2 * forward != uses.len() {
         return None;
     }
-    let order = AxisOrder::new(a, b, uses[0].third, uses[1..].iter().map(|u| u.third))?;
-    let mut sorted: Vec<(HalfTurn, &EdgeUse)> = uses
-        .iter()
-        .map(|u| order.half_turn(u.third).map(|h| (h, u)))
-        .collect::<Option<_>>()?;
-    let mut tie = false;
-    sorted.sort_by(|&(ha, ua), &(hb, ub)| {
-        let o = order.compare((ha, ua.third), (hb, ub.third));
-        tie |= o == Ordering::Equal;
-        o
-    });
-    if tie {
-        return None;
-    }
+    let thirds: Vec<DVec3> = uses.iter().map(|u| u.third).collect();
+    let sorted: Vec<&EdgeUse> = sorted_around(a, b, &thirds)?
+        .into_iter()
+        .map(|i| &uses[i])
+        .collect();
     let n = sorted.len();
     let mut pairs = Vec::with_capacity(n / 2);
-    for (k, &(_, u)) in sorted.iter().enumerate() {
+    for (k, &u) in sorted.iter().enumerate() {
         if u.forward {
             continue;
         }
-        let (_, next) = sorted[(k + 1) % n];
+        let next = sorted[(k + 1) % n];
         if !next.forward {
             return None;
         }

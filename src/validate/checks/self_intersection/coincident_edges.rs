@@ -11,7 +11,7 @@
 //! one running `b → a` on its counterclockwise side (its outward normal
 //! is a quarter-turn ahead of or behind its third corner). The sheets only
 //! touch when every solid wedge is closed by the same edge: sorted
-//! counterclockwise (exact [`AxisOrder`]), the triangle after each one that
+//! counterclockwise (exact, [`sorted_around`]), the triangle after each one that
 //! runs `b → a` runs the same vertex edge `a → b`. Otherwise a sheet's
 //! wedge holds another sheet's triangle: they cross there, or one sheet's
 //! solid overlaps the other's.
@@ -29,7 +29,7 @@ use glam::DVec3;
 
 use super::super::super::context::Context;
 use super::triangles::Triangle;
-use crate::geom::around_axis::{AxisOrder, HalfTurn};
+use crate::geom::around_axis::sorted_around;
 
 /// One use of an edge at coincident positions.
 #[derive(Clone, Copy, Debug)]
@@ -133,25 +133,26 @@ fn crossings_around(a: DVec3, b: DVec3, uses: &[Use]) -> Vec<(usize, usize)> {
     if per_edge.values().any(|&n| n != [1, 1]) {
         return Vec::new();
     }
-    let Some(order) = AxisOrder::new(a, b, uses[0].third, uses[1..].iter().map(|u| u.third)) else {
-        return Vec::new();
+    let thirds: Vec<DVec3> = uses.iter().map(|u| u.third).collect();
+    let Some(sorted) = sorted_around(a, b, &thirds) else {
+        // No strict order (two faces at one angle, a fold): every pair of
+        // faces of different sheets there.
+        let mut pairs = Vec::new();
+        for (i, u) in uses.iter().enumerate() {
+            for v in &uses[i + 1..] {
+                if u.edge != v.edge && u.face != v.face {
+                    pairs.push((u.face.min(v.face), u.face.max(v.face)));
+                }
+            }
+        }
+        return pairs;
     };
-    let Some(mut sorted) = uses
-        .iter()
-        .map(|u| order.half_turn(u.third).map(|h| (h, *u)))
-        .collect::<Option<Vec<(HalfTurn, Use)>>>()
-    else {
-        return Vec::new();
-    };
-    sorted.sort_by(|&(ha, ua), &(hb, ub)| order.compare((ha, ua.third), (hb, ub.third)));
     let n = sorted.len();
     let mut pairs = Vec::new();
     for k in 0..n {
-        let (h, u) = sorted[k];
-        let (hn, next) = sorted[(k + 1) % n];
-        let tied = order.compare((h, u.third), (hn, next.third)).is_eq();
+        let (u, next) = (&uses[sorted[k]], &uses[sorted[(k + 1) % n]]);
         let open = u.forward == Some(false) && !(next.forward == Some(true) && next.edge == u.edge);
-        if (tied || open) && u.face != next.face {
+        if open && u.face != next.face {
             pairs.push((u.face.min(next.face), u.face.max(next.face)));
         }
     }
