@@ -58,8 +58,8 @@ fn a_cone_grid_holds_a_bounded_number_of_entries_per_triangle() {
     // 40,000 triangles: at one cell per triangle (a 283-cell side) each
     // sliver would take a side's worth of entries, over a hundred. The
     // grid's sides are halved until the expected entries are at most 32 per
-    // triangle; a UV sphere keeps one cell per triangle (its poles' slivers
-    // take a few entries more than its other triangles).
+    // triangle; a UV sphere keeps its cells (its poles' slivers take a few
+    // entries more than its other triangles).
     for base in [ConeBase::CentreFan, ConeBase::CornerFan] {
         for axis in 0..3 {
             let soup = turned(&cone_soup(20_000, base), axis);
@@ -74,11 +74,14 @@ fn a_cone_grid_holds_a_bounded_number_of_entries_per_triangle() {
             );
         }
     }
+    // A sphere of 39,600 triangles is small enough for 4 cells per
+    // triangle: each small triangle then lies in a few of them, well
+    // within the grid's budget of 32 entries per triangle.
     let sphere = Accel::new(&Solid::try_from_soup(&sphere_soup(100)).unwrap());
     sphere.classify(DVec3::new(0.1, 0.2, 0.3)).unwrap();
     let stats = sphere.stats();
-    assert!(stats.grid_cells * 2 > stats.triangles, "{stats:?}");
-    assert!(stats.grid_entries < 8 * stats.triangles, "{stats:?}");
+    assert!(stats.grid_cells > 2 * stats.triangles, "{stats:?}");
+    assert!(stats.grid_entries < 20 * stats.triangles, "{stats:?}");
 }
 
 #[test]
