@@ -130,11 +130,11 @@ pub(crate) fn sorted_around(origin: DVec3, toward: DVec3, points: &[DVec3]) -> O
         .enumerate()
         .map(|(i, &p)| order.half_turn(p).map(|h| (h, i)))
         .collect::<Option<_>>()?;
-    let mut tie = false;
-    sorted.sort_by(|&(ha, a), &(hb, b)| {
-        let o = order.compare((ha, points[a]), (hb, points[b]));
-        tie |= o == Ordering::Equal;
-        o
-    });
+    let compare = |&(ha, a): &(HalfTurn, usize), &(hb, b): &(HalfTurn, usize)| {
+        order.compare((ha, points[a]), (hb, points[b]))
+    };
+    sorted.sort_by(compare);
+    // Two points at one angle are neighbours once sorted.
+    let tie = sorted.windows(2).any(|w| compare(&w[0], &w[1]).is_eq());
     (!tie).then(|| sorted.into_iter().map(|(_, i)| i).collect())
 }
