@@ -40,7 +40,7 @@ impl Rng {
 }
 
 /// `solid` scaled about the origin and moved (vertex coordinates rewritten,
-/// so the leaf stays an exact polyhedron, not a transformed one).
+/// as a transform node does to a mesh leaf).
 fn placed(solid: &Solid, scale: f64, offset: DVec3) -> Solid {
     let ids: Vec<_> = solid.vertices().map(|(id, _)| id).collect();
     let index = |v| ids.iter().position(|&w| w == v).unwrap_or(0);

@@ -8,12 +8,14 @@
 #[path = "../src/test_rng.rs"]
 mod test_rng;
 
-use glam::DVec3;
+use glam::{DAffine3, DQuat, DVec3, EulerRot};
 use wingedge::csg::{
-    AxisBox, Containment, Csg, CsgExpr, HalfSpace, Polyhedron, Primitive, Stats, normal_alignment,
+    AxisBox, Containment, Csg, CsgExpr, EvaluateOptions, HalfSpace, Polyhedron, Primitive, Stats,
+    evaluate, normal_alignment,
 };
 use wingedge::geom::{Ray, Sign};
 use wingedge::mesh::{PolygonSoup, Solid, builders};
+use wingedge::query::Accel;
 
 fn boxed(min: [f64; 3], max: [f64; 3]) -> CsgExpr {
     CsgExpr::leaf(AxisBox::try_new(DVec3::from(min), DVec3::from(max)).unwrap())
@@ -270,4 +272,92 @@ fn rays_through_a_tilted_plane_two_meshes_share_cross_it_once() {
     // and the exact comparison took them together.
     assert!(rounded_apart >= 5, "{rounded_apart}");
     assert!(stats.exact_orders > 0);
+}
+
+#[test]
+fn a_transformed_mesh_sharing_a_tilted_plane_is_one_solid_for_rays_points_and_evaluation() {
+    // The upper tetrahedron is given in its own frame and turned into the
+    // world; the lower one is built in the world on the rounded images of
+    // the upper one's base corners (how a transform moves a mesh's
+    // vertices), so the two share that tilted triangle exactly.
+    let mut bits = test_rng::bits(23);
+    let mut unit = || (bits() % (1 << 30)) as f64 / f64::from(1u32 << 30);
+    let (mut rounded_apart, mut stats) = (0, Stats::default());
+    for case in 0..60 {
+        let [a, b, c] = [0, 1, 2].map(|_| DVec3::new(unit(), unit(), unit()));
+        let n = (b - a).cross(c - a);
+        if n.length() < 1e-2 {
+            continue;
+        }
+        let local = tetrahedron([a, b, c], a + n);
+        let map = DAffine3::from_rotation_translation(
+            DQuat::from_euler(EulerRot::XYZ, unit() * 3.0, unit() * 3.0, unit() * 3.0),
+            DVec3::new(unit() - 0.5, unit() - 0.5, unit() - 0.5),
+        );
+        let [wa, wb, wc] = [a, b, c].map(|p| map.transform_point3(p));
+        let wn = (wb - wa).cross(wc - wa);
+        let lower = Polyhedron::try_new(tetrahedron([wa, wb, wc], wa - wn)).unwrap();
+        let local_leaf = Polyhedron::try_new(local).unwrap();
+        let upper = CsgExpr::leaf(local_leaf.clone()).transformed(map);
+        let both = |join: fn(CsgExpr, CsgExpr) -> CsgExpr| {
+            tree(join(CsgExpr::leaf(lower.clone()), upper.clone()))
+        };
+        let u = both(CsgExpr::union);
+        let i = both(CsgExpr::intersection);
+        let d = both(CsgExpr::difference);
+        // A ray from below the lower apex through a point inside the shared
+        // triangle.
+        let target = (wa + wb + 2.0 * wc) / 4.0 + (wb - wa) * 0.01;
+        let from = wa - 2.0 * wn + (wc - wa) * 0.1;
+        let ray = Ray::new(from, target - from);
+        let mut lower_ts = Vec::new();
+        lower.intersect_ray(&ray, &mut lower_ts, &mut Stats::default());
+        // What the upper mesh answers in its own frame, on the ray mapped
+        // there (rounded).
+        let inverse = map.inverse();
+        let mapped_ray = Ray::new(
+            inverse.transform_point3(ray.origin),
+            inverse.transform_vector3(ray.direction),
+        );
+        let mut local_ts = Vec::new();
+        local_leaf.intersect_ray(&mapped_ray, &mut local_ts, &mut Stats::default());
+        assert_eq!((lower_ts.len(), local_ts.len()), (2, 2), "case {case}");
+        if lower_ts[1].t != local_ts[0].t {
+            rounded_apart += 1;
+        }
+        assert_eq!(u.spans(&ray, &mut stats).hits.len(), 2, "case {case}");
+        assert!(i.spans(&ray, &mut stats).hits.is_empty(), "case {case}");
+        assert_eq!(d.spans(&ray, &mut stats).hits.len(), 2, "case {case}");
+        // Boundary evaluation makes the same solids: the intersection is
+        // empty, and ray casting and the evaluated union agree on points
+        // near the shared triangle (on it, too).
+        let options = EvaluateOptions::default();
+        assert_eq!(evaluate(&i, &options).unwrap().solid.face_count(), 0);
+        let union = evaluate(&u, &options).unwrap();
+        let accel = Accel::new(&union.solid);
+        let centre = (wa + wb + wc) / 3.0;
+        for k in 0..40 {
+            let p = centre + (DVec3::new(unit(), unit(), unit()) - 0.5) * wn.length().sqrt() * 0.5;
+            let p = if k % 4 == 0 {
+                // A point of the shared triangle (in its plane up to
+                // rounding).
+                wa + (wb - wa) * 0.25 + (wc - wa) * 0.5
+            } else {
+                p
+            };
+            assert_eq!(
+                u.classify_point(p, &mut stats),
+                accel.classify(p).unwrap(),
+                "case {case}, point {p}"
+            );
+            assert_eq!(
+                i.classify_point(p, &mut stats),
+                Containment::Outside,
+                "case {case}, point {p}"
+            );
+        }
+    }
+    // The case is real: in the upper mesh's own frame the shared crossing
+    // rounds apart from the lower mesh's.
+    assert!(rounded_apart >= 5, "{rounded_apart}");
 }

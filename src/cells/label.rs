@@ -8,7 +8,7 @@ pub enum Label {
     /// Outside the solid: the boundary does not meet the closed cell.
     Out,
     /// The boundary meets the closed cell (only at the finest depth); for
-    /// a CSG tree with curved or transformed leaves, may meet it.
+    /// a CSG tree with curved leaves, may meet it.
     On,
 }
 

@@ -188,8 +188,8 @@ impl Octree {
     ///
     /// A cell is `On` when the boundary of a leaf whose side could change
     /// the tree's answer may meet it: exactly when it meets for flat leaves
-    /// (half-spaces, boxes, polyhedra), conservatively for spheres,
-    /// cylinders and transformed leaves, so `On` cells hold the whole
+    /// (half-spaces, boxes, polyhedra, moved boxes and polyhedra),
+    /// conservatively for spheres and cylinders, so `On` cells hold the whole
     /// boundary of the result and perhaps a little more. A cell inside or
     /// outside every leaf that matters gets the tree's label at once, and
     /// what a cell learns of a leaf holds for its sub-cells. The tree's

@@ -236,6 +236,10 @@ impl Primitive for AxisBox {
         "box"
     }
 
+    fn is_polyhedral(&self) -> bool {
+        true
+    }
+
     fn tessellate(
         &self,
         _tolerance: f64,

@@ -30,8 +30,8 @@ pub enum CellRelation {
     /// or wholly outside, and one point of it tells which.
     Apart,
     /// The boundary may meet the closed box: exactly when it does for flat
-    /// primitives (half-spaces, boxes, polyhedra), conservatively for
-    /// curved ones and transformed leaves.
+    /// primitives (half-spaces, boxes, polyhedra, transformed or not),
+    /// conservatively for curved ones.
     Meets,
 }
 
@@ -374,7 +374,7 @@ mod tests {
     }
 
     #[test]
-    fn a_cylinder_and_a_transformed_leaf_answer_conservatively() {
+    fn a_cylinder_and_a_transformed_sphere_answer_conservatively_a_transformed_box_exactly() {
         let c = Cylinder::try_new(DVec3::ZERO, DVec3::new(0.0, 0.0, 4.0), 1.0).unwrap();
         let cell = |min: [f64; 3], max: [f64; 3]| Aabb {
             min: DVec3::from(min),
@@ -404,10 +404,28 @@ mod tests {
             glam::DAffine3::from_translation(DVec3::new(10.0, 0.0, 0.0)),
         )
         .unwrap();
+        // A moved box is a polyhedron in world coordinates: exact.
         assert_eq!(
             t.cell_relation(&cube(0.25, 0.75).translate(10.0)),
-            CellRelation::Inside
+            CellRelation::Apart
+        );
+        assert_eq!(
+            t.cell_relation(&cube(0.5, 1.0).translate(10.0)),
+            CellRelation::Meets
         );
         assert_eq!(t.cell_relation(&cube(0.25, 0.75)), CellRelation::Outside);
+        // A moved sphere answers its own test on the cell's image.
+        let ball: std::sync::Arc<dyn Primitive> =
+            std::sync::Arc::new(Sphere::try_new(DVec3::ZERO, 1.0).unwrap());
+        let t = Transformed::try_new(
+            ball,
+            glam::DAffine3::from_translation(DVec3::new(10.0, 0.0, 0.0)),
+        )
+        .unwrap();
+        assert_eq!(
+            t.cell_relation(&cube(-0.25, 0.25).translate(10.0)),
+            CellRelation::Inside
+        );
+        assert_eq!(t.cell_relation(&cube(2.0, 3.0)), CellRelation::Outside);
     }
 }

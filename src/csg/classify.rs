@@ -102,7 +102,7 @@ impl Csg {
     /// point is decided by one direction per cell of the planes through it
     /// (counted in `stats.direction_analyses`): two boxes that share only a
     /// face have an empty intersection, so even their shared corners are
-    /// `Outside`. Points where a curved or transformed leaf's boundary meets
+    /// `Outside`. Points where a curved leaf's boundary meets
     /// another surface at an angle stay `OnBoundary` (see
     /// [`Primitive::planes_through`](super::Primitive::planes_through)).
     ///

@@ -13,9 +13,10 @@
 //! in exact dyadic arithmetic, so equal crossings are taken together and
 //! distinct ones in their true order.
 //!
-//! Crossings of curved surfaces and of transformed leaves carry no plane
-//! (the transformed leaf meets a rounded image of the ray); they are
-//! ordered by their rounded `t`, as before.
+//! A transformed box or polyhedron is a polyhedron moved into the world
+//! (its vertices rounded once), so its crossings carry their triangle's
+//! plane like any mesh's. Crossings of curved surfaces (transformed or
+//! not) carry no plane; they are ordered by their rounded `t`.
 
 use std::cmp::Ordering;
 

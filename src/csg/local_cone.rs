@@ -29,7 +29,7 @@
 //! it, all non-zero), and the sectors found around `ℓ` must be all
 //! `2 m` of them for `m` planes through `ℓ`. When any check fails (a cell
 //! too thin for floating point to find), or a leaf at `p` cannot list its
-//! planes (curved surfaces, transformed leaves), the answer stays
+//! planes (curved surfaces), the answer stays
 //! `OnBoundary`, as before this analysis; no answer is ever guessed.
 
 use glam::DVec3;

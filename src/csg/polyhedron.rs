@@ -255,6 +255,10 @@ impl Primitive for Polyhedron {
         "mesh"
     }
 
+    fn is_polyhedral(&self) -> bool {
+        true
+    }
+
     fn tessellate(
         &self,
         _tolerance: f64,

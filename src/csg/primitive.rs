@@ -94,7 +94,8 @@ pub trait Primitive: Debug + Send + Sync {
     /// plane crossings: lets a tree compare crossings of different leaves
     /// exactly where their rounded `t` are too close to tell (see
     /// [`CrossingPlane`]). `None` (the default) for curved surfaces and for
-    /// primitives that see a rounded image of the ray.
+    /// primitives that see a rounded image of the ray (a transformed
+    /// sphere or cylinder).
     fn crossing_plane(&self, surface: SurfaceId) -> Option<CrossingPlane> {
         let _ = surface;
         None
@@ -156,6 +157,17 @@ pub trait Primitive: Debug + Send + Sync {
 
     /// A short name of the kind of primitive (`box`, `sphere`, …).
     fn kind(&self) -> &'static str;
+
+    /// Whether the solid is exactly the polyhedron
+    /// [`tessellate`](Primitive::tessellate) returns, whatever the
+    /// tolerance and clip (boxes, polyhedra, and those moved by a
+    /// transform). A transform moves such a leaf's vertices into the world
+    /// once, so the moved leaf stays exact (see
+    /// [`Transformed`](super::Transformed)). `false` (the default) for
+    /// curved and unbounded solids.
+    fn is_polyhedral(&self) -> bool {
+        false
+    }
 
     /// The solid as a polyhedron, for boundary evaluation: exact for boxes
     /// and polyhedra, inscribed within `tolerance` (a fraction of the

@@ -440,8 +440,8 @@ impl Csg {
 impl Csg {
     /// The order of two hits along `ray`: by their rounded `t` when the gap
     /// exceeds both spreads, else exactly by the planes of the pieces
-    /// crossed (counted in `stats.exact_orders`), else (curved surfaces,
-    /// transformed leaves) by the rounded `t`.
+    /// crossed (counted in `stats.exact_orders`), else (curved surfaces)
+    /// by the rounded `t`.
     #[inline(always)]
     fn order(&self, ray: &Ray, x: &Hit, y: &Hit, stats: &mut Stats) -> Ordering {
         match certain_order(x.t, x.spread, y.t, y.spread) {

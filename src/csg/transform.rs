@@ -5,7 +5,11 @@ use std::sync::Arc;
 use glam::{DAffine3, DMat3, DVec3};
 use thiserror::Error;
 
-use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
+use super::tessellate::{DEFAULT_TOLERANCE, mapped};
+use super::{
+    CellRelation, Containment, Crossing, CrossingPlane, LocalPlane, Polyhedron, Primitive, Stats,
+    SurfaceId,
+};
 use crate::geom::{Aabb, Ray};
 use crate::query::TileError;
 
@@ -19,16 +23,39 @@ pub enum TransformError {
         /// The determinant of the linear part.
         determinant: f64,
     },
+    /// A polyhedral child moved into the world is no closed solid once its
+    /// vertices are rounded (a map that squeezes it below `f64`'s
+    /// resolution).
+    #[error(
+        "the {kind} moved by the transform is not a solid after rounding its vertices: {reason}"
+    )]
+    Moved {
+        /// The kind of the child.
+        kind: &'static str,
+        /// What went wrong.
+        reason: String,
+    },
 }
 
 /// A primitive moved by an affine map (translation, rotation, scale, or any
 /// invertible linear part).
 ///
-/// Rays are mapped into the child's frame by the inverse map; an affine map
-/// keeps the ray parameter, so the child's `t` values are the answer
-/// unchanged. Normals map by the inverse transpose. The mapping is rounded:
-/// exactness claims of the child hold in its own frame, not for the mapped
-/// input (a translation by a power of two is the notable exact case).
+/// A polyhedral child (a box, a polyhedron: [`Primitive::is_polyhedral`])
+/// is moved into the world once: its vertices are mapped and rounded to
+/// `f64`, and the moved polyhedron answers every question in world
+/// coordinates, exactly, like any mesh leaf. It is the same polyhedron
+/// boundary evaluation makes of the leaf ([`Primitive::tessellate`]), so
+/// ray casting and boundary evaluation see one solid, and its crossings are
+/// compared exactly with other flat leaves' (a face it shares with another
+/// mesh is crossed once). The price is a copy of the child and its query
+/// structure per transformed instance.
+///
+/// A curved child (sphere, cylinder) is answered in its own frame: rays are
+/// mapped into it by the inverse map; an affine map keeps the ray
+/// parameter, so the child's `t` values are the answer unchanged. Normals
+/// map by the inverse transpose. That mapping is rounded: exactness claims
+/// of the child hold in its own frame, not for the mapped input (a
+/// translation by a power of two is the notable exact case).
 #[derive(Clone, Debug)]
 pub struct Transformed {
     child: Arc<dyn Primitive>,
@@ -36,6 +63,9 @@ pub struct Transformed {
     to_local: DAffine3,
     normal_matrix: DMat3,
     bounds: Aabb,
+    /// The polyhedral child moved into the world (vertices rounded once);
+    /// `None` for curved children.
+    world: Option<Polyhedron>,
 }
 
 /// Relative rounding allowance for transformed bounding boxes: each mapped
@@ -50,7 +80,8 @@ impl Transformed {
     /// # Errors
     ///
     /// [`TransformError::Singular`] when the map is not invertible or not
-    /// finite.
+    /// finite; [`TransformError::Moved`] when a polyhedral child's rounded
+    /// image is no closed solid.
     pub fn try_new(
         child: Arc<dyn Primitive>,
         to_world: DAffine3,
@@ -61,13 +92,22 @@ impl Transformed {
         }
         let to_local = to_world.inverse();
         let normal_matrix = to_local.matrix3.transpose();
-        let bounds = transform_bounds(&to_world, child.bounds());
+        let world = if child.is_polyhedral() {
+            Some(moved_polyhedron(child.as_ref(), to_world)?)
+        } else {
+            None
+        };
+        let bounds = world.as_ref().map_or_else(
+            || transform_bounds(&to_world, child.bounds()),
+            Primitive::bounds,
+        );
         Ok(Transformed {
             child,
             to_world,
             to_local,
             normal_matrix,
             bounds,
+            world,
         })
     }
 
@@ -76,6 +116,23 @@ impl Transformed {
     pub fn to_world(&self) -> DAffine3 {
         self.to_world
     }
+}
+
+/// The polyhedral `child` with its vertices moved by `to_world` and
+/// rounded: the polyhedron boundary evaluation makes of the moved leaf.
+fn moved_polyhedron(
+    child: &dyn Primitive,
+    to_world: DAffine3,
+) -> Result<Polyhedron, TransformError> {
+    let kind = child.kind();
+    let failed = |reason: String| TransformError::Moved { kind, reason };
+    // A polyhedral child's tessellation is itself, whatever the tolerance
+    // and clip.
+    let local = child
+        .tessellate(DEFAULT_TOLERANCE, &Aabb::EMPTY)
+        .map_err(|e| failed(e.to_string()))?;
+    let solid = mapped(&local, to_world).map_err(|e| failed(e.to_string()))?;
+    Polyhedron::try_new(solid).map_err(|e| failed(e.to_string()))
 }
 
 /// The world box of a local box under `m`, padded for rounding; infinite
@@ -108,6 +165,9 @@ pub(crate) fn transform_bounds(m: &DAffine3, local: Aabb) -> Aabb {
 
 impl Primitive for Transformed {
     fn intersect_ray(&self, ray: &Ray, crossings: &mut Vec<Crossing>, stats: &mut Stats) -> bool {
+        if let Some(world) = &self.world {
+            return world.intersect_ray(ray, crossings, stats);
+        }
         let local = Ray::new(
             self.to_local.transform_point3(ray.origin),
             self.to_local.transform_vector3(ray.direction),
@@ -116,16 +176,39 @@ impl Primitive for Transformed {
     }
 
     fn classify_point(&self, p: DVec3) -> Containment {
+        if let Some(world) = &self.world {
+            return world.classify_point(p);
+        }
         self.child.classify_point(self.to_local.transform_point3(p))
     }
 
     fn boundary_normal(&self, p: DVec3) -> Option<DVec3> {
+        if let Some(world) = &self.world {
+            return world.boundary_normal(p);
+        }
         self.child
             .boundary_normal(self.to_local.transform_point3(p))
             .map(|n| self.normal_matrix * n)
     }
 
+    fn crossing_plane(&self, surface: SurfaceId) -> Option<CrossingPlane> {
+        self.world.as_ref()?.crossing_plane(surface)
+    }
+
+    fn planes_through(&self, p: DVec3, planes: &mut Vec<LocalPlane>) -> bool {
+        self.world
+            .as_ref()
+            .is_some_and(|world| world.planes_through(p, planes))
+    }
+
+    fn inside_along(&self, p: DVec3, d: DVec3) -> Option<bool> {
+        self.world.as_ref()?.inside_along(p, d)
+    }
+
     fn normal(&self, p: DVec3, surface: SurfaceId) -> DVec3 {
+        if let Some(world) = &self.world {
+            return world.normal(p, surface);
+        }
         self.normal_matrix
             * self
                 .child
@@ -136,19 +219,29 @@ impl Primitive for Transformed {
         self.bounds
     }
 
-    /// The child's answer for the box holding the cell's image in the
-    /// child's frame (padded for rounding): certain answers stay certain,
-    /// and `Meets` may be conservative unless the map keeps axes.
+    /// A polyhedral child's answer is exact (the moved polyhedron's); a
+    /// curved child's is its answer for the box holding the cell's image in
+    /// the child's frame (padded for rounding): certain answers stay
+    /// certain, and `Meets` may be conservative unless the map keeps axes.
     fn cell_relation(&self, cell: &Aabb) -> CellRelation {
+        if let Some(world) = &self.world {
+            return world.cell_relation(cell);
+        }
         self.child
             .cell_relation(&transform_bounds(&self.to_local, *cell))
     }
 
     fn prepare_cells(&self) -> Result<(), TileError> {
-        self.child.prepare_cells()
+        match &self.world {
+            Some(world) => world.prepare_cells(),
+            None => self.child.prepare_cells(),
+        }
     }
 
     fn exact_volume(&self) -> Option<f64> {
+        if let Some(world) = &self.world {
+            return world.exact_volume();
+        }
         Some(self.child.exact_volume()? * self.to_world.matrix3.determinant().abs())
     }
 
@@ -156,11 +249,18 @@ impl Primitive for Transformed {
         self.child.kind()
     }
 
+    fn is_polyhedral(&self) -> bool {
+        self.world.is_some()
+    }
+
     fn tessellate(
         &self,
         tolerance: f64,
         clip: &Aabb,
     ) -> Result<crate::mesh::Solid, super::TessellateError> {
+        if let Some(world) = &self.world {
+            return Ok(world.solid().clone());
+        }
         // The clip box is in world coordinates; the child's is its image
         // under the inverse map (the box of the mapped corners).
         let local = Aabb::from_points((0..8).map(|i| {
@@ -172,7 +272,7 @@ impl Primitive for Transformed {
             ))
         }));
         let child = self.child.tessellate(tolerance, &local)?;
-        super::tessellate::mapped(&child, self.to_world)
+        mapped(&child, self.to_world)
     }
 }
 
