@@ -7,7 +7,7 @@ use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
 
-use crate::geom::implicit::rounded;
+use crate::geom::implicit::rounded_point;
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use smallvec::SmallVec;
@@ -62,7 +62,7 @@ pub(crate) fn soup_of(
         .par_iter()
         .map(|&c| match table.get(c).explicit() {
             Some(p) => (p, false),
-            None => (rounded(&table.get(c).definition()), true),
+            None => (rounded_point(&table.get(c)), true),
         })
         .unzip();
     let snapped = snap(&positions, &constructed);

@@ -126,6 +126,9 @@ impl Triangulation<'_> {
     /// winding.
     fn orient(&self, a: u32, b: u32, c: u32) -> Sign {
         let t = self.table;
+        if t.collinear_by_construction(a, b, c) {
+            return Sign::Zero;
+        }
         let s = orient2d_projected(&t.get(a), &t.get(b), &t.get(c), self.axis);
         times(s, self.facing)
     }

@@ -100,9 +100,10 @@ impl Dyadic {
         &Dyadic::of(plus) - &Dyadic::of(minus)
     }
 
-    /// `self / denominator` rounded to an `f64` (within one unit in the
-    /// last place; an infinity or 0 when the quotient is beyond the range of
-    /// `f64`), or NaN when `denominator` is 0.
+    /// `self / denominator` rounded to the nearest `f64` (ties to even;
+    /// within one unit in the last place where the result is subnormal; an
+    /// infinity or 0 when the quotient is beyond the range of `f64`), or
+    /// NaN when `denominator` is 0.
     #[must_use]
     pub(crate) fn quotient_to_f64(&self, denominator: &Dyadic) -> f64 {
         if denominator.mantissa.sign() == num_bigint::Sign::NoSign {
@@ -114,9 +115,18 @@ impl Dyadic {
         let (num, den) = (self.mantissa.magnitude(), denominator.mantissa.magnitude());
         // Enough bits that the integer quotient carries 64 significant ones.
         let widen = (den.bits() + 64).saturating_sub(num.bits());
-        let quotient = (num << widen) / den;
+        let shifted = num << widen;
+        let quotient = &shifted / den;
         let drop = quotient.bits().saturating_sub(64);
-        let top = (quotient >> drop).iter_u64_digits().next().unwrap_or(0);
+        let mut top = (&quotient >> drop).iter_u64_digits().next().unwrap_or(0);
+        // A sticky bit for whatever the 64 bits leave out (the division's
+        // remainder, the dropped bits), so that converting them rounds to
+        // nearest as the whole quotient would: 64 > 53 + 2 bits.
+        let inexact = quotient.bits() > 64 && quotient.trailing_zeros().unwrap_or(0) < drop
+            || &quotient * den != shifted;
+        if inexact {
+            top |= 1;
+        }
         let exponent = self.exponent - denominator.exponent - widen as i64 + drop as i64;
         let magnitude = scale_by_power_of_two(top as f64, exponent);
         if (self.mantissa.sign() == num_bigint::Sign::Minus)

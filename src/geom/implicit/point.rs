@@ -17,6 +17,7 @@ use crate::geom::Aabb;
 use crate::geom::dyadic::Dyadic;
 
 use super::arithmetic::Arithmetic;
+use super::double_double::in_safe_range;
 use super::interval::Interval;
 
 /// A point given exactly: explicit coordinates, or the intersection that
@@ -90,6 +91,21 @@ pub(crate) trait HasHomogeneous {
     fn exact(&self) -> Homogeneous<Dyadic> {
         self.homogeneous()
     }
+
+    /// Whether every coordinate the point is made from is in the
+    /// double-double stage's safe range (see
+    /// [`in_safe_range`](super::double_double::in_safe_range)), so that
+    /// stage may be used on it. `false` unless the point says so.
+    fn double_double_safe(&self) -> bool {
+        false
+    }
+
+    /// Coordinate `axis` when the definition gives it exactly, without
+    /// arithmetic (see [`ImplicitPoint::simplified`]); `None` says nothing.
+    fn known_coordinate(&self, axis: usize) -> Option<f64> {
+        let _ = axis;
+        None
+    }
 }
 
 fn exact<T: Arithmetic>(v: DVec3) -> [T; 3] {
@@ -140,6 +156,37 @@ pub(crate) fn kept_axes(axis: u8) -> (usize, usize) {
 }
 
 impl HasHomogeneous for ImplicitPoint {
+    fn known_coordinate(&self, axis: usize) -> Option<f64> {
+        let shared = |points: &[DVec3]| {
+            points[1..]
+                .iter()
+                .all(|p| p[axis] == points[0][axis])
+                .then_some(points[0][axis])
+        };
+        match self {
+            ImplicitPoint::Explicit(v) => Some(v[axis]),
+            ImplicitPoint::EdgePlane { p, q, plane } => shared(&[*p, *q]).or_else(|| shared(plane)),
+            ImplicitPoint::EdgeEdge { p, q, r, s, .. } => {
+                shared(&[*p, *q]).or_else(|| shared(&[*r, *s]))
+            }
+            ImplicitPoint::ThreePlanes { planes } => planes.iter().find_map(|plane| shared(plane)),
+        }
+    }
+
+    fn double_double_safe(&self) -> bool {
+        let safe = |points: &[DVec3]| {
+            points
+                .iter()
+                .all(|p| p.to_array().into_iter().all(in_safe_range))
+        };
+        match self {
+            ImplicitPoint::Explicit(v) => safe(&[*v]),
+            ImplicitPoint::EdgePlane { p, q, plane } => safe(&[*p, *q]) && safe(plane),
+            ImplicitPoint::EdgeEdge { p, q, r, s, .. } => safe(&[*p, *q, *r, *s]),
+            ImplicitPoint::ThreePlanes { planes } => planes.iter().all(|plane| safe(plane)),
+        }
+    }
+
     fn homogeneous<T: Arithmetic>(&self) -> Homogeneous<T> {
         match *self {
             ImplicitPoint::Explicit(v) => Homogeneous {
@@ -267,25 +314,10 @@ impl ImplicitPoint {
     /// `(x, y, top)` with the edge's own `x` and `y`. Otherwise `self`.
     #[must_use]
     pub fn simplified(self) -> ImplicitPoint {
-        let shared = |points: &[DVec3], k: usize| {
-            points[1..]
-                .iter()
-                .all(|p| p[k] == points[0][k])
-                .then_some(points[0][k])
-        };
-        let known: [Option<f64>; 3] = match self {
-            ImplicitPoint::Explicit(_) => return self,
-            ImplicitPoint::EdgePlane { p, q, plane } => {
-                [0, 1, 2].map(|k| shared(&[p, q], k).or_else(|| shared(&plane, k)))
-            }
-            ImplicitPoint::EdgeEdge { p, q, r, s, .. } => {
-                [0, 1, 2].map(|k| shared(&[p, q], k).or_else(|| shared(&[r, s], k)))
-            }
-            ImplicitPoint::ThreePlanes { ref planes } => {
-                [0, 1, 2].map(|k| planes.iter().find_map(|plane| shared(plane, k)))
-            }
-        };
-        match known {
+        if self.explicit().is_some() {
+            return self;
+        }
+        match [0, 1, 2].map(|k| self.known_coordinate(k)) {
             [Some(x), Some(y), Some(z)] => ImplicitPoint::Explicit(DVec3::new(x, y, z)),
             _ => self,
         }

@@ -10,7 +10,7 @@ use crate::geom::dyadic::Dyadic;
 use crate::geom::{Sign, orient2d, orient3d};
 
 use super::arithmetic::Arithmetic;
-use super::interval::Interval;
+use super::double_double::{DoubleDouble, rounded_quotient};
 use super::point::{HasHomogeneous, Homogeneous, ImplicitPoint, cross, dot, kept_axes};
 
 /// The product of two signs.
@@ -133,6 +133,12 @@ pub(crate) fn compare_axis(
     b: &impl HasHomogeneous,
     axis: usize,
 ) -> Ordering {
+    // Coordinates the definitions give (a point made on a segment whose
+    // ends share it): compared as they are, where they may well be equal
+    // and the filter could not tell.
+    if let (Some(x), Some(y)) = (a.known_coordinate(axis), b.known_coordinate(axis)) {
+        return x.partial_cmp(&y).unwrap_or(Ordering::Equal);
+    }
     decide(
         || compare_in(&a.filter(), &b.filter(), axis),
         || compare_in::<Dyadic>(&a.exact(), &b.exact(), axis),
@@ -155,32 +161,29 @@ pub fn compare_points(a: &ImplicitPoint, b: &ImplicitPoint) -> Ordering {
         .unwrap_or(Ordering::Equal)
 }
 
-/// The point rounded to `f64` coordinates (within about one unit in the
-/// last place of each).
+/// The point's coordinates, each rounded to the nearest `f64` (ties to
+/// even).
 #[must_use]
 pub fn rounded(p: &ImplicitPoint) -> DVec3 {
     if let Some(v) = p.explicit() {
         return v;
     }
-    let filter = p.filter();
-    let tight = |i: &Interval| {
-        let m = i.mid();
-        m.is_finite() && m != 0.0 && (i.hi - i.lo) <= m.abs() * f64::EPSILON
-    };
-    if filter
-        .xyz
-        .iter()
-        .all(|c| tight(c) || (c.lo == 0.0 && c.hi == 0.0))
-        && tight(&filter.w)
-    {
-        let w = filter.w.mid();
-        return DVec3::new(
-            filter.xyz[0].mid() / w,
-            filter.xyz[1].mid() / w,
-            filter.xyz[2].mid() / w,
-        );
+    rounded_point(p)
+}
+
+/// [`rounded`] for any point with exact coordinates: certified by the
+/// double-double stage where it can (almost always), else rounded from the
+/// exact coordinates; the same `f64`s either way.
+#[must_use]
+pub(crate) fn rounded_point(p: &impl HasHomogeneous) -> DVec3 {
+    if p.double_double_safe() {
+        let h = p.homogeneous::<DoubleDouble>();
+        let coordinate = |i: usize| rounded_quotient(&h.xyz[i], &h.w);
+        if let (Some(x), Some(y), Some(z)) = (coordinate(0), coordinate(1), coordinate(2)) {
+            return DVec3::new(x, y, z);
+        }
     }
-    let exact = p.homogeneous::<Dyadic>();
+    let exact = p.exact();
     DVec3::new(
         exact.xyz[0].quotient_to_f64(&exact.w),
         exact.xyz[1].quotient_to_f64(&exact.w),
