@@ -247,6 +247,31 @@ pub(crate) fn det2_sign(a: &Dyadic, b: &Dyadic, c: &Dyadic, d: &Dyadic) -> Sign 
 mod tests {
     use super::*;
 
+    /// IEEE division rounds the exact quotient of two doubles to nearest:
+    /// an independent answer for the exact quotient's rounding, on
+    /// quotients whose 64 leading bits end in every pattern (ties of the
+    /// truncated bits included).
+    #[test]
+    fn quotients_round_to_nearest_like_ieee_division() {
+        let mut bits = crate::test_rng::bits(3);
+        for _ in 0..20_000 {
+            let a = f64::from_bits((bits() >> 2) | 0x3ff0_0000_0000_0000);
+            let b = f64::from_bits((bits() >> 2) | 0x3fe0_0000_0000_0000);
+            let (a, b) = (
+                if bits() & 1 == 0 { a } else { -a },
+                b * f64::powi(2.0, (bits() % 64) as i32 - 32),
+            );
+            assert_eq!(
+                Dyadic::of(a).quotient_to_f64(&Dyadic::of(b)),
+                a / b,
+                "{a:e} / {b:e}"
+            );
+            // A product over a double: a·b / b is a, exactly.
+            let product = &Dyadic::of(a) * &Dyadic::of(b);
+            assert_eq!(product.quotient_to_f64(&Dyadic::of(b)), a);
+        }
+    }
+
     #[test]
     fn every_kind_of_double_is_read_exactly() {
         // Reading back m · 2^e through exact powers of two.
