@@ -19,6 +19,8 @@ use smallvec::SmallVec;
 use crate::geom::implicit::{ImplicitPoint, compare_points, kept_axes};
 use crate::geom::{Sign, orient2d, orient3d};
 
+use super::points::{CachedPoint, PointView, compare_positions};
+
 /// A point found by a pair: an operand vertex (by its global index) or a
 /// constructed point.
 #[derive(Clone, Debug)]
@@ -219,13 +221,24 @@ fn inside_closed(t: &Tri, p: DVec3) -> bool {
     })
 }
 
-/// The points sorted exactly and without repeats.
+/// The points sorted exactly and without repeats (each point's filter
+/// computed once, not at every comparison).
 fn distinct(
-    mut found: SmallVec<[(ImplicitPoint, PointRef); 8]>,
+    found: SmallVec<[(ImplicitPoint, PointRef); 8]>,
 ) -> SmallVec<[(ImplicitPoint, PointRef); 8]> {
-    found.sort_by(|x, y| compare_points(&x.0, &y.0));
-    found.dedup_by(|x, y| compare_points(&x.0, &y.0) == Ordering::Equal);
-    found
+    let mut cached: SmallVec<[(CachedPoint, PointRef); 8]> = found
+        .into_iter()
+        .map(|(point, r)| (CachedPoint::new(point), r))
+        .collect();
+    let order = |x: &CachedPoint, y: &CachedPoint| {
+        compare_positions(&PointView::Made(x), &PointView::Made(y))
+    };
+    cached.sort_by(|x, y| order(&x.0, &y.0));
+    cached.dedup_by(|x, y| order(&x.0, &y.0) == Ordering::Equal);
+    cached
+        .into_iter()
+        .map(|(cached, r)| (cached.point, r))
+        .collect()
 }
 
 /// The contact of two triangles in one plane.

@@ -128,11 +128,12 @@ impl PointTable {
         candidates.sort_unstable();
         candidates.dedup();
         let mut by_position = candidates;
-        by_position.par_sort_by(|&i, &j| exact_order(&table.get(i), &table.get(j)).then(i.cmp(&j)));
+        by_position
+            .par_sort_by(|&i, &j| compare_positions(&table.get(i), &table.get(j)).then(i.cmp(&j)));
         let mut run_start = 0;
         for k in 0..by_position.len() {
             if k > 0
-                && exact_order(&table.get(by_position[k - 1]), &table.get(by_position[k]))
+                && compare_positions(&table.get(by_position[k - 1]), &table.get(by_position[k]))
                     != Ordering::Equal
             {
                 run_start = k;
@@ -205,7 +206,9 @@ impl PointTable {
     }
 }
 
-fn exact_order(a: &PointView, b: &PointView) -> Ordering {
+/// The exact lexicographic order of two points' positions (`Equal`
+/// exactly when they are one position).
+pub(crate) fn compare_positions(a: &PointView, b: &PointView) -> Ordering {
     if let (Some(x), Some(y)) = (a.explicit(), b.explicit()) {
         return compare_points(&ImplicitPoint::Explicit(x), &ImplicitPoint::Explicit(y));
     }

@@ -174,7 +174,11 @@ pub(crate) fn rounded_quotient(x: &DoubleDouble, w: &DoubleDouble) -> Option<f64
     // x / w against m: the sign of (x − m w) times the sign of w.
     let against = |m: &DoubleDouble| -> Option<Sign> {
         let s = x.minus(&m.times(w)).sign()?;
-        Some(super::predicates::times(s, w_sign))
+        Some(if w_sign == Sign::Negative {
+            s.reversed()
+        } else {
+            s
+        })
     };
     (against(&below)? == Sign::Positive && against(&above)? == Sign::Negative).then_some(candidate)
 }
