@@ -126,9 +126,12 @@ pub(crate) fn half_space(
     builders::prism(&square, -2.0 * reach * n).map_err(|e| TessellateError::Build(e.to_string()))
 }
 
-/// `solid` moved by `map`, turned inside out back again when the map
-/// mirrors.
+/// `solid` moved by `map` (vertices rounded once), turned inside out back
+/// again when the map mirrors.
 pub(crate) fn mapped(solid: &Solid, map: DAffine3) -> Result<Solid, TessellateError> {
+    if let Some(moved) = solid.moved(map) {
+        return Ok(moved);
+    }
     let mut soup = solid.to_soup();
     for p in &mut soup.positions {
         *p = map.transform_point3(*p);

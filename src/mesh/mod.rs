@@ -20,6 +20,7 @@ mod face_triangles;
 mod ids;
 mod loft;
 mod measure;
+mod moved;
 mod revolve;
 mod solid;
 mod soup;

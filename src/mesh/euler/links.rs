@@ -108,7 +108,7 @@ impl Solid {
     }
 
     /// Refits `face`'s plane to its outer loop.
-    pub(super) fn refit_plane(&mut self, face: FaceId) {
+    pub(crate) fn refit_plane(&mut self, face: FaceId) {
         self.faces[face].plane = self.loop_plane(self.faces[face].outer);
     }
 }
