@@ -133,6 +133,25 @@ fn hundred_polyhedra() -> Csg {
     Csg::try_new(CsgExpr::Union(leaves)).expect("a valid tree")
 }
 
+/// 16 copies of one sphere mesh of 39,600 triangles, each turned and
+/// moved by a transform node (so each is copied into the world with its
+/// own query structure), united; and the seconds that building took.
+fn transformed_spheres() -> (Csg, f64) {
+    let leaf = Polyhedron::try_new(builders::sphere(100)).expect("valid");
+    let start = Instant::now();
+    let copies = (0..16)
+        .map(|i| {
+            let a = f64::from(i);
+            let turn = glam::DQuat::from_euler(glam::EulerRot::XYZ, a * 0.3, a * 0.7, a * 1.1);
+            let at = DVec3::new(f64::from(i % 4) * 1.5, f64::from(i / 4) * 1.5, 0.0);
+            CsgExpr::leaf(leaf.clone())
+                .transformed(glam::DAffine3::from_rotation_translation(turn, at))
+        })
+        .collect();
+    let csg = Csg::try_new(CsgExpr::Union(copies)).expect("a valid tree");
+    (csg, start.elapsed().as_secs_f64())
+}
+
 /// A left-deep chain of 48 operators over boxes, balls and half-spaces that
 /// all overlap the middle, so that little can be culled.
 fn deep_tree() -> Csg {
@@ -164,9 +183,16 @@ fn main() {
     let poly_rays = rays(200_000, DVec3::new(13.5, 13.5, 1.0), 25.0, 1);
     let deep = deep_tree();
     let deep_rays = rays(200_000, DVec3::ZERO, 3.0, 2);
+    let (spheres, spheres_build) = transformed_spheres();
+    let spheres_rays = rays(200_000, DVec3::new(2.25, 2.25, 0.0), 6.0, 3);
     let rows = [
         measure("100 polyhedral leaves (union)", &poly, &poly_rays),
         measure("deep tree (48 operators)", &deep, &deep_rays),
+        measure(
+            "16 transformed meshes of 39,600 triangles (union)",
+            &spheres,
+            &spheres_rays,
+        ),
     ];
     println!(
         "| scene | leaves | depth | spans, rays/s (1 thread) | first hit, rays/s (1 thread) | spans, rays/s ({threads} threads) | primitive tests / ray |"
@@ -178,6 +204,10 @@ fn main() {
             r.scene, r.leaves, r.depth, r.spans_1t, r.first_1t, r.spans_2t, r.tests_per_ray
         );
     }
+
+    println!(
+        "\nbuilding the tree of 16 transformed meshes (each copied into the world with its query structure): {spheres_build:.3} s"
+    );
 
     // Volume: halve the cell area until the estimate is within 1e-3.
     let path = concat!(
