@@ -27,12 +27,16 @@
 //! roundings of non-negative terms) and then multiplied by `1 + 16 u`,
 //! which more than covers them.
 //!
-//! These hold while nothing underflows or overflows. Callers use this stage
+//! These hold while nothing overflows. Callers use this stage
 //! only on points whose defining coordinates are all zero or of magnitude
 //! in `[2⁻⁶⁰, 2⁶⁰]` ([`SAFE_EXPONENT`]): every non-zero difference of two
-//! of them is then at least `2⁻¹¹²`, the products of the polynomials here
-//! (degree at most 8) stay within `2^±950`, and their error terms above
-//! `2⁻¹⁰²⁰`; results that are not finite certify nothing.
+//! of them is then at least `2⁻¹¹²`, so every exact value of the
+//! polynomials here (degree at most 8) is zero or at least `2⁻⁸⁹⁶` (a
+//! multiple of that grain) and below `2⁵⁰⁰`. Terms lost to underflow on the
+//! way (below `2⁻¹⁰²²` each) are covered by a `2⁻¹⁰⁰⁰` added to every
+//! bound, so no sign decided here is wrong: a value certified non-zero is
+//! more than the bound from zero, and no computed value is certified zero.
+//! Results that are not finite certify nothing.
 
 use crate::geom::Sign;
 use crate::geom::expansion::{two_product, two_sum};
@@ -83,6 +87,13 @@ impl DoubleDouble {
 /// The bound's own rounding: `1 + 16 u`.
 const ROUND_UP: f64 = 1.0 + 16.0 * U;
 
+/// Added to every computed bound: more than what terms of the bound lost
+/// to underflow (each below `2⁻¹⁰²²`), so the bound stays a bound even
+/// for values near zero; no computed value is ever certified zero, and
+/// none below `2⁻¹⁰⁰⁰` is certified at all (every non-zero exact value
+/// here is far larger: see the module).
+const TINY: f64 = f64::from_bits(23 << 52);
+
 impl Arithmetic for DoubleDouble {
     #[inline]
     fn of(x: f64) -> DoubleDouble {
@@ -99,7 +110,8 @@ impl Arithmetic for DoubleDouble {
         let t = (self.lo + other.lo) + e;
         let (hi, lo) = two_sum(s, t);
         let err = (self.err + other.err + 2.02 * U * (self.lo.abs() + other.lo.abs() + e.abs()))
-            * ROUND_UP;
+            * ROUND_UP
+            + TINY;
         DoubleDouble { hi, lo, err }
     }
 
@@ -125,7 +137,8 @@ impl Arithmetic for DoubleDouble {
             + self.err * other.err
             + (self.lo * other.lo).abs()
             + 3.03 * U * (cross_a.abs() + cross_b.abs() + e.abs()))
-            * ROUND_UP;
+            * ROUND_UP
+            + TINY;
         DoubleDouble { hi, lo, err }
     }
 
