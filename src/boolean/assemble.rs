@@ -79,12 +79,14 @@ pub(crate) fn soup_of(
     // Whether each piece is kept: not collapsed, and not cancelled with an
     // earlier one — a sliver pair collapsed by the snap, the same triangle
     // wound both ways. In piece order, as each piece meets the latest
-    // kept piece with its mirror image's corners.
+    // kept piece with its mirror image's corners; only pieces that share
+    // their corners with another can meet a mirror image.
     let mut alive: Vec<bool> = corners.iter().map(Option::is_some).collect();
+    let twins = with_twin_corners(&corners, positions.len());
     let mut seen: HashMap<[usize; 3], usize> =
-        HashMap::with_capacity_and_hasher(pieces.len(), Default::default());
-    for (i, c) in corners.iter().enumerate() {
-        let Some(c) = c else {
+        HashMap::with_capacity_and_hasher(twins.len(), Default::default());
+    for &i in &twins {
+        let Some(c) = &corners[i] else {
             continue;
         };
         let mirror = rotated_to_smallest([c[0], c[2], c[1]]);
@@ -128,6 +130,52 @@ pub(crate) fn soup_of(
         },
         sources,
     )
+}
+
+/// The pieces (in piece order) that share their set of three corners with
+/// another piece: the only ones that can cancel with a mirror image,
+/// since a triangle and its mirror image have the same corners. Pieces
+/// are grouped by their smallest corner (one counting pass, no hashing),
+/// and each group of a few pieces is compared pairwise.
+fn with_twin_corners(corners: &[Option<[usize; 3]>], point_count: usize) -> Vec<usize> {
+    let sorted: Vec<Option<[usize; 3]>> = corners
+        .par_iter()
+        .map(|c| {
+            c.map(|mut c| {
+                c.sort_unstable();
+                c
+            })
+        })
+        .collect();
+    let mut offsets = vec![0usize; point_count + 1];
+    for c in sorted.iter().flatten() {
+        offsets[c[0] + 1] += 1;
+    }
+    for k in 0..point_count {
+        offsets[k + 1] += offsets[k];
+    }
+    let mut fill = offsets.clone();
+    let mut by_smallest = vec![0usize; offsets[point_count]];
+    for (i, c) in sorted.iter().enumerate() {
+        if let Some(c) = c {
+            by_smallest[fill[c[0]]] = i;
+            fill[c[0]] += 1;
+        }
+    }
+    drop(fill);
+    let mut twins: Vec<usize> = offsets
+        .par_windows(2)
+        .flat_map_iter(|range| {
+            let group = &by_smallest[range[0]..range[1]];
+            group
+                .iter()
+                .copied()
+                .filter(|&i| group.iter().any(|&j| j != i && sorted[j] == sorted[i]))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    twins.par_sort_unstable();
+    twins
 }
 
 /// The triangle's corners in the same cyclic order, smallest first: equal
@@ -254,17 +302,25 @@ pub(crate) fn build_and_prove(
 /// the faces; and for each face with a source, its index in that list.
 fn origins_of(solid: &Solid, sources: &[PieceSource]) -> (Vec<FaceOrigin>, Vec<(FaceId, usize)>) {
     let mut origins = Vec::new();
-    let mut origin_index: HashMap<FaceOrigin, usize> = HashMap::default();
+    // Per operand, the index of each of its faces in `origins`.
+    let operands = sources.iter().map(|s| s.origin.operand + 1).max();
+    let mut origin_index: Vec<SecondaryMap<FaceId, usize>> =
+        vec![SecondaryMap::new(); operands.unwrap_or(0)];
     let mut renumbered = Vec::with_capacity(solid.face_count());
     for (f, face) in solid.faces() {
         let Some(i) = face.attributes.source_index else {
             continue;
         };
         let origin = sources[i].origin;
-        let index = *origin_index.entry(origin).or_insert_with(|| {
-            origins.push(origin);
-            origins.len() - 1
-        });
+        let known = &mut origin_index[origin.operand];
+        let index = match known.get(origin.face) {
+            Some(&index) => index,
+            None => {
+                origins.push(origin);
+                known.insert(origin.face, origins.len() - 1);
+                origins.len() - 1
+            }
+        };
         renumbered.push((f, index));
     }
     (origins, renumbered)
