@@ -395,18 +395,23 @@ fn triangulated(
         .par_iter()
         .map(|&(f, _)| face_triangles(solid, f, &index))
         .collect();
-    let mut polygons = Vec::with_capacity(faces.len());
-    let mut polygon_changed = Vec::with_capacity(faces.len());
-    for (&(f, face), of_face) in faces.iter().zip(triangles) {
-        let is_changed = changed.is_none_or(|c| c.contains(&f));
-        for t in of_face? {
-            polygons.push(Polygon {
-                vertices: t.into_iter().collect(),
-                attributes: face.attributes.clone(),
-            });
-            polygon_changed.push(is_changed);
-        }
-    }
+    let triangles: Vec<FaceTriangles> = triangles.into_iter().collect::<Result<_, _>>()?;
+    let (polygons, polygon_changed): (Vec<Polygon>, Vec<bool>) = faces
+        .par_iter()
+        .zip(&triangles)
+        .flat_map_iter(|(&(f, face), of_face)| {
+            let is_changed = changed.is_none_or(|c| c.contains(&f));
+            of_face.iter().map(move |t| {
+                (
+                    Polygon {
+                        vertices: t.iter().copied().collect(),
+                        attributes: face.attributes.clone(),
+                    },
+                    is_changed,
+                )
+            })
+        })
+        .unzip();
     Ok((
         PolygonSoup {
             positions,

@@ -7,6 +7,7 @@
 //! in time O(n log d) for n corners and vertex valence d.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use slotmap::{Key, SlotMap};
 
 use crate::geom::Plane;
@@ -493,18 +494,28 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
             })
         })
         .collect();
+    // The faces' planes, fitted in parallel (each depends on its polygon
+    // alone).
+    let planes: Vec<Option<Plane>> = soup
+        .polygons
+        .par_iter()
+        .map(|p| {
+            let points: smallvec::SmallVec<[DVec3; 8]> =
+                p.vertices.iter().map(|&v| soup.positions[v]).collect();
+            Plane::try_fit_newell(&points).ok().map(|fit| fit.plane)
+        })
+        .collect();
     // Faces first with placeholder loops, so that edges can name them.
     let face_ids: Vec<FaceId> = soup
         .polygons
         .iter()
+        .zip(planes)
         .enumerate()
-        .map(|(index, p)| {
-            let points: smallvec::SmallVec<[DVec3; 8]> =
-                p.vertices.iter().map(|&v| soup.positions[v]).collect();
+        .map(|(index, (p, plane))| {
             let mut attributes = p.attributes.clone();
             attributes.source_index = Some(index);
             solid.faces.insert(Face {
-                plane: Plane::try_fit_newell(&points).ok().map(|fit| fit.plane),
+                plane,
                 outer: LoopId::null(),
                 rings: Vec::new(),
                 attributes,
