@@ -100,12 +100,18 @@ pub(crate) fn soup_of(
         seen.insert(rotated_to_smallest(*c), i);
     }
     drop(seen);
-    let (polygons, sources): (Vec<Polygon>, Vec<PieceSource>) = pieces
-        .par_iter()
-        .zip(&corners)
+    // The kept pieces listed first, so that the polygons are made by an
+    // indexed parallel map, each written in its place.
+    let survivors: Vec<(usize, [usize; 3])> = corners
+        .iter()
         .zip(&alive)
-        .filter_map(|((piece, c), &alive)| Some((piece, (*c).filter(|_| alive)?)))
-        .map(|(piece, c)| {
+        .enumerate()
+        .filter_map(|(i, (c, &alive))| Some((i, (*c).filter(|_| alive)?)))
+        .collect();
+    let (polygons, sources): (Vec<Polygon>, Vec<PieceSource>) = survivors
+        .par_iter()
+        .map(|&(i, c)| {
+            let piece = &pieces[i];
             let operand = &operands[piece.operand];
             let mut polygon = Polygon::new(c);
             let face = operand.solid.face(piece.face);
