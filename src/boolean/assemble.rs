@@ -76,30 +76,7 @@ pub(crate) fn soup_of(
             (c[0] != c[1] && c[1] != c[2] && c[2] != c[0]).then_some(c)
         })
         .collect();
-    // Whether each piece is kept: not collapsed, and not cancelled with an
-    // earlier one — a sliver pair collapsed by the snap, the same triangle
-    // wound both ways. In piece order, as each piece meets the latest
-    // kept piece with its mirror image's corners; only pieces that share
-    // their corners with another can meet a mirror image.
-    let mut alive: Vec<bool> = corners.iter().map(Option::is_some).collect();
-    let twins = with_twin_corners(&corners, positions.len());
-    let mut seen: HashMap<[usize; 3], usize> =
-        HashMap::with_capacity_and_hasher(twins.len(), Default::default());
-    for &i in &twins {
-        let Some(c) = &corners[i] else {
-            continue;
-        };
-        let mirror = rotated_to_smallest([c[0], c[2], c[1]]);
-        if let Some(&other) = seen.get(&mirror)
-            && alive[other]
-        {
-            alive[other] = false;
-            alive[i] = false;
-            continue;
-        }
-        seen.insert(rotated_to_smallest(*c), i);
-    }
-    drop(seen);
+    let alive = kept_after_mirror_cancel(&corners, positions.len());
     // The kept pieces listed first, so that the polygons are made by an
     // indexed parallel map, each written in its place.
     let survivors: Vec<(usize, [usize; 3])> = corners
@@ -136,6 +113,33 @@ pub(crate) fn soup_of(
         },
         sources,
     )
+}
+
+/// Whether each piece is kept: not collapsed (`None`), and not cancelled
+/// with an earlier one — a sliver pair collapsed by the snap, the same
+/// triangle wound both ways. In piece order, as each piece meets the
+/// latest kept piece with its mirror image's corners; only pieces that
+/// share their corners with another can meet a mirror image.
+fn kept_after_mirror_cancel(corners: &[Option<[usize; 3]>], point_count: usize) -> Vec<bool> {
+    let mut alive: Vec<bool> = corners.iter().map(Option::is_some).collect();
+    let twins = with_twin_corners(corners, point_count);
+    let mut seen: HashMap<[usize; 3], usize> =
+        HashMap::with_capacity_and_hasher(twins.len(), Default::default());
+    for &i in &twins {
+        let Some(c) = &corners[i] else {
+            continue;
+        };
+        let mirror = rotated_to_smallest([c[0], c[2], c[1]]);
+        if let Some(&other) = seen.get(&mirror)
+            && alive[other]
+        {
+            alive[other] = false;
+            alive[i] = false;
+            continue;
+        }
+        seen.insert(rotated_to_smallest(*c), i);
+    }
+    alive
 }
 
 /// The pieces (in piece order) that share their set of three corners with
@@ -465,4 +469,43 @@ pub(crate) fn summary(report: &Report) -> String {
         lines.push(reason.clone());
     }
     lines.join("; ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pieces_with_twin_corners_are_those_sharing_all_three() {
+        let corners = vec![
+            Some([0, 1, 2]),
+            Some([3, 4, 5]),
+            Some([2, 1, 0]), // the mirror image of piece 0
+            None,            // collapsed by the snap
+            Some([1, 2, 3]), // shares two corners with piece 0 only
+            Some([5, 3, 4]), // piece 1 turned: same corners, same winding
+            Some([0, 2, 6]),
+        ];
+        assert_eq!(with_twin_corners(&corners, 7), vec![0, 1, 2, 5]);
+    }
+
+    #[test]
+    fn a_mirror_pair_cancels_and_a_third_copy_stays() {
+        // Soup indices after the snap: three copies of one triangle, the
+        // second wound the other way; the first two cancel, the third
+        // meets no kept mirror image and stays. Piece 3 collapsed; piece 4
+        // and 5 are one triangle wound one way (no cancel).
+        let corners = [
+            Some([0, 1, 2]),
+            Some([0, 2, 1]),
+            Some([1, 2, 0]),
+            None,
+            Some([3, 4, 5]),
+            Some([4, 5, 3]),
+        ];
+        assert_eq!(
+            kept_after_mirror_cancel(&corners, 6),
+            vec![false, false, true, false, true, true]
+        );
+    }
 }
