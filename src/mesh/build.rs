@@ -323,13 +323,12 @@ fn pair_twins(
             })
             .collect()
     };
-    for e in 0..h.face_count {
+    for (e, &counted) in uses.iter().enumerate() {
         if h.twin[e] != usize::MAX {
             // Paired with the other uses of a shared edge.
             continue;
         }
         let (a, b) = (h.from[e], h.to[e]);
-        let counted = uses[e];
         if counted.same + counted.opposite >= 3 {
             let same: smallvec::SmallVec<[usize; 2]> = out.towards(a, b, &h.to).collect();
             let opposite: smallvec::SmallVec<[usize; 2]> = out.towards(b, a, &h.to).collect();
