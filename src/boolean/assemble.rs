@@ -76,34 +76,19 @@ pub(crate) fn soup_of(
             (c[0] != c[1] && c[1] != c[2] && c[2] != c[0]).then_some(c)
         })
         .collect();
-    // Whether each piece is kept: not collapsed, and not cancelled with an
-    // earlier one — a sliver pair collapsed by the snap, the same triangle
-    // wound both ways. In piece order, as each piece meets the latest
-    // kept piece with its mirror image's corners.
-    let mut alive: Vec<bool> = corners.iter().map(Option::is_some).collect();
-    let mut seen: HashMap<[usize; 3], usize> =
-        HashMap::with_capacity_and_hasher(pieces.len(), Default::default());
-    for (i, c) in corners.iter().enumerate() {
-        let Some(c) = c else {
-            continue;
-        };
-        let mirror = rotated_to_smallest([c[0], c[2], c[1]]);
-        if let Some(&other) = seen.get(&mirror)
-            && alive[other]
-        {
-            alive[other] = false;
-            alive[i] = false;
-            continue;
-        }
-        seen.insert(rotated_to_smallest(*c), i);
-    }
-    drop(seen);
-    let (polygons, sources): (Vec<Polygon>, Vec<PieceSource>) = pieces
-        .par_iter()
-        .zip(&corners)
+    let alive = kept_after_mirror_cancel(&corners, positions.len());
+    // The kept pieces listed first, so that the polygons are made by an
+    // indexed parallel map, each written in its place.
+    let survivors: Vec<(usize, [usize; 3])> = corners
+        .iter()
         .zip(&alive)
-        .filter_map(|((piece, c), &alive)| Some((piece, (*c).filter(|_| alive)?)))
-        .map(|(piece, c)| {
+        .enumerate()
+        .filter_map(|(i, (c, &alive))| Some((i, (*c).filter(|_| alive)?)))
+        .collect();
+    let (polygons, sources): (Vec<Polygon>, Vec<PieceSource>) = survivors
+        .par_iter()
+        .map(|&(i, c)| {
+            let piece = &pieces[i];
             let operand = &operands[piece.operand];
             let mut polygon = Polygon::new(c);
             let face = operand.solid.face(piece.face);
@@ -128,6 +113,79 @@ pub(crate) fn soup_of(
         },
         sources,
     )
+}
+
+/// Whether each piece is kept: not collapsed (`None`), and not cancelled
+/// with an earlier one — a sliver pair collapsed by the snap, the same
+/// triangle wound both ways. In piece order, as each piece meets the
+/// latest kept piece with its mirror image's corners; only pieces that
+/// share their corners with another can meet a mirror image.
+fn kept_after_mirror_cancel(corners: &[Option<[usize; 3]>], point_count: usize) -> Vec<bool> {
+    let mut alive: Vec<bool> = corners.iter().map(Option::is_some).collect();
+    let twins = with_twin_corners(corners, point_count);
+    let mut seen: HashMap<[usize; 3], usize> =
+        HashMap::with_capacity_and_hasher(twins.len(), Default::default());
+    for &i in &twins {
+        let Some(c) = &corners[i] else {
+            continue;
+        };
+        let mirror = rotated_to_smallest([c[0], c[2], c[1]]);
+        if let Some(&other) = seen.get(&mirror)
+            && alive[other]
+        {
+            alive[other] = false;
+            alive[i] = false;
+            continue;
+        }
+        seen.insert(rotated_to_smallest(*c), i);
+    }
+    alive
+}
+
+/// The pieces (in piece order) that share their set of three corners with
+/// another piece: the only ones that can cancel with a mirror image,
+/// since a triangle and its mirror image have the same corners. Pieces
+/// are grouped by their smallest corner (one counting pass, no hashing),
+/// and each group of a few pieces is compared pairwise.
+fn with_twin_corners(corners: &[Option<[usize; 3]>], point_count: usize) -> Vec<usize> {
+    let sorted: Vec<Option<[usize; 3]>> = corners
+        .par_iter()
+        .map(|c| {
+            c.map(|mut c| {
+                c.sort_unstable();
+                c
+            })
+        })
+        .collect();
+    let mut offsets = vec![0usize; point_count + 1];
+    for c in sorted.iter().flatten() {
+        offsets[c[0] + 1] += 1;
+    }
+    for k in 0..point_count {
+        offsets[k + 1] += offsets[k];
+    }
+    let mut fill = offsets.clone();
+    let mut by_smallest = vec![0usize; offsets[point_count]];
+    for (i, c) in sorted.iter().enumerate() {
+        if let Some(c) = c {
+            by_smallest[fill[c[0]]] = i;
+            fill[c[0]] += 1;
+        }
+    }
+    drop(fill);
+    let mut twins: Vec<usize> = offsets
+        .par_windows(2)
+        .flat_map_iter(|range| {
+            let group = &by_smallest[range[0]..range[1]];
+            group
+                .iter()
+                .copied()
+                .filter(|&i| group.iter().any(|&j| j != i && sorted[j] == sorted[i]))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    twins.par_sort_unstable();
+    twins
 }
 
 /// The triangle's corners in the same cyclic order, smallest first: equal
@@ -254,17 +312,25 @@ pub(crate) fn build_and_prove(
 /// the faces; and for each face with a source, its index in that list.
 fn origins_of(solid: &Solid, sources: &[PieceSource]) -> (Vec<FaceOrigin>, Vec<(FaceId, usize)>) {
     let mut origins = Vec::new();
-    let mut origin_index: HashMap<FaceOrigin, usize> = HashMap::default();
+    // Per operand, the index of each of its faces in `origins`.
+    let operands = sources.iter().map(|s| s.origin.operand + 1).max();
+    let mut origin_index: Vec<SecondaryMap<FaceId, usize>> =
+        vec![SecondaryMap::new(); operands.unwrap_or(0)];
     let mut renumbered = Vec::with_capacity(solid.face_count());
     for (f, face) in solid.faces() {
         let Some(i) = face.attributes.source_index else {
             continue;
         };
         let origin = sources[i].origin;
-        let index = *origin_index.entry(origin).or_insert_with(|| {
-            origins.push(origin);
-            origins.len() - 1
-        });
+        let known = &mut origin_index[origin.operand];
+        let index = match known.get(origin.face) {
+            Some(&index) => index,
+            None => {
+                origins.push(origin);
+                known.insert(origin.face, origins.len() - 1);
+                origins.len() - 1
+            }
+        };
         renumbered.push((f, index));
     }
     (origins, renumbered)
@@ -339,18 +405,23 @@ fn triangulated(
         .par_iter()
         .map(|&(f, _)| face_triangles(solid, f, &index))
         .collect();
-    let mut polygons = Vec::with_capacity(faces.len());
-    let mut polygon_changed = Vec::with_capacity(faces.len());
-    for (&(f, face), of_face) in faces.iter().zip(triangles) {
-        let is_changed = changed.is_none_or(|c| c.contains(&f));
-        for t in of_face? {
-            polygons.push(Polygon {
-                vertices: t.into_iter().collect(),
-                attributes: face.attributes.clone(),
-            });
-            polygon_changed.push(is_changed);
-        }
-    }
+    let triangles: Vec<FaceTriangles> = triangles.into_iter().collect::<Result<_, _>>()?;
+    let (polygons, polygon_changed): (Vec<Polygon>, Vec<bool>) = faces
+        .par_iter()
+        .zip(&triangles)
+        .flat_map_iter(|(&(f, face), of_face)| {
+            let is_changed = changed.is_none_or(|c| c.contains(&f));
+            of_face.iter().map(move |t| {
+                (
+                    Polygon {
+                        vertices: t.iter().copied().collect(),
+                        attributes: face.attributes.clone(),
+                    },
+                    is_changed,
+                )
+            })
+        })
+        .unzip();
     Ok((
         PolygonSoup {
             positions,
@@ -398,4 +469,43 @@ pub(crate) fn summary(report: &Report) -> String {
         lines.push(reason.clone());
     }
     lines.join("; ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pieces_with_twin_corners_are_those_sharing_all_three() {
+        let corners = vec![
+            Some([0, 1, 2]),
+            Some([3, 4, 5]),
+            Some([2, 1, 0]), // the mirror image of piece 0
+            None,            // collapsed by the snap
+            Some([1, 2, 3]), // shares two corners with piece 0 only
+            Some([5, 3, 4]), // piece 1 turned: same corners, same winding
+            Some([0, 2, 6]),
+        ];
+        assert_eq!(with_twin_corners(&corners, 7), vec![0, 1, 2, 5]);
+    }
+
+    #[test]
+    fn a_mirror_pair_cancels_and_a_third_copy_stays() {
+        // Soup indices after the snap: three copies of one triangle, the
+        // second wound the other way; the first two cancel, the third
+        // meets no kept mirror image and stays. Piece 3 collapsed; piece 4
+        // and 5 are one triangle wound one way (no cancel).
+        let corners = [
+            Some([0, 1, 2]),
+            Some([0, 2, 1]),
+            Some([1, 2, 0]),
+            None,
+            Some([3, 4, 5]),
+            Some([4, 5, 3]),
+        ];
+        assert_eq!(
+            kept_after_mirror_cancel(&corners, 6),
+            vec![false, false, true, false, true, true]
+        );
+    }
 }

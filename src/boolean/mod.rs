@@ -417,8 +417,11 @@ pub fn combine(
     let clock = Instant::now();
     let mut kept = Vec::new();
     for (slot, operand) in prepared.iter().enumerate() {
-        for (piece, decision) in all_pieces[slot].iter().zip(&decisions[slot]) {
-            if let Some(flip) = *decision {
+        let of_operand: Vec<assemble::KeptPiece> = all_pieces[slot]
+            .par_iter()
+            .zip(&decisions[slot])
+            .filter_map(|(piece, decision)| {
+                let flip = (*decision)?;
                 let [x, y, z] = piece.corners;
                 let [p, q, r] = operand.corners(piece.triangle);
                 let mut own = operand.triangles[piece.triangle as usize]
@@ -427,16 +430,17 @@ pub fn combine(
                 let mut corners = piece.corners;
                 corners.sort_unstable();
                 let changed = corners != own;
-                kept.push(assemble::KeptPiece {
+                Some(assemble::KeptPiece {
                     corners: if flip { [x, z, y] } else { [x, y, z] },
                     operand: slot,
                     face: operand.faces[piece.triangle as usize],
                     plane: if flip { [p, r, q] } else { [p, q, r] },
                     changed,
                     alone: !changed && operand.face_is_one_triangle(piece.triangle),
-                });
-            }
-        }
+                })
+            })
+            .collect();
+        kept.extend(of_operand);
     }
     let (soup, sources) = assemble::soup_of(&table, &kept, &prepared);
     let (solid, origins, report, proof_seconds) = assemble::build_and_prove(&soup, &sources)?;

@@ -7,6 +7,7 @@
 //! in time O(n log d) for n corners and vertex valence d.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use slotmap::{Key, SlotMap};
 
 use crate::geom::Plane;
@@ -262,15 +263,31 @@ impl Outgoing {
 
     /// The half-edges from `a` to `b`, in index order (after
     /// [`Outgoing::sort_by_end`]).
-    fn towards(&self, a: usize, b: usize, to: &[usize]) -> smallvec::SmallVec<[usize; 2]> {
+    fn towards<'a>(
+        &'a self,
+        a: usize,
+        b: usize,
+        to: &'a [usize],
+    ) -> impl Iterator<Item = usize> + Clone + 'a {
         let list = self.of(a);
-        if list.len() <= SCANNED {
-            return list.iter().copied().filter(|&g| to[g] == b).collect();
-        }
-        let start = list.partition_point(|&g| to[g] < b);
-        let end = start + list[start..].partition_point(|&g| to[g] == b);
-        list[start..end].iter().copied().collect()
+        let candidates = if list.len() <= SCANNED {
+            list
+        } else {
+            let start = list.partition_point(|&g| to[g] < b);
+            let end = start + list[start..].partition_point(|&g| to[g] == b);
+            &list[start..end]
+        };
+        candidates.iter().copied().filter(move |&g| to[g] == b)
     }
+}
+
+/// How many face half-edges run one half-edge's edge its way (itself
+/// included) and the other way, and the first of those the other way.
+#[derive(Clone, Copy, Debug)]
+struct EdgeUses {
+    same: usize,
+    opposite: usize,
+    first_opposite: Option<usize>,
 }
 
 /// Pairs each face half-edge with the one running its edge the other way.
@@ -286,15 +303,35 @@ fn pair_twins(
 ) -> Result<(), BuildError> {
     out.sort_by_end(&h.to);
     let line = |h: &HalfEdges, e: usize| soup.polygons[h.polygon[e]].attributes.line;
-    for e in 0..h.face_count {
+    // Each half-edge's uses are read from the lists in parallel; the
+    // pairing below then visits the half-edges in order, as a serial scan
+    // would, and lists the uses again only where an edge has more than
+    // two or two the same way.
+    let uses: Vec<EdgeUses> = {
+        let (out, h) = (&*out, &*h);
+        (0..h.face_count)
+            .into_par_iter()
+            .map(|e| {
+                let (a, b) = (h.from[e], h.to[e]);
+                let mut opposite = out.towards(b, a, &h.to);
+                let first_opposite = opposite.next();
+                EdgeUses {
+                    same: out.towards(a, b, &h.to).count(),
+                    opposite: usize::from(first_opposite.is_some()) + opposite.count(),
+                    first_opposite,
+                }
+            })
+            .collect()
+    };
+    for (e, &counted) in uses.iter().enumerate() {
         if h.twin[e] != usize::MAX {
             // Paired with the other uses of a shared edge.
             continue;
         }
         let (a, b) = (h.from[e], h.to[e]);
-        let same = out.towards(a, b, &h.to);
-        let opposite = out.towards(b, a, &h.to);
-        if same.len() + opposite.len() >= 3 {
+        if counted.same + counted.opposite >= 3 {
+            let same: smallvec::SmallVec<[usize; 2]> = out.towards(a, b, &h.to).collect();
+            let opposite: smallvec::SmallVec<[usize; 2]> = out.towards(b, a, &h.to).collect();
             let pairs = match sharing {
                 EdgeSharing::Touching => pair_touching(soup, h, a, b, &same, &opposite),
                 EdgeSharing::Manifold => None,
@@ -314,14 +351,15 @@ fn pair_twins(
                 lines: users.iter().map(|&g| line(h, g)).collect(),
             });
         }
-        if same.len() == 2 {
+        if counted.same == 2 {
+            let same: smallvec::SmallVec<[usize; 2]> = out.towards(a, b, &h.to).collect();
             return Err(BuildError::InconsistentOrientation {
                 vertices: [a, b],
                 polygons: [h.polygon[same[0]], h.polygon[same[1]]],
                 lines: [line(h, same[0]), line(h, same[1])],
             });
         }
-        if let Some(&t) = opposite.first() {
+        if let Some(t) = counted.first_opposite {
             h.twin[e] = t;
         }
     }
@@ -493,18 +531,28 @@ fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {
             })
         })
         .collect();
+    // The faces' planes, fitted in parallel (each depends on its polygon
+    // alone).
+    let planes: Vec<Option<Plane>> = soup
+        .polygons
+        .par_iter()
+        .map(|p| {
+            let points: smallvec::SmallVec<[DVec3; 8]> =
+                p.vertices.iter().map(|&v| soup.positions[v]).collect();
+            Plane::try_fit_newell(&points).ok().map(|fit| fit.plane)
+        })
+        .collect();
     // Faces first with placeholder loops, so that edges can name them.
     let face_ids: Vec<FaceId> = soup
         .polygons
         .iter()
+        .zip(planes)
         .enumerate()
-        .map(|(index, p)| {
-            let points: smallvec::SmallVec<[DVec3; 8]> =
-                p.vertices.iter().map(|&v| soup.positions[v]).collect();
+        .map(|(index, (p, plane))| {
             let mut attributes = p.attributes.clone();
             attributes.source_index = Some(index);
             solid.faces.insert(Face {
-                plane: Plane::try_fit_newell(&points).ok().map(|fit| fit.plane),
+                plane,
                 outer: LoopId::null(),
                 rings: Vec::new(),
                 attributes,

@@ -4,6 +4,7 @@
 use rustc_hash::FxHashSet as HashSet;
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::mesh::{EdgeId, FaceId, LoopId, Solid, VertexId};
 
@@ -104,7 +105,16 @@ fn tidy_inside_faces(solid: &mut Solid) {
             break;
         }
     }
-    let vertices: Vec<_> = solid.vertices().map(|(v, _)| v).collect();
+    // Joining the two edges at a vertex changes no other vertex's degree
+    // (each neighbour trades one edge for the joined one), so the vertices
+    // of degree two are found once, in parallel, and joined in order.
+    let vertices: Vec<VertexId> = {
+        let solid = &*solid;
+        let all: Vec<VertexId> = solid.vertices().map(|(v, _)| v).collect();
+        all.into_par_iter()
+            .filter(|&v| solid.vertex_degree(v) == 2)
+            .collect()
+    };
     for v in vertices {
         if solid.get_vertex(v).is_some() && solid.vertex_degree(v) == 2 {
             let _ = solid.join_edges(v);
