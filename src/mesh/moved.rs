@@ -13,7 +13,8 @@ impl Solid {
     /// the polygons turned instead) or a moved position is not finite.
     #[must_use]
     pub fn moved(&self, map: DAffine3) -> Option<Solid> {
-        if !(map.matrix3.determinant() > 0.0) {
+        let determinant = map.matrix3.determinant();
+        if determinant.is_nan() || determinant <= 0.0 {
             return None;
         }
         let mut moved = self.clone();
