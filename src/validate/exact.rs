@@ -153,38 +153,46 @@ fn perturbed_side(a: DVec2, b: DVec2, p: DVec2) -> Sign {
     Sign::Zero
 }
 
-/// The winding number of a closed triangulated surface around `p`, counted
+/// The winding number of a closed triangulated surface around each point `p`, counted
 /// along the ray `p + t·x̂`, `t > 0`: `1` inside an outward shell, `-1`
 /// inside an inward one, `0` outside. Exact, with ties of the ray against
 /// edges and vertices broken by symbolic perturbation of `p` by `(0, ε, ε²)`.
 /// `None` when `p` lies on a face the ray crosses; a point on a face parallel
-/// to the ray is counted as the perturbed point.
+/// to the ray is counted as the perturbed point. One answer per point of
+/// `points`, in one pass over the triangles (each triangle's box made once
+/// for all of them).
 #[must_use]
-pub(crate) fn winding_number(triangles: &[[DVec3; 3]], p: DVec3) -> Option<i64> {
+pub(crate) fn winding_numbers(triangles: &[[DVec3; 3]], points: &[DVec3]) -> Vec<Option<i64>> {
     let yz = |v: DVec3| DVec2::new(v.y, v.z);
-    let q = yz(p);
-    let mut winding = 0;
+    let mut windings: Vec<Option<i64>> = vec![Some(0); points.len()];
     for &[a, b, c] in triangles {
         // Cheap rejection on the projected box.
         let (lo_y, hi_y) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
         let (lo_z, hi_z) = (a.z.min(b.z).min(c.z), a.z.max(b.z).max(c.z));
-        if p.y < lo_y || p.y > hi_y || p.z < lo_z || p.z > hi_z || p.x > a.x.max(b.x).max(c.x) {
-            continue;
-        }
-        let (a2, b2, c2) = (yz(a), yz(b), yz(c));
-        let s = perturbed_side(a2, b2, q);
-        if s == Sign::Zero || perturbed_side(b2, c2, q) != s || perturbed_side(c2, a2, q) != s {
-            continue;
-        }
-        // s is the sign of the triangle's normal along x. The crossing is
-        // ahead of p when p is behind the plane as seen along the normal.
-        match orient3d(a, b, c, p) {
-            Sign::Zero => return None,
-            side if side == -s => winding += s.as_i32() as i64,
-            _ => {}
+        let hi_x = a.x.max(b.x).max(c.x);
+        for (p, winding) in points.iter().zip(&mut windings) {
+            if p.y < lo_y || p.y > hi_y || p.z < lo_z || p.z > hi_z || p.x > hi_x {
+                continue;
+            }
+            let Some(w) = winding else {
+                continue;
+            };
+            let (a2, b2, c2, q) = (yz(a), yz(b), yz(c), yz(*p));
+            let s = perturbed_side(a2, b2, q);
+            if s == Sign::Zero || perturbed_side(b2, c2, q) != s || perturbed_side(c2, a2, q) != s {
+                continue;
+            }
+            // s is the sign of the triangle's normal along x. The crossing
+            // is ahead of p when p is behind the plane as seen along the
+            // normal.
+            match orient3d(a, b, c, *p) {
+                Sign::Zero => *winding = None,
+                side if side == -s => *w += s.as_i32() as i64,
+                _ => {}
+            }
         }
     }
-    Some(winding)
+    windings
 }
 
 #[cfg(test)]
@@ -216,20 +224,27 @@ mod tests {
         assert_eq!(volume_sign(&c), Sign::Positive);
         assert_eq!(volume_sign(&cube(DVec3::ZERO, 1.0, false)), Sign::Negative);
         let c = cube(DVec3::ZERO, 1.0, true);
-        assert_eq!(winding_number(&c, DVec3::ZERO), Some(1));
-        // On a face the ray crosses: on the surface.
-        assert_eq!(winding_number(&c, DVec3::new(-1., 0.5, 0.25)), None);
-        // On a face parallel to the ray: the perturbed point (y + ε) is in.
-        assert_eq!(winding_number(&c, DVec3::new(0., -1., 0.)), Some(1));
-        // Rays through edges and vertices: perturbation keeps the count exact.
-        assert_eq!(winding_number(&c, DVec3::new(-5., 1., 1.)), Some(0));
-        assert_eq!(winding_number(&c, DVec3::new(-5., 0., 0.)), Some(0));
-        assert_eq!(winding_number(&c, DVec3::new(0.5, 0., 0.)), Some(1));
-        assert_eq!(winding_number(&c, DVec3::new(5., 0., 0.)), Some(0));
+        let points = [
+            DVec3::ZERO,
+            // On a face the ray crosses: on the surface.
+            DVec3::new(-1., 0.5, 0.25),
+            // On a face parallel to the ray: the perturbed point (y + ε) is in.
+            DVec3::new(0., -1., 0.),
+            // Rays through edges and vertices: perturbation keeps the count
+            // exact.
+            DVec3::new(-5., 1., 1.),
+            DVec3::new(-5., 0., 0.),
+            DVec3::new(0.5, 0., 0.),
+            DVec3::new(5., 0., 0.),
+        ];
+        assert_eq!(
+            winding_numbers(&c, &points),
+            [Some(1), None, Some(1), Some(0), Some(0), Some(1), Some(0)]
+        );
         let inward = cube(DVec3::ZERO, 1.0, false);
         assert_eq!(
-            winding_number(&inward, DVec3::new(0.25, 0.5, -0.5)),
-            Some(-1)
+            winding_numbers(&inward, &[DVec3::new(0.25, 0.5, -0.5)]),
+            [Some(-1)]
         );
     }
 

@@ -5,7 +5,7 @@
 use glam::DVec3;
 
 use super::context::Context;
-use super::exact::{VolumeFilter, volume_sign, winding_number};
+use super::exact::{VolumeFilter, volume_sign, winding_numbers};
 use super::report::ShellSummary;
 use crate::geom::{Aabb, Sign};
 
@@ -246,15 +246,12 @@ fn nest(shells: &mut [ShellSummary], triangles: &[Vec<[DVec3; 3]>]) {
             // Inside when every decisive probe is inside, outside when every
             // one is outside; mixed answers mean the shells cross (reported
             // as self-intersection) and leave the depth undecided.
-            let answers: Vec<bool> = probes
-                .iter()
-                .filter_map(|&p| {
-                    if boxes[b].contains(p) {
-                        winding_number(&triangles[b], p).map(|w| w != 0)
-                    } else {
-                        Some(false)
-                    }
-                })
+            let (in_box, off_box): (Vec<DVec3>, Vec<DVec3>) =
+                probes.iter().partition(|&&p| boxes[b].contains(p));
+            let answers: Vec<bool> = winding_numbers(&triangles[b], &in_box)
+                .into_iter()
+                .filter_map(|w| w.map(|w| w != 0))
+                .chain(off_box.iter().map(|_| false))
                 .collect();
             if answers.is_empty() || answers.iter().any(|&x| x != answers[0]) {
                 depth = None;
