@@ -315,4 +315,38 @@ mod tests {
         assert!((bounds.min.x + 0.5f64.sqrt()).abs() < 1e-12);
         assert!(Transformed::try_new(b, DAffine3::from_scale(DVec3::new(1., 0., 1.))).is_err());
     }
+
+    #[test]
+    fn a_moved_mesh_is_exact_in_the_world_or_refused() {
+        let cube = crate::mesh::builders::cuboid(DVec3::ZERO, DVec3::splat(2.0)).unwrap();
+        let mesh: Arc<dyn Primitive> = Arc::new(Polyhedron::try_new(cube).unwrap());
+        let turn = DAffine3::from_rotation_translation(
+            glam::DQuat::from_rotation_z(0.5),
+            DVec3::new(0.25, 0.0, 0.0),
+        );
+        let moved = Transformed::try_new(mesh.clone(), turn).unwrap();
+        assert!(moved.is_polyhedral());
+        // Its crossings carry their triangle's plane in world coordinates:
+        // the moved corners, rounded once.
+        let mut crossings = Vec::new();
+        let ray = Ray::new(DVec3::new(0.5, 1.0, -5.0), DVec3::Z);
+        assert!(!moved.intersect_ray(&ray, &mut crossings, &mut Stats::default()));
+        assert_eq!(crossings.len(), 2);
+        let Some(CrossingPlane::Triangle(corners)) = moved.crossing_plane(crossings[0].surface)
+        else {
+            panic!("a flat crossing")
+        };
+        assert!(corners.iter().all(|c| c.z == 0.0));
+        assert_eq!(
+            moved.tessellate(1e-3, &Aabb::EMPTY).unwrap().vertex_count(),
+            8
+        );
+        // A map under which a corner leaves the range of f64 (determinant 1,
+        // but x = 2 is sent to 2e308) is refused by name.
+        let squeeze = DAffine3::from_scale(DVec3::new(1e308, 1.0, 1e-308));
+        assert!(matches!(
+            Transformed::try_new(mesh, squeeze),
+            Err(TransformError::Moved { kind: "mesh", .. })
+        ));
+    }
 }
