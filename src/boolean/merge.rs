@@ -63,22 +63,8 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
         })
         .map(|(f, _)| f)
         .collect();
-    let mut coplanar_cache: HashMap<(FaceOrigin, FaceOrigin), bool> = HashMap::default();
-    // The answer for two origins is the first one found (the pieces of one
-    // operand face may lie in different triangles of it, turned over or
-    // not), except where both pieces are the only ones of their origins:
-    // then every pair of those origins is this pair, and the answer is
-    // found again instead of looked up.
-    let mut mergeable = |l: &PieceSource, r: &PieceSource| {
-        l.origin == r.origin
-            || if l.alone && r.alone {
-                same_plane_same_way(&l.plane, &r.plane)
-            } else {
-                *coplanar_cache
-                    .entry((l.origin, r.origin))
-                    .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane))
-            }
-    };
+    let mut merge_rule = MergeRule::default();
+    let mut mergeable = |l: &PieceSource, r: &PieceSource| merge_rule.allows(l, r);
     let mut touching = touching_vertices(solid);
     touching.retain(|&v| {
         let creases = solid
@@ -141,6 +127,41 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
     changed
 }
 
+/// Whether two neighbouring pieces may merge: from one operand face, or
+/// lying in operand triangles of one plane that face one way. The answer
+/// for two wound operand triangles is found once and kept (neighbouring
+/// pieces of two cut triangles ask again and again, and coplanar ones
+/// reach `orient3d`'s exact stage); pieces that are the only ones of
+/// their origins are answered directly (their pair is asked once).
+#[derive(Default)]
+struct MergeRule {
+    coplanar: HashMap<([u64; 9], [u64; 9]), bool>,
+}
+
+impl MergeRule {
+    fn allows(&mut self, l: &PieceSource, r: &PieceSource) -> bool {
+        if l.origin == r.origin {
+            return true;
+        }
+        if l.alone && r.alone {
+            return same_plane_same_way(&l.plane, &r.plane);
+        }
+        let key = |plane: &[DVec3; 3]| {
+            let mut bits = [0u64; 9];
+            for (k, p) in plane.iter().enumerate() {
+                for axis in 0..3 {
+                    bits[3 * k + axis] = p[axis].to_bits();
+                }
+            }
+            bits
+        };
+        *self
+            .coplanar
+            .entry((key(&l.plane), key(&r.plane)))
+            .or_insert_with(|| same_plane_same_way(&l.plane, &r.plane))
+    }
+}
+
 /// The vertices that share their position with another vertex.
 fn touching_vertices(solid: &Solid) -> HashSet<VertexId> {
     // −0 and +0 are one position.
@@ -179,4 +200,50 @@ fn same_plane_same_way(a: &[DVec3; 3], b: &[DVec3; 3]) -> bool {
         glam::DVec2::new(p[u], p[v])
     };
     crate::geom::orient2d(flat(b[0]), flat(b[1]), flat(b[2])) == facing
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::builders;
+
+    #[test]
+    fn the_rule_answers_each_pair_of_operand_triangles_not_each_pair_of_faces() {
+        // Two faces of a cube as the origins (which faces does not matter,
+        // only that they are two).
+        let cube = builders::cube();
+        let faces: Vec<FaceId> = cube.faces().map(|(f, _)| f).collect();
+        let source = |face: FaceId, plane: [DVec3; 3]| PieceSource {
+            origin: FaceOrigin { operand: 0, face },
+            plane,
+            changed: true,
+            alone: false,
+        };
+        let flat = |z: f64, x: f64| {
+            [
+                DVec3::new(x, 0.0, z),
+                DVec3::new(x + 1.0, 0.0, z),
+                DVec3::new(x, 1.0, z),
+            ]
+        };
+        let mut rule = MergeRule::default();
+        // Pieces of two faces in one plane, facing one way: they merge.
+        let a = source(faces[0], flat(0.0, 0.0));
+        let b = source(faces[1], flat(0.0, 1.0));
+        assert!(rule.allows(&a, &b));
+        // Another piece of the second face lies in another of its
+        // triangles, turned over (a piece kept the other way) or in
+        // another plane: the first answer must not stand for it.
+        let turned = source(
+            faces[1],
+            [flat(0.0, 1.0)[0], flat(0.0, 1.0)[2], flat(0.0, 1.0)[1]],
+        );
+        assert!(!rule.allows(&a, &turned));
+        let lifted = source(faces[1], flat(1e-9, 1.0));
+        assert!(!rule.allows(&a, &lifted));
+        // Asked again, the same answers.
+        assert!(rule.allows(&a, &b) && !rule.allows(&a, &turned));
+        // One origin always merges.
+        assert!(rule.allows(&b, &lifted));
+    }
 }
