@@ -448,23 +448,30 @@ impl<'a> Context<'a> {
 
     fn build_incidence(&mut self) {
         let n = self.soup.positions.len();
-        let (offsets, list) = csr(
-            n,
-            (0..self.face_count())
-                .filter(|&f| self.in_topology[f])
-                .flat_map(|f| self.corners(f).iter().map(move |&v| (v, f as u32))),
+        // The two tables are independent: built side by side.
+        let ((face_offsets, face_list), (edge_offsets, edge_list)) = rayon::join(
+            || {
+                csr(
+                    n,
+                    (0..self.face_count())
+                        .filter(|&f| self.in_topology[f])
+                        .flat_map(|f| self.corners(f).iter().map(move |&v| (v, f as u32))),
+                )
+            },
+            || {
+                csr(
+                    n,
+                    self.edges
+                        .iter()
+                        .enumerate()
+                        .flat_map(|(e, r)| [(r.low(), e as u32), (r.high(), e as u32)]),
+                )
+            },
         );
-        self.vertex_face_offsets = offsets;
-        self.vertex_face_list = list;
-        let (offsets, list) = csr(
-            n,
-            self.edges
-                .iter()
-                .enumerate()
-                .flat_map(|(e, r)| [(r.low(), e as u32), (r.high(), e as u32)]),
-        );
-        self.vertex_edge_offsets = offsets;
-        self.vertex_edge_list = list;
+        self.vertex_face_offsets = face_offsets;
+        self.vertex_face_list = face_list;
+        self.vertex_edge_offsets = edge_offsets;
+        self.vertex_edge_list = edge_list;
     }
 }
 
