@@ -57,32 +57,29 @@ pub(crate) fn keep_pieces(
     partners: &HashMap<u32, Vec<Partner>>,
     expression: &Expression,
 ) -> Result<Vec<Option<bool>>, BooleanError> {
-    let mut sets = DisjointSets::new(pieces.len());
-    let mut by_edge: HashMap<(u32, u32), u32> =
-        HashMap::with_capacity_and_hasher(pieces.len() * 2, Default::default());
-    for (i, piece) in pieces.iter().enumerate() {
-        for k in 0..3 {
-            let (u, v) = (piece.corners[k], piece.corners[(k + 1) % 3]);
-            let key = (u.min(v), u.max(v));
-            if constrained.contains(&key) {
-                continue;
-            }
-            if let Some(j) = by_edge.remove(&key) {
-                sets.union(i, j as usize);
-            } else {
-                by_edge.insert(key, i as u32);
-            }
-        }
+    let mut sets = patches_of(table.canonical.len(), pieces, constrained);
+    // Each patch's pieces in piece order, patches by their root: a
+    // counting sort by root.
+    let roots: Vec<usize> = (0..pieces.len()).map(|i| sets.find(i)).collect();
+    let mut start = vec![0usize; pieces.len() + 1];
+    for &r in &roots {
+        start[r + 1] += 1;
     }
-    let mut patches: HashMap<usize, Vec<u32>> = HashMap::default();
-    for i in 0..pieces.len() {
-        patches.entry(sets.find(i)).or_default().push(i as u32);
+    for r in 0..pieces.len() {
+        start[r + 1] += start[r];
+    }
+    let mut fill = start.clone();
+    let mut by_root = vec![0u32; pieces.len()];
+    for (i, &r) in roots.iter().enumerate() {
+        by_root[fill[r]] = i as u32;
+        fill[r] += 1;
     }
     let mut decisions = vec![None; pieces.len()];
-    let mut roots: Vec<usize> = patches.keys().copied().collect();
-    roots.sort_unstable();
-    for root in roots {
-        let members = &patches[&root];
+    for root in 0..pieces.len() {
+        let members = &by_root[start[root]..start[root + 1]];
+        if members.is_empty() {
+            continue;
+        }
         let patch = Patch {
             table,
             operands,
@@ -97,6 +94,51 @@ pub(crate) fn keep_pieces(
         }
     }
     Ok(decisions)
+}
+
+/// The pieces joined across their edges that are not on a segment in
+/// `constrained`, as disjoint sets. The uses of an edge are paired in the
+/// order of the pieces (first with second, third with fourth: sheets that
+/// touch along an edge), found by bucketing each edge by its smaller end
+/// (`points` canonical points), not by hashing every edge.
+fn patches_of(points: usize, pieces: &[Piece], constrained: &HashSet<(u32, u32)>) -> DisjointSets {
+    let edges = || {
+        pieces.iter().enumerate().flat_map(|(i, piece)| {
+            (0..3).map(move |k| {
+                let (u, v) = (piece.corners[k], piece.corners[(k + 1) % 3]);
+                (u.min(v), u.max(v), i as u32)
+            })
+        })
+    };
+    let mut start = vec![0usize; points + 1];
+    for (lo, _, _) in edges() {
+        start[lo as usize + 1] += 1;
+    }
+    for p in 0..points {
+        start[p + 1] += start[p];
+    }
+    let mut fill = start.clone();
+    // (other end, piece), each bucket in piece order.
+    let mut uses = vec![(0u32, 0u32); start[points]];
+    for (lo, hi, i) in edges() {
+        uses[fill[lo as usize]] = (hi, i);
+        fill[lo as usize] += 1;
+    }
+    let mut sets = DisjointSets::new(pieces.len());
+    for lo in 0..points {
+        let bucket = &mut uses[start[lo]..start[lo + 1]];
+        // Stable: the uses of one edge stay in piece order.
+        bucket.sort_by_key(|&(hi, _)| hi);
+        for run in bucket.chunk_by(|a, b| a.0 == b.0) {
+            if constrained.contains(&(lo as u32, run[0].0)) {
+                continue;
+            }
+            for pair in run.chunks_exact(2) {
+                sets.union(pair[0].1 as usize, pair[1].1 as usize);
+            }
+        }
+    }
+    sets
 }
 
 /// One patch of an operand's pieces, with what labelling it needs.
@@ -224,4 +266,40 @@ fn ray_parity(p: &impl HasHomogeneous, other: &Prepared) -> Option<bool> {
         XRayCrossing::Misses => {}
     });
     (!on_surface).then_some(crossings % 2 == 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn patches_pair_an_edge_s_uses_in_piece_order_and_stop_at_segments() {
+        let piece = |corners: [u32; 3]| Piece {
+            corners,
+            triangle: 0,
+        };
+        // Four pieces on edge 0–1 (two sheets touching along it), and a
+        // fifth joined to the first across edge 1–2.
+        let pieces = [
+            piece([0, 1, 2]),
+            piece([1, 0, 3]),
+            piece([0, 1, 4]),
+            piece([1, 0, 5]),
+            piece([2, 1, 6]),
+        ];
+        let mut sets = patches_of(7, &pieces, &HashSet::default());
+        let root: Vec<usize> = (0..5).map(|i| sets.find(i)).collect();
+        assert_eq!(root[0], root[1]);
+        assert_eq!(root[2], root[3]);
+        assert_ne!(root[0], root[2]);
+        assert_eq!(root[0], root[4]);
+        // Edge 0–1 on a segment: only the join across 1–2 is left.
+        let constrained: HashSet<(u32, u32)> = [(0, 1)].into_iter().collect();
+        let mut sets = patches_of(7, &pieces, &constrained);
+        let root: Vec<usize> = (0..5).map(|i| sets.find(i)).collect();
+        assert_eq!(root[0], root[4]);
+        for (i, j) in [(0, 1), (1, 2), (2, 3), (0, 2)] {
+            assert_ne!(root[i], root[j], "{i} {j}");
+        }
+    }
 }
