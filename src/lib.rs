@@ -30,6 +30,7 @@
 
 pub mod boolean;
 pub mod cells;
+mod compressed_rows;
 pub mod csg;
 pub mod curve;
 mod disjoint_sets;

@@ -7,6 +7,7 @@ use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
 
+use crate::compressed_rows::compressed_rows;
 use crate::geom::implicit::rounded_point;
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
@@ -157,22 +158,13 @@ fn with_twin_corners(corners: &[Option<[usize; 3]>], point_count: usize) -> Vec<
             })
         })
         .collect();
-    let mut offsets = vec![0usize; point_count + 1];
-    for c in sorted.iter().flatten() {
-        offsets[c[0] + 1] += 1;
-    }
-    for k in 0..point_count {
-        offsets[k + 1] += offsets[k];
-    }
-    let mut fill = offsets.clone();
-    let mut by_smallest = vec![0usize; offsets[point_count]];
-    for (i, c) in sorted.iter().enumerate() {
-        if let Some(c) = c {
-            by_smallest[fill[c[0]]] = i;
-            fill[c[0]] += 1;
-        }
-    }
-    drop(fill);
+    let (offsets, by_smallest) = compressed_rows(
+        point_count,
+        sorted
+            .iter()
+            .enumerate()
+            .filter_map(|(i, c)| c.map(|c| (c[0], i))),
+    );
     let mut twins: Vec<usize> = offsets
         .par_windows(2)
         .flat_map_iter(|range| {

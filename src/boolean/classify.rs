@@ -16,6 +16,7 @@ use smallvec::SmallVec;
 
 use glam::DVec3;
 
+use crate::compressed_rows::compressed_rows;
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::implicit::{
     Centroid, HasHomogeneous, ImplicitPoint, XRayCrossing, enclosing_box, orient2d_projected,
@@ -58,22 +59,12 @@ pub(crate) fn keep_pieces(
     expression: &Expression,
 ) -> Result<Vec<Option<bool>>, BooleanError> {
     let mut sets = patches_of(table.canonical.len(), pieces, constrained);
-    // Each patch's pieces in piece order, patches by their root: a
-    // counting sort by root.
+    // Each patch's pieces in piece order, patches by their root.
     let roots: Vec<usize> = (0..pieces.len()).map(|i| sets.find(i)).collect();
-    let mut start = vec![0usize; pieces.len() + 1];
-    for &r in &roots {
-        start[r + 1] += 1;
-    }
-    for r in 0..pieces.len() {
-        start[r + 1] += start[r];
-    }
-    let mut fill = start.clone();
-    let mut by_root = vec![0u32; pieces.len()];
-    for (i, &r) in roots.iter().enumerate() {
-        by_root[fill[r]] = i as u32;
-        fill[r] += 1;
-    }
+    let (start, by_root) = compressed_rows(
+        pieces.len(),
+        roots.iter().enumerate().map(|(i, &r)| (r, i as u32)),
+    );
     let mut decisions = vec![None; pieces.len()];
     for root in 0..pieces.len() {
         let members = &by_root[start[root]..start[root + 1]];
@@ -102,28 +93,16 @@ pub(crate) fn keep_pieces(
 /// touch along an edge), found by bucketing each edge by its smaller end
 /// (`points` canonical points), not by hashing every edge.
 fn patches_of(points: usize, pieces: &[Piece], constrained: &HashSet<(u32, u32)>) -> DisjointSets {
-    let edges = || {
+    // (other end, piece) by smaller end, each bucket in piece order.
+    let (start, mut uses) = compressed_rows(
+        points,
         pieces.iter().enumerate().flat_map(|(i, piece)| {
             (0..3).map(move |k| {
                 let (u, v) = (piece.corners[k], piece.corners[(k + 1) % 3]);
-                (u.min(v), u.max(v), i as u32)
+                (u.min(v) as usize, (u.max(v), i as u32))
             })
-        })
-    };
-    let mut start = vec![0usize; points + 1];
-    for (lo, _, _) in edges() {
-        start[lo as usize + 1] += 1;
-    }
-    for p in 0..points {
-        start[p + 1] += start[p];
-    }
-    let mut fill = start.clone();
-    // (other end, piece), each bucket in piece order.
-    let mut uses = vec![(0u32, 0u32); start[points]];
-    for (lo, hi, i) in edges() {
-        uses[fill[lo as usize]] = (hi, i);
-        fill[lo as usize] += 1;
-    }
+        }),
+    );
     let mut sets = DisjointSets::new(pieces.len());
     for lo in 0..points {
         let bucket = &mut uses[start[lo]..start[lo + 1]];

@@ -128,9 +128,9 @@ pub(crate) fn half_space(
 
 /// `solid` moved by `map` (vertices rounded once), turned inside out back
 /// again when the map mirrors.
-pub(crate) fn mapped(solid: &Solid, map: DAffine3) -> Result<Solid, TessellateError> {
-    if let Some(moved) = solid.moved(map) {
-        return Ok(moved);
+pub(crate) fn mapped(mut solid: Solid, map: DAffine3) -> Result<Solid, TessellateError> {
+    if solid.move_by(map) {
+        return Ok(solid);
     }
     let mut soup = solid.to_soup();
     for p in &mut soup.positions {
@@ -187,7 +187,7 @@ mod tests {
         let clip = Aabb::from_points([DVec3::splat(-1.0), DVec3::splat(1.0)]);
         let h = half_space(DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0), &clip).unwrap();
         assert!(h.volume() > 0.0);
-        let mirrored = mapped(&c, DAffine3::from_scale(DVec3::new(-1.0, 1.0, 1.0))).unwrap();
+        let mirrored = mapped(c.clone(), DAffine3::from_scale(DVec3::new(-1.0, 1.0, 1.0))).unwrap();
         assert!((mirrored.volume() - c.volume()).abs() < 1e-12);
     }
 }

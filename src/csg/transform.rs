@@ -131,7 +131,7 @@ fn moved_polyhedron(
     let local = child
         .tessellate(DEFAULT_TOLERANCE, &Aabb::EMPTY)
         .map_err(|e| failed(e.to_string()))?;
-    let solid = mapped(&local, to_world).map_err(|e| failed(e.to_string()))?;
+    let solid = mapped(local, to_world).map_err(|e| failed(e.to_string()))?;
     Polyhedron::try_new(solid).map_err(|e| failed(e.to_string()))
 }
 
@@ -272,7 +272,7 @@ impl Primitive for Transformed {
             ))
         }));
         let child = self.child.tessellate(tolerance, &local)?;
-        mapped(&child, self.to_world)
+        mapped(child, self.to_world)
     }
 }
 

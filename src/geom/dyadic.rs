@@ -122,7 +122,7 @@ impl Dyadic {
         // A sticky bit for whatever the 64 bits leave out (the division's
         // remainder, the dropped bits), so that converting them rounds to
         // nearest as the whole quotient would: 64 > 53 + 2 bits.
-        let inexact = quotient.bits() > 64 && quotient.trailing_zeros().unwrap_or(0) < drop
+        let inexact = quotient.trailing_zeros().is_some_and(|zeros| zeros < drop)
             || &quotient * den != shifted;
         if inexact {
             top |= 1;

@@ -6,29 +6,33 @@ use glam::DAffine3;
 use super::Solid;
 
 impl Solid {
-    /// The solid with every vertex moved by `map` (rounded to `f64`), its
-    /// topology and attributes as they are and each face's plane fitted
-    /// again to its moved outer loop. `None` when the map mirrors (the
-    /// faces would face inward: build the moved solid from its soup with
-    /// the polygons turned instead) or a moved position is not finite.
+    /// Moves every vertex by `map` (rounded to `f64`) in place, keeping
+    /// the topology and attributes and fitting each face's plane again to
+    /// its moved outer loop, and returns `true`. Returns `false` and
+    /// changes nothing when the map mirrors (the faces would face inward:
+    /// build the moved solid from its soup with the polygons turned
+    /// instead) or a moved position would not be finite.
     #[must_use]
-    pub fn moved(&self, map: DAffine3) -> Option<Solid> {
+    pub fn move_by(&mut self, map: DAffine3) -> bool {
         let determinant = map.matrix3.determinant();
         if determinant.is_nan() || determinant <= 0.0 {
-            return None;
+            return false;
         }
-        let mut moved = self.clone();
-        for vertex in moved.vertices.values_mut() {
+        let finite = self
+            .vertices
+            .values()
+            .all(|vertex| map.transform_point3(vertex.position).is_finite());
+        if !finite {
+            return false;
+        }
+        for vertex in self.vertices.values_mut() {
             vertex.position = map.transform_point3(vertex.position);
-            if !vertex.position.is_finite() {
-                return None;
-            }
         }
-        let faces: Vec<_> = moved.faces.keys().collect();
+        let faces: Vec<_> = self.faces.keys().collect();
         for face in faces {
-            moved.refit_plane(face);
+            self.refit_plane(face);
         }
-        Some(moved)
+        true
     }
 }
 
@@ -47,7 +51,8 @@ mod tests {
             DQuat::from_rotation_z(0.3),
             DVec3::new(5.0, -1.0, 0.5),
         );
-        let moved = cube.moved(map).unwrap();
+        let mut moved = cube.clone();
+        assert!(moved.move_by(map));
         assert_eq!(
             (moved.vertex_count(), moved.edge_count(), moved.face_count()),
             (cube.vertex_count(), cube.edge_count(), cube.face_count())
@@ -59,14 +64,15 @@ mod tests {
                 assert!(plane.signed_distance(moved.position(v)).abs() < 1e-12);
             }
         }
-        // Mirrors and overflowing maps are refused.
-        assert!(
-            cube.moved(DAffine3::from_scale(DVec3::new(-1.0, 1.0, 1.0)))
-                .is_none()
-        );
-        assert!(
-            cube.moved(DAffine3::from_scale(DVec3::splat(1e308)))
-                .is_none()
+        // Mirrors and overflowing maps are refused, the solid left as it
+        // was.
+        let mut kept = cube.clone();
+        assert!(!kept.move_by(DAffine3::from_scale(DVec3::new(-1.0, 1.0, 1.0))));
+        assert!(!kept.move_by(DAffine3::from_scale(DVec3::splat(1e308))));
+        assert_eq!(kept.volume(), cube.volume());
+        assert_eq!(
+            kept.position(kept.vertices().next().unwrap().0),
+            cube.position(cube.vertices().next().unwrap().0)
         );
     }
 }

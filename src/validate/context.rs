@@ -8,6 +8,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::compressed_rows::compressed_rows;
 use crate::geom::polygon::{Projection, find_self_intersection};
 use crate::geom::{Tolerance, collinear3d};
 use crate::mesh::PolygonSoup;
@@ -451,7 +452,7 @@ impl<'a> Context<'a> {
         // The two tables are independent: built side by side.
         let ((face_offsets, face_list), (edge_offsets, edge_list)) = rayon::join(
             || {
-                csr(
+                compressed_rows(
                     n,
                     (0..self.face_count())
                         .filter(|&f| self.in_topology[f])
@@ -459,7 +460,7 @@ impl<'a> Context<'a> {
                 )
             },
             || {
-                csr(
+                compressed_rows(
                     n,
                     self.edges
                         .iter()
@@ -473,23 +474,4 @@ impl<'a> Context<'a> {
         self.vertex_edge_offsets = edge_offsets;
         self.vertex_edge_list = edge_list;
     }
-}
-
-/// Compressed rows: for each key in `0..n`, the values paired with it, in the
-/// order given.
-fn csr(n: usize, pairs: impl Iterator<Item = (usize, u32)> + Clone) -> (Vec<usize>, Vec<u32>) {
-    let mut offsets = vec![0usize; n + 1];
-    for (k, _) in pairs.clone() {
-        offsets[k + 1] += 1;
-    }
-    for i in 0..n {
-        offsets[i + 1] += offsets[i];
-    }
-    let mut fill = offsets.clone();
-    let mut list = vec![0u32; offsets[n]];
-    for (k, v) in pairs {
-        list[fill[k]] = v;
-        fill[k] += 1;
-    }
-    (offsets, list)
 }

@@ -266,12 +266,9 @@ mod tests {
         }
         assert!(decided > 1990, "{decided}");
         // A zero numerator is zero; a zero weight is never a quotient.
-        assert_eq!(rounded_quotient(&dd0(), &DoubleDouble::of(3.0)), Some(0.0));
-        assert_eq!(rounded_quotient(&DoubleDouble::of(1.0), &dd0()), None);
-    }
-
-    fn dd0() -> DoubleDouble {
-        DoubleDouble::of(0.0)
+        let zero = DoubleDouble::of(0.0);
+        assert_eq!(rounded_quotient(&zero, &DoubleDouble::of(3.0)), Some(0.0));
+        assert_eq!(rounded_quotient(&DoubleDouble::of(1.0), &zero), None);
     }
 
     #[test]
