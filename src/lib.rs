@@ -42,6 +42,7 @@ pub mod mesh;
 pub mod query;
 pub mod render;
 pub mod scene;
+pub mod shape;
 pub mod spatial;
 #[cfg(test)]
 mod test_rng;

@@ -549,7 +549,7 @@ const CROSS_SECTION_ROUNDING: f64 = 1e-7;
 #[test]
 fn revolves_and_extrusions_agree_with_manifold3d() {
     use wingedge::curve::BSpline;
-    use wingedge::mesh::{RevolveAxis, Segments, try_revolve, try_sweep};
+    use wingedge::shape::{RevolveAxis, Segments, try_revolve, try_sweep};
     for (profile, segments, theirs) in profile_cases("revolve", "segments") {
         let solid = try_revolve(
             &profile,

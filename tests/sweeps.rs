@@ -9,8 +9,9 @@ use std::f64::consts::{FRAC_1_SQRT_2, PI, TAU};
 
 use glam::{DVec2, DVec3};
 use wingedge::curve::{BSpline, CurveError, KnotVector, MAX_SEGMENTS, Nurbs};
-use wingedge::mesh::{
-    Argument, MAX_VERTICES, RevolveAxis, Segments, Solid, SweepError, try_loft, try_revolve,
+use wingedge::mesh::Solid;
+use wingedge::shape::{
+    Argument, MAX_VERTICES, RevolveAxis, Segments, SweepError, try_loft, try_revolve,
     try_revolve_curve, try_sweep,
 };
 use wingedge::validate::{Options, Validity, validate_soup};
@@ -514,7 +515,7 @@ fn a_profile_with_holes_sweeps_to_a_bar_with_tunnels() {
         rectangle(-0.8, -0.2, -0.3, 0.3),
         rectangle(0.2, 0.8, -0.3, 0.3),
     ];
-    let solid = wingedge::mesh::try_sweep_with_holes(&outer, &holes, &path, 1e-3).unwrap();
+    let solid = wingedge::shape::try_sweep_with_holes(&outer, &holes, &path, 1e-3).unwrap();
     solid.check_consistency().unwrap();
     let report = wingedge::boolean::prove(&solid).expect("a valid solid");
     assert_eq!(report.validity, Validity::ValidSolid);
@@ -531,7 +532,7 @@ fn a_profile_with_holes_sweeps_to_a_bar_with_tunnels() {
         solid.volume()
     );
     // Bad holes name themselves.
-    let err = wingedge::mesh::try_sweep_with_holes(&outer, &[vec![DVec2::ZERO; 3]], &path, 1e-3)
+    let err = wingedge::shape::try_sweep_with_holes(&outer, &[vec![DVec2::ZERO; 3]], &path, 1e-3)
         .unwrap_err();
     assert!(
         matches!(

@@ -36,27 +36,18 @@
 
 mod accel;
 mod boundary_tiles;
-mod cell_gaps;
-mod convexity;
-mod fan;
 mod first_hit;
 mod line_face;
 mod point_batch;
-mod point_grid;
 mod point_in_convex;
 mod point_in_solid;
 mod ray_answers;
-mod ray_leaves;
 mod ray_scaling;
 mod ray_solid;
-mod ray_stream;
 mod ray_triangle;
 mod soup_winding;
 #[cfg(test)]
 mod stress_points;
-mod tri_packet;
-mod triangle_records;
-mod triangles_holding;
 mod winding;
 mod x_direction;
 mod x_ray;
@@ -64,7 +55,7 @@ mod x_ray_triangle;
 
 pub use accel::{Accel, AccelStats};
 pub use boundary_tiles::{BoundaryTiles, TileError};
-pub use convexity::NotConvex;
+pub use accel::NotConvex;
 pub use line_face::{LineFaceHit, LineKind, intersect_line_face};
 pub use point_in_solid::Method;
 pub use ray_answers::{Crossing, RayCrossings, Transition, TraversalStats};

@@ -10,7 +10,7 @@ use crate::geom::{Ray, Sign};
 use super::accel::Accel;
 use super::ray_answers::{Crossing, RayCrossings, TraversalStats};
 use super::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
-use super::ray_stream::WalkScratch;
+use super::accel::ray_stream::WalkScratch;
 use super::ray_triangle::TriHit;
 use super::{Containment, QueryError};
 
@@ -104,11 +104,10 @@ impl Accel {
         // time, interleaved (see `ray_stream`), so that one ray's cache
         // misses overlap the others' work; the answers are written straight
         // into the result. One pass over the rays and one over the answers:
-        // no separate checking pass, no initialisation of the result.
+        // no separate checking pass.
         let first_invalid = AtomicUsize::new(usize::MAX);
-        let mut out: Vec<Option<Crossing>> = Vec::with_capacity(rays.len());
-        out.spare_capacity_mut()[..rays.len()]
-            .par_chunks_mut(STREAM_CHUNK)
+        let mut out: Vec<Option<Crossing>> = vec![None; rays.len()];
+        out.par_chunks_mut(STREAM_CHUNK)
             .zip(rays.par_chunks(STREAM_CHUNK))
             .enumerate()
             .for_each_init(
@@ -124,9 +123,6 @@ impl Accel {
         if first_invalid != usize::MAX {
             return Err(invalid_ray(&rays[first_invalid], first_invalid));
         }
-        // SAFETY: every chunk of slots was written: no chunk held an invalid
-        // ray, and `first_hits_interleaved` writes each slot it is given.
-        unsafe { out.set_len(rays.len()) };
         Ok(out)
     }
 
@@ -224,13 +220,12 @@ pub(super) mod tests {
     use crate::mesh::builders;
     use crate::query::Transition;
     use crate::query::ray_scaling::unit_scaled;
-    use crate::query::ray_stream::{self, WalkScratch};
+    use crate::query::accel::ray_stream::{self, WalkScratch};
     use crate::spatial::bvh::ray_box::{INV_GROW, INV_SHRINK, ORIGIN_WIDEN, Row};
     use crate::spatial::bvh::{
         BoxFrame, Node8, NodeLanes, Portable, RayBox, WIDTH, for_each_lanes,
     };
     use glam::DVec3;
-    use std::mem::MaybeUninit;
 
     /// `count` rays (those valid) from anywhere in `[-2, 2]³` towards points
     /// within `spread` of the origin: around and through a unit solid
@@ -347,16 +342,10 @@ pub(super) mod tests {
     fn both_node_openers_give_the_same_hits() {
         let accel = Accel::new(&builders::sphere(24));
         let rays = rays_towards_the_centre(0x3C6E_F372_FE94_F82B, 4000, 0.5);
-        // Slots made initialised, so reading them back is sound whatever
-        // the walk wrote.
-        type Slots = [MaybeUninit<Option<Crossing>>];
-        let cast = |lanes: &dyn Fn(&[Ray], &mut Slots)| {
-            let mut out = vec![MaybeUninit::new(None); rays.len()];
+        let cast = |lanes: &dyn Fn(&[Ray], &mut [Option<Crossing>])| {
+            let mut out = vec![None; rays.len()];
             lanes(&rays, &mut out);
-            // SAFETY: every slot was initialised above.
-            out.into_iter()
-                .map(|o| unsafe { o.assume_init() })
-                .collect::<Vec<_>>()
+            out
         };
         let scratch = std::cell::RefCell::new(WalkScratch::new(rays.len()));
         let portable =

@@ -11,7 +11,7 @@ use slotmap::SlotMap;
 
 use crate::mesh::{BuildError, FaceId, PolygonSoup, RepeatedVertices, check_polygons};
 
-use super::fan::push_fan;
+use super::accel::fan::push_fan;
 use super::{Accel, AccelStats, Containment, Method, QueryError};
 
 /// Inside/outside by the generalized winding number of a polygon soup that

@@ -4,7 +4,7 @@
 use glam::{DVec2, DVec3};
 
 use super::Accel;
-use super::cell_gaps::Between;
+use super::accel::cell_gaps::Between;
 use super::x_direction::{RayChoice, XDirection};
 use super::x_ray_triangle::{Step, triangle_step};
 use crate::spatial::rounding::{f32_down, f32_up, f64_below};

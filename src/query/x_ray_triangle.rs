@@ -4,7 +4,7 @@
 
 use glam::{DVec2, DVec3};
 
-use super::triangle_records::YzTri;
+use super::accel::triangle_records::YzTri;
 use super::x_direction::XDirection;
 use crate::geom::polygon::coplanar_point_in_closed_triangle;
 use crate::geom::{Sign, UNDERFLOW, orient2d, orient3d};

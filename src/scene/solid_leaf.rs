@@ -27,8 +27,9 @@ use super::SceneError;
 use super::json::{bad, fields, number, positive, req, vec3, vec3_or};
 use crate::csg::{Polyhedron, Primitive};
 use crate::curve::{BSpline, KnotVector, Nurbs};
-use crate::mesh::{
-    RevolveAxis, Segments, Solid, SweepError, try_loft, try_revolve, try_revolve_curve,
+use crate::mesh::Solid;
+use crate::shape::{
+    RevolveAxis, Segments, SweepError, try_loft, try_revolve, try_revolve_curve,
     try_sweep_with_holes,
 };
 

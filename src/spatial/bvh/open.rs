@@ -67,11 +67,11 @@ pub(crate) trait NodeLanes: Copy {
 macro_rules! for_each_lanes {
     (|$lanes:ident| $body:block) => {{
         {
-            let $lanes = $crate::spatial::bvh::Portable;
+            let $lanes = $crate::spatial::bvh::open_portable::Portable;
             $body
         }
         #[cfg(target_arch = "x86_64")]
-        if let Some(avx2) = $crate::spatial::bvh::Avx2::detect() {
+        if let Some(avx2) = $crate::spatial::bvh::open_avx2::Avx2::detect() {
             {
                 let $lanes = avx2;
                 $body

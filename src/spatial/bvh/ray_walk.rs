@@ -6,11 +6,7 @@ use crate::geom::Ray;
 
 use super::node::LEAF;
 use super::open::NodeLanes;
-#[cfg(target_arch = "x86_64")]
-use super::open_avx2::Avx2;
-#[cfg(target_arch = "x86_64")]
-use super::open_avx512::Avx512;
-use super::open_portable::Portable;
+use super::open_widest::{LanesJob, with_widest_lanes};
 use super::ray_box::{Deferred, RayBox, limit_key};
 use super::tree::Bvh;
 
@@ -39,37 +35,16 @@ impl Bvh {
     /// (see [`RayBox`]): a leaf whose box the exact ray meets before the
     /// limit is always visited. `ray`'s direction must be scaled so that
     /// its largest component is in `[1, 2)`. Nodes are opened with AVX-512
-    /// or AVX2 where the processor has them (see `open`);
+    /// or AVX2 where the processor has them (see `open_widest`);
     /// the leaves visited, and their order, are the same either way.
     #[inline(always)]
     pub(crate) fn walk_ray(&self, ray: &Ray, t_max: f64, leaves: &mut impl RayLeaves) {
-        #[cfg(target_arch = "x86_64")]
-        if let Some(lanes) = Avx2::detect() {
-            if let Some(lanes) = lanes.avx512() {
-                // SAFETY: the AVX-512 features were detected.
-                unsafe { self.walk_ray_avx512(lanes, ray, t_max, leaves) };
-            } else {
-                // SAFETY: AVX2 was detected.
-                unsafe { self.walk_ray_avx2(lanes, ray, t_max, leaves) };
-            }
-            return;
-        }
-        self.walk_ray_with(Portable, ray, t_max, leaves);
-    }
-
-    /// [`Bvh::walk_ray`] compiled for AVX-512, with its node opener.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,popcnt,fma,bmi1,bmi2,lzcnt,avx512f,avx512vl,avx512bw,avx512dq")]
-    fn walk_ray_avx512(&self, lanes: Avx512, ray: &Ray, t_max: f64, leaves: &mut impl RayLeaves) {
-        self.walk_ray_with(lanes, ray, t_max, leaves);
-    }
-
-    /// [`Bvh::walk_ray`] compiled for AVX2, so that the node opening is
-    /// inlined into it.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,popcnt")]
-    fn walk_ray_avx2(&self, lanes: Avx2, ray: &Ray, t_max: f64, leaves: &mut impl RayLeaves) {
-        self.walk_ray_with(lanes, ray, t_max, leaves);
+        with_widest_lanes(WalkRay {
+            bvh: self,
+            ray,
+            t_max,
+            leaves,
+        });
     }
 
     /// [`Bvh::walk_ray`] with nodes opened by `lanes`.
@@ -130,6 +105,23 @@ impl Bvh {
         sp: usize,
     ) -> usize {
         lanes.open(rb, &self.nodes()[node as usize], limit, stack, sp)
+    }
+}
+
+/// One ray's walk, as work for [`with_widest_lanes`].
+struct WalkRay<'a, L> {
+    bvh: &'a Bvh,
+    ray: &'a Ray,
+    t_max: f64,
+    leaves: &'a mut L,
+}
+
+impl<L: RayLeaves> LanesJob for WalkRay<'_, L> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self, lanes: impl NodeLanes) {
+        self.bvh.walk_ray_with(lanes, self.ray, self.t_max, self.leaves);
     }
 }
 

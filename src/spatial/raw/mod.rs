@@ -8,8 +8,9 @@
 //!   faults).
 //!
 //! The AVX2 and AVX-512 node openers (`spatial::bvh::open_avx2`,
-//! `spatial::bvh::open_avx512`) hold the only other `unsafe` code of the
-//! spatial layer: their intrinsics are the node test itself.
+//! `spatial::bvh::open_avx512`, and `spatial::bvh::open_widest`, which
+//! calls them where the processor has them) hold the only other `unsafe`
+//! code of the crate: their intrinsics are the node test itself.
 
 pub(crate) mod huge_pages;
 pub(crate) mod lanes;

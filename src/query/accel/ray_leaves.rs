@@ -4,8 +4,8 @@
 use crate::geom::Ray;
 use crate::spatial::bvh::RayLeaves;
 
-use super::accel::Accel;
-use super::ray_answers::Tally;
+use super::Accel;
+use crate::query::ray_answers::Tally;
 use super::tri_packet::{PacketRay, TriPacket};
 
 /// The leaves of a ray walk as the ray queries see them: `visit(i, t)` is
@@ -47,8 +47,8 @@ impl Accel {
     /// [`TriPacket`] proves missed. `visit(i, t_max)` returns the new limit
     /// (a `t`). The leaves' filter drops triangles only when
     /// `filter_misses` (its proof is for a ray
-    /// [`unit_scaled`](super::ray_scaling::unit_scaled) without rounding,
-    /// [`scales_exactly`](super::ray_scaling::scales_exactly)); the box
+    /// [`unit_scaled`](crate::query::ray_scaling::unit_scaled) without rounding,
+    /// [`scales_exactly`](crate::query::ray_scaling::scales_exactly)); the box
     /// tests are conservative for the caller's ray either way (a component
     /// that rounds is below `2⁻¹⁰²²`, so its slab's entry beyond a box plane
     /// is past `2⁸⁷³` — beyond every finite `f32` limit — exactly or rounded
@@ -56,7 +56,7 @@ impl Accel {
     ///
     /// [`Bvh::walk_ray`]: crate::spatial::Bvh
     #[inline(always)]
-    pub(super) fn traverse(
+    pub(in crate::query) fn traverse(
         &self,
         ray: &Ray,
         filter_misses: bool,

@@ -33,7 +33,7 @@ use crate::curve::{Curve, CurveError};
 use crate::geom::polygon::find_self_intersection;
 use crate::geom::{Sign, orient2d, orient3d, triangulate};
 
-use super::{PolygonSoup, Solid};
+use crate::mesh::{PolygonSoup, Solid};
 
 pub(crate) use collision::check_collisions;
 

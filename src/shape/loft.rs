@@ -15,7 +15,7 @@ use glam::DVec3;
 use crate::geom::polygon::Projection;
 use crate::geom::{Aabb, Plane, Sign, Tolerance, orient3d, triangulate_3d};
 
-use super::Solid;
+use crate::mesh::Solid;
 use super::sweep::{
     Argument, SweepError, check_collisions, check_profile, check_stacking, stacked_soup,
 };

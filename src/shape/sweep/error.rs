@@ -6,7 +6,7 @@ use thiserror::Error;
 use crate::curve::CurveError;
 use crate::geom::TriangulateError;
 
-use super::super::BuildError;
+use crate::mesh::BuildError;
 
 /// Which argument of a sweep, revolve or loft an error is about.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -14,7 +14,7 @@ use glam::DVec3;
 
 use crate::geom::{Aabb, triangles_intersect};
 
-use super::super::PolygonSoup;
+use crate::mesh::PolygonSoup;
 use super::SweepError;
 
 /// One triangle of the stacked solid: soup indices and the section its

@@ -11,7 +11,7 @@ use crate::mesh::FaceId;
 
 impl Accel {
     /// The corners of triangle `i` of the accel's fan triangulation (the
-    /// index a [`Crossing`](super::Crossing) names) and the face it is part
+    /// index a [`Crossing`](crate::query::Crossing) names) and the face it is part
     /// of; `None` past the last triangle.
     pub(crate) fn triangle(&self, i: u32) -> Option<([DVec3; 3], FaceId)> {
         let i = i as usize;

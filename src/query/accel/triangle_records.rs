@@ -29,18 +29,18 @@ impl YzTri {
     }
 
     /// The largest `x` of the corners.
-    pub(super) fn max_x(&self) -> f64 {
+    pub(in crate::query) fn max_x(&self) -> f64 {
         self.x[0].max(self.x[1]).max(self.x[2])
     }
 
     /// The smallest `x` of the corners.
-    pub(super) fn min_x(&self) -> f64 {
+    pub(in crate::query) fn min_x(&self) -> f64 {
         self.x[0].min(self.x[1]).min(self.x[2])
     }
 }
 
 /// The record of the triangle with corners `t`.
-pub(super) fn yz_tri(t: &[DVec3; 3]) -> YzTri {
+pub(in crate::query) fn yz_tri(t: &[DVec3; 3]) -> YzTri {
     let p = |v: DVec3| DVec2::new(v.y, v.z);
     YzTri {
         x: [t[0].x, t[1].x, t[2].x],

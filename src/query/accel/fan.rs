@@ -7,7 +7,7 @@ use crate::mesh::{FaceId, Solid};
 
 /// The fan triangles of every face (apex at [`fan_apex`]) and their faces,
 /// in face order.
-pub(super) fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
+pub(in crate::query) fn fan_triangles(solid: &Solid) -> (Vec<[DVec3; 3]>, Vec<FaceId>) {
     let ids: Vec<FaceId> = solid.faces().map(|(id, _)| id).collect();
     // Each run of faces makes its triangles into two flat arrays, which are
     // then appended in order (a copy of a few large blocks, not one small
@@ -81,7 +81,7 @@ fn push_face_with_rings(
 /// Whatever the polygon's shape, its fan's boundary (inner diagonals
 /// cancel) is the polygon's own cycle of edges, so the fan has the
 /// polygon's winding number about every point off it.
-pub(super) fn push_fan(
+pub(in crate::query) fn push_fan(
     corners: &mut [DVec3],
     face: FaceId,
     tris: &mut Vec<[DVec3; 3]>,

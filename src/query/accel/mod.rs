@@ -2,6 +2,16 @@
 //! owner of the shared BVH, the fan triangles in its order, their leaf
 //! packets, and the lazily built point grid and convexity verdict.
 
+pub(super) mod fan;
+pub(super) mod triangle_records;
+pub(super) mod tri_packet;
+pub(super) mod point_grid;
+pub(super) mod cell_gaps;
+pub(super) mod ray_leaves;
+pub(super) mod ray_stream;
+pub(super) mod convexity;
+pub(super) mod triangles_holding;
+
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
@@ -12,12 +22,13 @@ use crate::mesh::{FaceId, Solid};
 use crate::spatial::Bvh;
 use crate::spatial::raw::huge_pages::HugeVec;
 
-use super::cell_gaps::CellGaps;
-use super::convexity::{NotConvex, check_convexity};
-use super::fan::fan_triangles;
-use super::point_grid::{YzGrid, build_grid};
-use super::tri_packet::TriPacket;
-use super::triangle_records::{YzTri, yz_tri};
+use self::cell_gaps::CellGaps;
+pub use self::convexity::NotConvex;
+use self::convexity::check_convexity;
+use self::fan::fan_triangles;
+use self::point_grid::{YzGrid, build_grid};
+use self::tri_packet::TriPacket;
+use self::triangle_records::{YzTri, yz_tri};
 
 /// How the accel was built: its size and the time it took.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,18 +81,18 @@ pub struct AccelStats {
 ///   signed count of a ray's crossings is the winding number.
 #[derive(Clone, Debug)]
 pub struct Accel {
-    pub(super) tris: HugeVec<YzTri>,
-    pub(super) tri_face: HugeVec<FaceId>,
+    pub(in crate::query) tris: HugeVec<YzTri>,
+    pub(in crate::query) tri_face: HugeVec<FaceId>,
     /// The shared BVH over the triangles, in `tris` order.
-    pub(super) bvh: Bvh,
+    pub(in crate::query) bvh: Bvh,
     /// One per BVH leaf, the leaf's triangles in `f32` for the rays' miss
     /// filter; the leaf numbers of `bvh` index it.
-    pub(super) packets: HugeVec<TriPacket>,
+    pub(in crate::query) packets: HugeVec<TriPacket>,
     grid: std::sync::OnceLock<(YzGrid, CellGaps, Duration)>,
-    pub(super) bounds: Aabb,
-    pub(super) boundary_edges: usize,
-    pub(super) convexity: std::sync::OnceLock<Result<(), NotConvex>>,
-    pub(super) stats: AccelStats,
+    pub(in crate::query) bounds: Aabb,
+    pub(in crate::query) boundary_edges: usize,
+    pub(in crate::query) convexity: std::sync::OnceLock<Result<(), NotConvex>>,
+    pub(in crate::query) stats: AccelStats,
 }
 
 impl Accel {
@@ -106,7 +117,7 @@ impl Accel {
     /// cancel (0: a closed surface, on which parity and the exact crossing
     /// count answer); `start` is when the build began, for
     /// [`AccelStats::build_time`].
-    pub(super) fn from_triangles(
+    pub(in crate::query) fn from_triangles(
         fan: Vec<[DVec3; 3]>,
         fan_face: Vec<FaceId>,
         boundary_edges: usize,
@@ -182,14 +193,14 @@ impl Accel {
     }
 
     /// The `yz` grid, built on first use.
-    pub(super) fn grid(&self) -> &YzGrid {
+    pub(in crate::query) fn grid(&self) -> &YzGrid {
         self.grid_and_gaps().0
     }
 
     /// The `yz` grid and, on a closed surface, its cells' gaps along `x`
     /// (none on an open one, where a gap's parity would not hold across
     /// its column), built on first use.
-    pub(super) fn grid_and_gaps(&self) -> (&YzGrid, &CellGaps) {
+    pub(in crate::query) fn grid_and_gaps(&self) -> (&YzGrid, &CellGaps) {
         let (grid, gaps, _) = self.grid.get_or_init(|| {
             let start = Instant::now();
             let grid = build_grid(&self.tris, self.bounds);
@@ -228,7 +239,7 @@ impl Accel {
             .get_or_init(|| check_convexity(&self.tris, &self.tri_face, self.boundary_edges))
     }
 
-    pub(super) fn require_closed(&self) -> Result<(), super::QueryError> {
+    pub(in crate::query) fn require_closed(&self) -> Result<(), super::QueryError> {
         if self.boundary_edges == 0 {
             Ok(())
         } else {

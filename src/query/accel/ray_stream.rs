@@ -11,20 +11,17 @@
 //! [`Accel::first_hit`] and decides each triangle with the same exact
 //! predicates, so the answers are the same.
 
-use std::mem::MaybeUninit;
-
 use crate::geom::Ray;
 
-#[cfg(target_arch = "x86_64")]
-use crate::spatial::bvh::{Avx2, Avx512};
 use crate::spatial::bvh::{
-    BoxFrame, Deferred, LEAF, Node8, NodeLanes, Portable, RayBox, WIDTH, limit_key,
+    BoxFrame, Deferred, LEAF, LanesJob, Node8, NodeLanes, RayBox, WIDTH, limit_key,
+    with_widest_lanes,
 };
 use crate::spatial::raw::prefetch::prefetch_bytes;
 
-use super::accel::Accel;
-use super::ray_answers::{BestHit, Crossing, Nearest};
-use super::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
+use super::Accel;
+use crate::query::ray_answers::{BestHit, Crossing, Nearest};
+use crate::query::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
 use super::tri_packet::{PacketRay, TriPacket};
 use super::triangle_records::YzTri;
 
@@ -43,7 +40,7 @@ const MANY_LANES_BYTES: usize = 8 << 20;
 /// The deepest traversal stack a walk holds (a power of two): enough for
 /// trees of up to 35 levels (see `Bvh::stack_len`). Deeper trees are
 /// walked one ray at a time.
-pub(super) const STACK: usize = 256;
+pub(in crate::query) const STACK: usize = 256;
 
 /// Accels at least this large (about the size of a core's L2 cache) are
 /// walked asking ahead for memory; smaller ones stay in cache, where the
@@ -88,7 +85,7 @@ struct Walk {
 /// The memory of one worker's interleaved walks, kept from one chunk of
 /// rays to the next (a walk's stack is 2 KiB; making and clearing eight of
 /// them for every chunk of 512 rays cost 65 instructions per ray).
-pub(super) struct WalkScratch {
+pub(in crate::query) struct WalkScratch {
     walks: Vec<Walk>,
     /// Each ray's best crossing, `t` already in the caller's units.
     best: Vec<BestHit>,
@@ -96,7 +93,7 @@ pub(super) struct WalkScratch {
 
 impl WalkScratch {
     /// Scratch memory for walks of up to `rays` rays a chunk.
-    pub(super) fn new(rays: usize) -> WalkScratch {
+    pub(in crate::query) fn new(rays: usize) -> WalkScratch {
         WalkScratch {
             walks: (0..MANY_LANES).map(|_| Walk::idle()).collect(),
             best: Vec::with_capacity(rays),
@@ -181,68 +178,32 @@ impl Accel {
     /// in order; every slot of `out` is written.
     /// Nodes are opened with AVX-512 or AVX2 where the processor has them
     /// (see `spatial::bvh::open`).
-    pub(super) fn first_hits_interleaved(
+    pub(in crate::query) fn first_hits_interleaved(
         &self,
         rays: &[Ray],
-        out: &mut [MaybeUninit<Option<Crossing>>],
+        out: &mut [Option<Crossing>],
         scratch: &mut WalkScratch,
     ) {
-        #[cfg(target_arch = "x86_64")]
-        if let Some(lanes) = Avx2::detect() {
-            if let Some(lanes) = lanes.avx512() {
-                // SAFETY: the AVX-512 features were detected.
-                unsafe { self.first_hits_avx512(lanes, rays, out, scratch) };
-            } else {
-                // SAFETY: AVX2 was detected.
-                unsafe { self.first_hits_avx2(lanes, rays, out, scratch) };
-            }
-            return;
-        }
-        self.first_hits_with(Portable, rays, out, scratch);
-    }
-
-    /// [`Accel::first_hits_interleaved`] compiled for AVX-512, with its
-    /// node opener (see `spatial::bvh::open`); the rest of the walk is the same code
-    /// as [`Accel::first_hits_avx2`], encoded with the extra registers and
-    /// folded broadcasts, which alone make it faster where offered.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,popcnt,fma,bmi1,bmi2,lzcnt,avx512f,avx512vl,avx512bw,avx512dq")]
-    fn first_hits_avx512(
-        &self,
-        lanes: Avx512,
-        rays: &[Ray],
-        out: &mut [MaybeUninit<Option<Crossing>>],
-        scratch: &mut WalkScratch,
-    ) {
-        self.first_hits_with(lanes, rays, out, scratch);
-    }
-
-    /// [`Accel::first_hits_interleaved`] compiled for AVX2, so that the
-    /// node opening is inlined into the walk.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,popcnt")]
-    fn first_hits_avx2(
-        &self,
-        lanes: Avx2,
-        rays: &[Ray],
-        out: &mut [MaybeUninit<Option<Crossing>>],
-        scratch: &mut WalkScratch,
-    ) {
-        self.first_hits_with(lanes, rays, out, scratch);
+        with_widest_lanes(FirstHits {
+            accel: self,
+            rays,
+            out,
+            scratch,
+        });
     }
 
     /// [`Accel::first_hits_interleaved`] with nodes opened by `lanes`.
     #[inline(always)]
-    pub(super) fn first_hits_with(
+    pub(in crate::query) fn first_hits_with(
         &self,
         lanes: impl NodeLanes,
         rays: &[Ray],
-        out: &mut [MaybeUninit<Option<Crossing>>],
+        out: &mut [Option<Crossing>],
         scratch: &mut WalkScratch,
     ) {
         if self.bvh.stack_len() > STACK {
             for (o, r) in out.iter_mut().zip(rays) {
-                o.write(self.first_hit_unchecked(r));
+                *o = self.first_hit_unchecked(r);
             }
         } else if self.stats.memory_bytes >= MANY_LANES_BYTES {
             self.walk_interleaved::<true, MANY_LANES>(lanes, rays, out, scratch);
@@ -261,7 +222,7 @@ impl Accel {
         &self,
         lanes: impl NodeLanes,
         rays: &[Ray],
-        out: &mut [MaybeUninit<Option<Crossing>>],
+        out: &mut [Option<Crossing>],
         scratch: &mut WalkScratch,
     ) {
         debug_assert_eq!(rays.len(), out.len());
@@ -300,7 +261,7 @@ impl Accel {
             k += 1;
         }
         for (o, b) in out.iter_mut().zip(best.iter()) {
-            o.write(b.map(|(t, i, s)| self.crossing(t, i, s)));
+            *o = b.map(|(t, i, s)| self.crossing(t, i, s));
         }
     }
 
@@ -376,6 +337,24 @@ impl Accel {
     }
 }
 
+/// The first hits of a stream of rays, as work for [`with_widest_lanes`].
+struct FirstHits<'a> {
+    accel: &'a Accel,
+    rays: &'a [Ray],
+    out: &'a mut [Option<Crossing>],
+    scratch: &'a mut WalkScratch,
+}
+
+impl LanesJob for FirstHits<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self, lanes: impl NodeLanes) {
+        self.accel
+            .first_hits_with(lanes, self.rays, self.out, self.scratch);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -400,19 +379,14 @@ mod tests {
         macro_rules! check {
             ($lanes:expr, $ask:literal, $n:expr) => {
                 for count in [rays.len(), 5, 1] {
-                    let mut out = vec![MaybeUninit::new(None); count];
+                    let mut out = vec![None; count];
                     accel.walk_interleaved::<$ask, { $n }>(
                         $lanes,
                         &rays[..count],
                         &mut out,
                         &mut scratch,
                     );
-                    // SAFETY: every slot was initialised above.
-                    let got: Vec<_> = out
-                        .into_iter()
-                        .map(|o| unsafe { o.assume_init() })
-                        .collect();
-                    assert_eq!(got, want[..count]);
+                    assert_eq!(out, want[..count]);
                 }
                 forms += 1;
             };

@@ -16,7 +16,7 @@ use glam::{DVec2, DVec3};
 use crate::curve::{Curve, CurveError, MAX_SEGMENTS};
 
 use super::sweep::{Argument, SweepError, check_profile, check_size, push_quad};
-use super::{PolygonSoup, Solid};
+use crate::mesh::{PolygonSoup, Solid};
 
 /// An axis of revolution with the direction of angle 0.
 #[derive(Clone, Copy, Debug, PartialEq)]

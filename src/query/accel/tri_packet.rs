@@ -26,7 +26,7 @@ use crate::spatial::raw::lanes::F32x4;
 use super::triangle_records::YzTri;
 
 /// Triangles per packet: the most a BVH leaf holds.
-pub(super) const LANES: usize = LEAF_SIZE;
+pub(in crate::query) const LANES: usize = LEAF_SIZE;
 
 /// The triangles of one BVH leaf: their corners `p` as `(p − centre) ·
 /// scale` rounded to the nearest `f32` (through the rounded `f64`
@@ -39,7 +39,7 @@ pub(super) const LANES: usize = LEAF_SIZE;
 /// `extent` is the largest magnitude of a stored coordinate.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-pub(super) struct TriPacket {
+pub(in crate::query) struct TriPacket {
     /// The middle of the leaf's triangles' box, in input coordinates.
     centre: DVec3,
     /// `corners[3 · c + a][lane]`: axis `a` of corner `c`.
@@ -56,7 +56,7 @@ pub(super) struct TriPacket {
 impl TriPacket {
     /// The packet of the leaf holding `tris[first .. first + count]`, with
     /// the accel's (power-of-two) frame scale `scale`.
-    pub(super) fn new(tris: &[YzTri], first: u32, count: u32, scale: f64) -> TriPacket {
+    pub(in crate::query) fn new(tris: &[YzTri], first: u32, count: u32, scale: f64) -> TriPacket {
         debug_assert!((1..=LANES as u32).contains(&count));
         let leaf = &tris[first as usize..(first + count) as usize];
         let (lo, hi) = leaf
@@ -130,7 +130,7 @@ impl TriPacket {
     /// origin is not on the triangle. Anything beyond the `f32` range makes
     /// the bound `+∞` or NaN, which proves nothing.
     #[inline(always)]
-    pub(super) fn undecided(&self, r: &PacketRay) -> u32 {
+    pub(in crate::query) fn undecided(&self, r: &PacketRay) -> u32 {
         let v = ((r.origin - self.centre) * r.scale).as_vec3().to_array();
         // `v` is never NaN (a finite difference, scaled).
         let reach = self.extent + larger(larger(v[0].abs(), v[1].abs()), v[2].abs());
@@ -162,7 +162,7 @@ impl TriPacket {
 
 /// A ray as [`TriPacket::undecided`] sees it.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct PacketRay {
+pub(in crate::query) struct PacketRay {
     /// The origin, in input coordinates.
     origin: DVec3,
     /// The accel's frame scale (a power of two).
@@ -185,9 +185,9 @@ impl PacketRay {
     /// round, which the proof of [`TriPacket::undecided`] does not cover.
     /// An infinite `S` makes the bound infinite.
     ///
-    /// [`unit_scaled`]: super::ray_scaling::unit_scaled
+    /// [`unit_scaled`]: crate::query::ray_scaling::unit_scaled
     #[must_use]
-    pub(super) fn blind(self) -> PacketRay {
+    pub(in crate::query) fn blind(self) -> PacketRay {
         PacketRay {
             length: f32::INFINITY,
             ..self
@@ -195,10 +195,10 @@ impl PacketRay {
     }
 
     /// `ray` (with its direction scaled by
-    /// [`unit_scaled`](super::ray_scaling::unit_scaled)) against the packets
+    /// [`unit_scaled`](crate::query::ray_scaling::unit_scaled)) against the packets
     /// of an accel with frame scale `scale`.
     #[inline(always)]
-    pub(super) fn new(ray: &Ray, scale: f64) -> PacketRay {
+    pub(in crate::query) fn new(ray: &Ray, scale: f64) -> PacketRay {
         let direction = [0, 1, 2].map(|a| ray.direction[a] as f32);
         PacketRay {
             origin: ray.origin,
@@ -262,7 +262,7 @@ mod tests {
             if direction == DVec3::ZERO {
                 continue;
             }
-            let (ray, _) = super::super::ray_scaling::unit_scaled(&Ray::new(origin, direction));
+            let (ray, _) = crate::query::ray_scaling::unit_scaled(&Ray::new(origin, direction));
             let r = PacketRay::new(&ray, 1.0 / scale);
             let mask = packet.undecided(&r);
             assert_eq!(mask >> count, 0, "case {case}: lanes beyond the leaf");

@@ -29,7 +29,7 @@ use super::triangle_records::YzTri;
 ///   (exactly, not only as rounded), so a triangle whose largest `x` is at
 ///   least `x` has `entry.x ≥ x − extent[c]`.
 #[derive(Clone, Debug)]
-pub(super) struct YzGrid {
+pub(in crate::query) struct YzGrid {
     pub y0: f64,
     pub z0: f64,
     pub y1: f64,
@@ -46,7 +46,7 @@ pub(super) struct YzGrid {
 /// One triangle listed in a grid cell: its `yz` record and its smallest `x`
 /// rounded down to `f32` (8 bytes).
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct GridEntry {
+pub(in crate::query) struct GridEntry {
     /// A lower bound on the triangle's smallest `x`.
     pub x: f32,
     /// Index into the accel's triangles.
@@ -159,7 +159,7 @@ fn coarsening(yz: &[YzTri], origin: (f64, f64), inv_h: (f64, f64)) -> u32 {
 }
 
 /// The grid of the triangles `yz` (in accel order) over the box `bounds`.
-pub(super) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
+pub(in crate::query) fn build_grid(yz: &[YzTri], bounds: Aabb) -> YzGrid {
     let (y0, z0, y1, z1) = if bounds.is_empty() {
         (0.0, 0.0, 1.0, 1.0)
     } else {

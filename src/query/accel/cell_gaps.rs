@@ -8,8 +8,8 @@ use rayon::prelude::*;
 
 use super::point_grid::YzGrid;
 use super::triangle_records::YzTri;
-use super::x_direction::XDirection;
-use super::x_ray_triangle::{Step, triangle_step};
+use crate::query::x_direction::XDirection;
+use crate::query::x_ray_triangle::{Step, triangle_step};
 
 /// A plane `x = const` across one grid cell's column that no triangle of the
 /// cell meets.
@@ -34,7 +34,7 @@ use super::x_ray_triangle::{Step, triangle_step};
 /// the signed count is the winding number, the same too; only parity
 /// reads it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Gap {
+pub(in crate::query) struct Gap {
     /// The plane's `x`.
     pub x: f64,
     /// How many of the cell's listed triangles lie wholly below `x`.
@@ -51,7 +51,7 @@ pub(super) struct Gap {
 /// so in ascending [`Gap::split`]), each strictly between its neighbours'
 /// triangles as [`Gap`] states.
 #[derive(Clone, Debug, Default)]
-pub(super) struct CellGaps {
+pub(in crate::query) struct CellGaps {
     start: Vec<u32>,
     gaps: Vec<Gap>,
 }
@@ -59,7 +59,7 @@ pub(super) struct CellGaps {
 /// The triangles of one cell between two gaps, and what the column's
 /// crossings beyond them add.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct Between {
+pub(in crate::query) struct Between {
     /// The listed triangles `first .. end` lie between the gaps.
     pub first: usize,
     /// See [`Between::first`].

@@ -13,7 +13,7 @@ use glam::DVec2;
 use crate::curve::Curve;
 use crate::geom::triangulate;
 
-use super::super::{Polygon, PolygonSoup, Solid};
+use crate::mesh::{Polygon, PolygonSoup, Solid};
 use super::{
     Argument, PathFrames, SweepError, check_collisions, check_profile, check_size, check_stacking,
     push_quad, stacked_soup, try_sweep,

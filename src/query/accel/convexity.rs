@@ -53,7 +53,7 @@ pub enum NotConvex {
 }
 
 /// The exact convexity test on the fan triangles; see [`NotConvex`].
-pub(super) fn check_convexity(
+pub(in crate::query) fn check_convexity(
     tris: &[YzTri],
     tri_face: &[FaceId],
     boundary_edges: usize,
