@@ -21,9 +21,10 @@
 
 use std::path::Path;
 use std::time::Instant;
+use wingedge::SetOp;
 
 use serde_json::json;
-use wingedge::boolean::{BooleanOptions, Operation, boolean, prove};
+use wingedge::boolean::{BooleanOptions, boolean, prove};
 use wingedge::io::{read_obj, write_obj};
 use wingedge::mesh::Solid;
 
@@ -65,7 +66,7 @@ fn run() -> Result<()> {
     let mut best = None;
     for _ in 0..repeats.max(1) {
         let clock = Instant::now();
-        let result = boolean(&a, &b, Operation::Difference, options)?;
+        let result = boolean(&a, &b, SetOp::Difference, options)?;
         let seconds = clock.elapsed().as_secs_f64();
         if best.as_ref().is_none_or(|(s, _)| seconds < *s) {
             best = Some((seconds, result));

@@ -2,7 +2,8 @@
 //! `cargo run --release --example boolean_probe -- RINGS`.
 
 use glam::DVec3;
-use wingedge::boolean::{BooleanOptions, Operation, boolean};
+use wingedge::SetOp;
+use wingedge::boolean::{BooleanOptions, boolean};
 use wingedge::mesh::{Solid, builders};
 
 fn main() {
@@ -22,7 +23,7 @@ fn main() {
         let r = boolean(
             &a,
             &b,
-            Operation::Difference,
+            SetOp::Difference,
             BooleanOptions {
                 check_operands: check,
                 ..BooleanOptions::default()

@@ -4,7 +4,8 @@
 //! `cargo run --release --example hard_cases`.
 
 use glam::{DAffine3, DVec3};
-use wingedge::boolean::{BooleanOptions, Operation, boolean};
+use wingedge::SetOp;
+use wingedge::boolean::{BooleanOptions, boolean};
 use wingedge::mesh::{Solid, builders};
 
 fn cuboid(min: [f64; 3], max: [f64; 3]) -> Solid {
@@ -19,7 +20,7 @@ fn mapped(s: &Solid, map: DAffine3) -> Solid {
     Solid::try_from_soup(&soup).expect("a solid")
 }
 
-fn show(name: &str, a: &Solid, b: &Solid, operation: Operation) {
+fn show(name: &str, a: &Solid, b: &Solid, operation: SetOp) {
     match boolean(a, b, operation, BooleanOptions::default()) {
         Ok(r) => println!(
             "| {name} | {:.17} | {} | {} | {} | {} |",
@@ -34,7 +35,7 @@ fn show(name: &str, a: &Solid, b: &Solid, operation: Operation) {
 }
 
 fn main() {
-    use Operation::{Difference, Intersection, Union};
+    use SetOp::{Difference, Intersection, Union};
     println!("| case | volume | shells | genus | faces | verdict |\n|---|---|---|---|---|---|");
     let a = cuboid([0.0; 3], [1.0; 3]);
     show(

@@ -23,9 +23,9 @@ use glam::{DVec2, DVec3};
 use wingedge::csg::{AxisBox, Csg, CsgExpr, Polyhedron};
 use wingedge::curve::{BSpline, Curve};
 use wingedge::mesh::Solid;
-use wingedge::shape::{RevolveAxis, try_revolve_curve, try_sweep};
 use wingedge::render::{RenderOptions, render};
 use wingedge::scene::{CameraSpec, LightSpec, Scene};
+use wingedge::shape::{RevolveAxis, try_revolve_curve, try_sweep};
 use wingedge::validate::{Options, validate_soup};
 
 /// Five-point Gauss–Legendre nodes and weights on `[-1, 1]`.

@@ -16,16 +16,21 @@
 //! ## Layers
 //!
 //! Each layer uses only the layers before it:
-//! [`geom`] (numbers) → [`curve`] (B-spline and NURBS curves) →
+//! [`geom`] (numbers: exact predicates, implicit points, planes, polygons) →
 //! [`spatial`] (the shared BVH: ray walk, pair walk, box queries) →
-//! [`mesh`] (topology) → [`io`] (OBJ in and out) → [`validate`] (named
-//! checks and a graded verdict) and [`query`] (line–face, ray–solid,
-//! point-in-polyhedron) → [`boolean`] (exact boundary evaluation: union,
-//! intersection and difference into valid solids) → [`csg`] (ray-cast CSG:
-//! primitives, trees, the span merge, tree evaluation by booleans) → [`cells`] (octree cells In, Out or On, certified volumes) →
-//! [`field`] (implicit solids: blobby fields, field CSG, marching
-//! cubes to a valid solid) → [`scene`] (the JSON scene format; a mesh or a
-//! scene as one query target) → [`render`] (images).
+//! [`curve`] (B-spline and NURBS curves) → [`mesh`] (the winged-edge
+//! topology, Euler operators, builders, measures) → [`shape`] (sweeps,
+//! revolves and lofts of curves) → [`io`] (OBJ in and out, JSON readers) →
+//! [`query`] (line–face, ray–solid, point-in-polyhedron, winding number) and
+//! [`validate`] (named checks and a graded verdict) → [`boolean`] (exact
+//! boundary evaluation into valid solids) → [`csg`] (ray-cast CSG:
+//! primitives, trees, the span merge, tree evaluation by booleans) →
+//! [`field`] (blobby fields, field CSG, marching cubes) and [`cells`]
+//! (octree cells, certified volumes) → [`scene`] (the JSON scene format; a
+//! mesh or a scene as one query target) → [`render`] (images).
+//!
+//! [`SetOp`] is the one set operator of booleans, ray-cast CSG and field
+//! CSG; [`Error`] wraps every layer's error for callers that use `?`.
 #![warn(missing_docs)]
 
 pub mod boolean;
@@ -34,6 +39,7 @@ mod compressed_rows;
 pub mod csg;
 pub mod curve;
 mod disjoint_sets;
+mod error;
 pub mod field;
 mod fixed_chunks;
 pub mod geom;
@@ -42,13 +48,16 @@ pub mod mesh;
 pub mod query;
 pub mod render;
 pub mod scene;
+mod set_op;
 pub mod shape;
 pub mod spatial;
 #[cfg(test)]
 mod test_rng;
 pub mod validate;
 
+pub use error::Error;
 pub use glam;
+pub use set_op::SetOp;
 
 /// The README's code blocks, compiled and run as doctests.
 #[doc = include_str!("../README.md")]

@@ -136,8 +136,7 @@ fn a_boolean_beyond_its_limit_says_so() {
         max_contacts: 10,
         ..Default::default()
     };
-    let err = wingedge::boolean::boolean(&a, &b, wingedge::boolean::Operation::Union, options)
-        .unwrap_err();
+    let err = wingedge::boolean::boolean(&a, &b, wingedge::SetOp::Union, options).unwrap_err();
     assert!(
         matches!(err, BooleanError::TooLarge { limit: 10, .. }),
         "{err}"

@@ -5,7 +5,8 @@
 //! to `f64` would break, and the volumes add up.
 
 use glam::{DAffine3, DVec3};
-use wingedge::boolean::{BooleanError, BooleanOptions, Operation, boolean};
+use wingedge::SetOp;
+use wingedge::boolean::{BooleanError, BooleanOptions, boolean};
 use wingedge::mesh::{Solid, builders};
 
 #[path = "../src/test_rng.rs"]
@@ -58,13 +59,9 @@ fn random_pairs_on_a_grid_are_valid_and_add_up() {
         let a = random_solid(&mut next);
         let b = random_solid(&mut next);
         let mut volumes = [None; 3];
-        for (k, op) in [
-            Operation::Union,
-            Operation::Intersection,
-            Operation::Difference,
-        ]
-        .into_iter()
-        .enumerate()
+        for (k, op) in [SetOp::Union, SetOp::Intersection, SetOp::Difference]
+            .into_iter()
+            .enumerate()
         {
             match boolean(&a, &b, op, BooleanOptions::default()) {
                 Ok(r) => {
@@ -132,9 +129,9 @@ fn random_rotated_pairs_are_valid_and_add_up() {
                 .volume()
         };
         let (u, i, d) = (
-            volume(Operation::Union),
-            volume(Operation::Intersection),
-            volume(Operation::Difference),
+            volume(SetOp::Union),
+            volume(SetOp::Intersection),
+            volume(SetOp::Difference),
         );
         let (va, vb) = (a.volume(), b.volume());
         assert!((u + i - va - vb).abs() <= 1e-12 * va.max(vb), "case {case}");

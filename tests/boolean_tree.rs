@@ -5,9 +5,8 @@
 //! time.
 
 use glam::{DAffine3, DVec3};
-use wingedge::boolean::{
-    Boolean, BooleanError, BooleanOptions, Expression, Operation, boolean, combine,
-};
+use wingedge::SetOp;
+use wingedge::boolean::{Boolean, BooleanError, BooleanOptions, Expression, boolean, combine};
 use wingedge::mesh::{Solid, builders};
 use wingedge::validate::{Options, Validity, validate_soup};
 
@@ -24,9 +23,9 @@ fn random_expression(next: &mut impl FnMut() -> f64, first: usize, count: usize)
     }
     let left = 1 + ((next() * (count - 1) as f64) as usize).min(count - 2);
     let operation = match (next() * 3.0) as u32 {
-        0 => Operation::Union,
-        1 => Operation::Intersection,
-        _ => Operation::Difference,
+        0 => SetOp::Union,
+        1 => SetOp::Intersection,
+        _ => SetOp::Difference,
     };
     Expression::of(
         operation,
@@ -156,9 +155,9 @@ fn mapped(s: &Solid, map: DAffine3) -> Solid {
 fn one_at_a_time(expression: &Expression, solids: &[Solid]) -> Result<Solid, BooleanError> {
     let (operation, l, r) = match expression {
         Expression::Operand(k) => return Ok(solids[*k].clone()),
-        Expression::Union(l, r) => (Operation::Union, l, r),
-        Expression::Intersection(l, r) => (Operation::Intersection, l, r),
-        Expression::Difference(l, r) => (Operation::Difference, l, r),
+        Expression::Union(l, r) => (SetOp::Union, l, r),
+        Expression::Intersection(l, r) => (SetOp::Intersection, l, r),
+        Expression::Difference(l, r) => (SetOp::Difference, l, r),
     };
     let (a, b) = (one_at_a_time(l, solids)?, one_at_a_time(r, solids)?);
     boolean(&a, &b, operation, BooleanOptions::default()).map(|r: Boolean| r.solid)
@@ -214,11 +213,7 @@ fn unknown_operands_are_refused_and_empty_ones_drop_out() {
     let cube = builders::cube();
     let err = combine(
         &[&cube],
-        &Expression::of(
-            Operation::Union,
-            Expression::Operand(0),
-            Expression::Operand(3),
-        ),
+        &Expression::of(SetOp::Union, Expression::Operand(0), Expression::Operand(3)),
         BooleanOptions::default(),
     )
     .unwrap_err();
@@ -231,12 +226,8 @@ fn unknown_operands_are_refused_and_empty_ones_drop_out() {
     );
     let empty = Solid::default();
     let e = Expression::of(
-        Operation::Difference,
-        Expression::of(
-            Operation::Union,
-            Expression::Operand(0),
-            Expression::Operand(1),
-        ),
+        SetOp::Difference,
+        Expression::of(SetOp::Union, Expression::Operand(0), Expression::Operand(1)),
         Expression::Operand(1),
     );
     let r = combine(&[&cube, &empty], &e, BooleanOptions::default()).unwrap();

@@ -4,10 +4,11 @@
 
 use glam::DVec3;
 use proptest::prelude::*;
+use wingedge::SetOp;
 use wingedge::field::marching::march_grid;
 use wingedge::field::{
-    Blobs, Falloff, Field, FieldCsg, FieldOp, MarchingOptions, Meshed, Placement, SampleGrid,
-    Source, try_mesh,
+    Blobs, Falloff, Field, FieldCsg, MarchingOptions, Meshed, Placement, SampleGrid, Source,
+    try_mesh,
 };
 
 fn blobs(sources: &[(DVec3, f64, f64)], falloff: Falloff) -> Blobs {
@@ -143,9 +144,9 @@ proptest! {
         let (fa, fb) = (Box::new(blobs(&a, falloff)), Box::new(blobs(&b, falloff)));
         let field: Box<dyn Field> = match op {
             0 => fa,
-            1 => Box::new(FieldCsg::new(FieldOp::Union, fa, fb)),
-            2 => Box::new(FieldCsg::new(FieldOp::Intersection, fa, fb)),
-            _ => Box::new(FieldCsg::new(FieldOp::Difference, fa, fb)),
+            1 => Box::new(FieldCsg::new(SetOp::Union, fa, fb)),
+            2 => Box::new(FieldCsg::new(SetOp::Intersection, fa, fb)),
+            _ => Box::new(FieldCsg::new(SetOp::Difference, fa, fb)),
         };
         let options = MarchingOptions {
             resolution,

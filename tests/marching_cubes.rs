@@ -4,10 +4,11 @@
 
 use glam::DVec3;
 use proptest::prelude::*;
+use wingedge::SetOp;
 use wingedge::field::marching::{base_case, march_grid, solid_of};
 use wingedge::field::{
-    Blobs, Falloff, Field, FieldCsg, FieldOp, MarchingOptions, Placement, SampleGrid, Source,
-    try_mesh, try_mesh_solid,
+    Blobs, Falloff, Field, FieldCsg, MarchingOptions, Placement, SampleGrid, Source, try_mesh,
+    try_mesh_solid,
 };
 use wingedge::mesh::PolygonSoup;
 use wingedge::validate::{Options, Validity, validate_soup};
@@ -199,12 +200,12 @@ fn blob_fields_and_field_csg_give_valid_solids() {
         ("three blobs", Box::new(three())),
         (
             "union",
-            Box::new(FieldCsg::new(FieldOp::Union, Box::new(three()), cutter())),
+            Box::new(FieldCsg::new(SetOp::Union, Box::new(three()), cutter())),
         ),
         (
             "intersection",
             Box::new(FieldCsg::new(
-                FieldOp::Intersection,
+                SetOp::Intersection,
                 Box::new(three()),
                 cutter(),
             )),
@@ -212,7 +213,7 @@ fn blob_fields_and_field_csg_give_valid_solids() {
         (
             "difference",
             Box::new(FieldCsg::new(
-                FieldOp::Difference,
+                SetOp::Difference,
                 Box::new(three()),
                 cutter(),
             )),
@@ -290,9 +291,9 @@ proptest! {
         let (fa, fb) = (Box::new(blobs(&a)), Box::new(blobs(&b)));
         let field: Box<dyn Field> = match op {
             0 => fa,
-            1 => Box::new(FieldCsg::new(FieldOp::Union, fa, fb)),
-            2 => Box::new(FieldCsg::new(FieldOp::Intersection, fa, fb)),
-            _ => Box::new(FieldCsg::new(FieldOp::Difference, fa, fb)),
+            1 => Box::new(FieldCsg::new(SetOp::Union, fa, fb)),
+            2 => Box::new(FieldCsg::new(SetOp::Intersection, fa, fb)),
+            _ => Box::new(FieldCsg::new(SetOp::Difference, fa, fb)),
         };
         let opts = MarchingOptions {
             resolution,

@@ -6,13 +6,14 @@
 use std::fmt::Write as _;
 use std::path::Path;
 use std::process::Command;
+use wingedge::SetOp;
 
 use glam::DVec3;
 use serde_json::Value;
 use wingedge::field::marching::{march_grid, solid_of};
 use wingedge::field::{
-    Blobs, Falloff, Field, FieldCsg, FieldOp, MarchingOptions, Placement, SampleGrid, Source,
-    load_json, try_mesh,
+    Blobs, Falloff, Field, FieldCsg, MarchingOptions, Placement, SampleGrid, Source, load_json,
+    try_mesh,
 };
 use wingedge::mesh::PolygonSoup;
 use wingedge::validate::{Options, validate_soup};
@@ -80,7 +81,7 @@ fn manifold3d_accepts_marching_cubes_meshes_with_the_same_genus_and_volume() {
         .soup,
     ));
     let carved = FieldCsg::new(
-        FieldOp::Difference,
+        SetOp::Difference,
         blob(DVec3::ZERO, 2.0, 1.0),
         blob(DVec3::new(0.0, 0.0, 0.9), 1.4, 1.0),
     );

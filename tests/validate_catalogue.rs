@@ -230,9 +230,9 @@ fn check_broken(file: &str, expected: &[Expect]) {
 }
 
 #[test]
-fn seed_rule_1_vertex_in_fewer_than_three_edges() {
+fn validity_rule_1_vertex_in_fewer_than_three_edges() {
     // On a surface without holes a vertex has as many faces as edges, so
-    // seed rules 1 and 2 break together; no fixture can break one alone.
+    // validity rules 1 and 2 break together; no fixture can break one alone.
     check_broken(
         "vertex_in_fewer_than_three_edges",
         &[
@@ -243,7 +243,7 @@ fn seed_rule_1_vertex_in_fewer_than_three_edges() {
 }
 
 #[test]
-fn seed_rule_2_vertex_in_fewer_than_three_faces() {
+fn validity_rule_2_vertex_in_fewer_than_three_faces() {
     check_broken(
         "vertex_in_fewer_than_three_faces",
         &[
@@ -254,7 +254,7 @@ fn seed_rule_2_vertex_in_fewer_than_three_faces() {
 }
 
 #[test]
-fn seed_rule_3_edge_without_two_distinct_vertices() {
+fn validity_rule_3_edge_without_two_distinct_vertices() {
     check_broken(
         "edge_without_two_distinct_vertices",
         &[Expect(Rule::EdgeWithoutTwoDistinctVertices, &[1], 11)],
@@ -262,7 +262,7 @@ fn seed_rule_3_edge_without_two_distinct_vertices() {
 }
 
 #[test]
-fn seed_rule_4_edge_in_one_face() {
+fn validity_rule_4_edge_in_one_face() {
     // A hole is a loop: the smallest has three edges.
     check_broken(
         "edge_in_one_face",
@@ -275,7 +275,7 @@ fn seed_rule_4_edge_in_one_face() {
 }
 
 #[test]
-fn seed_rule_4_edge_in_more_than_two_faces() {
+fn validity_rule_4_edge_in_more_than_two_faces() {
     check_broken(
         "edge_in_more_than_two_faces",
         &[Expect(Rule::EdgeInMoreThanTwoFaces, &[3, 4, 8, 11], 19)],
@@ -283,7 +283,7 @@ fn seed_rule_4_edge_in_more_than_two_faces() {
 }
 
 #[test]
-fn seed_rule_5_face_with_fewer_than_three_vertices() {
+fn validity_rule_5_face_with_fewer_than_three_vertices() {
     check_broken(
         "face_with_fewer_than_three_vertices",
         &[Expect(Rule::FaceWithFewerThanThreeVertices, &[6], 16)],
@@ -291,7 +291,7 @@ fn seed_rule_5_face_with_fewer_than_three_vertices() {
 }
 
 #[test]
-fn seed_rule_6_face_with_fewer_than_three_edges() {
+fn validity_rule_6_face_with_fewer_than_three_edges() {
     check_broken(
         "face_with_fewer_than_three_edges",
         &[Expect(Rule::FaceWithFewerThanThreeEdges, &[6], 16)],

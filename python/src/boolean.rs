@@ -17,11 +17,12 @@
 //! other face stays the polygon the boolean made.
 
 use std::sync::Arc;
+use wingedge::SetOp;
 
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
-use wingedge::boolean::{BooleanError as CoreError, BooleanOptions, Expression, Operation};
+use wingedge::boolean::{BooleanError as CoreError, BooleanOptions, Expression};
 use wingedge::mesh::{FaceId, Polygon, PolygonSoup, Solid, VertexId};
 
 use crate::errors::{self, BooleanError};
@@ -38,9 +39,9 @@ pub(crate) fn boolean(
     operation: &str,
 ) -> PyResult<PySolid> {
     let operation = match operation {
-        "union" => Operation::Union,
-        "intersection" => Operation::Intersection,
-        "difference" => Operation::Difference,
+        "union" => SetOp::Union,
+        "intersection" => SetOp::Intersection,
+        "difference" => SetOp::Difference,
         other => {
             return Err(BooleanError::new_err(format!(
                 "operation {other:?}: expected \"union\", \"intersection\" or \"difference\""

@@ -14,7 +14,8 @@
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyList, PyString, PyTuple};
-use wingedge::boolean::{Expression, Operation};
+use wingedge::SetOp;
+use wingedge::boolean::Expression;
 
 /// How deeply tuples may nest: deeper input is refused rather than risk
 /// the stack (a long chain is written flat: `("union", 0, 1, 2, ...)`).
@@ -71,7 +72,7 @@ fn parse_at(
     if items.len() < 3 {
         return Err(format!(
             "{place}: a {} needs at least two operands, got {}",
-            name_of(operation),
+            SetOp::name(operation),
             items.len() - 1
         ));
     }
@@ -83,11 +84,11 @@ fn parse_at(
         place.truncate(length);
     }
     Ok(match operation {
-        Operation::Union | Operation::Intersection => balanced(operation, operands),
-        Operation::Difference => {
+        SetOp::Union | SetOp::Intersection => balanced(operation, operands),
+        SetOp::Difference | SetOp::ReverseDifference => {
             let rest = operands.split_off(1);
             let first = operands.pop().unwrap_or(Expression::Operand(0));
-            Expression::of(operation, first, balanced(Operation::Union, rest))
+            Expression::of(operation, first, balanced(SetOp::Union, rest))
         }
     })
 }
@@ -119,7 +120,7 @@ fn operand(part: &Bound<'_, PyAny>, count: usize, place: &str) -> Result<Express
 
 /// `x₀ op x₁ op …` for an associative `op`, grouped as a balanced tree
 /// (depth `log₂ n`, not `n`). `parts` is never empty.
-fn balanced(operation: Operation, mut parts: Vec<Expression>) -> Expression {
+fn balanced(operation: SetOp, mut parts: Vec<Expression>) -> Expression {
     if parts.len() == 1 {
         return parts.pop().unwrap_or(Expression::Operand(0));
     }
@@ -131,21 +132,13 @@ fn balanced(operation: Operation, mut parts: Vec<Expression>) -> Expression {
     )
 }
 
-fn operation_of(head: &Bound<'_, PyAny>) -> Option<Operation> {
+fn operation_of(head: &Bound<'_, PyAny>) -> Option<SetOp> {
     let word: String = head.cast::<PyString>().ok()?.extract().ok()?;
     match word.as_str() {
-        "union" => Some(Operation::Union),
-        "intersection" => Some(Operation::Intersection),
-        "difference" => Some(Operation::Difference),
+        "union" => Some(SetOp::Union),
+        "intersection" => Some(SetOp::Intersection),
+        "difference" => Some(SetOp::Difference),
         _ => None,
-    }
-}
-
-fn name_of(operation: Operation) -> &'static str {
-    match operation {
-        Operation::Union => "union",
-        Operation::Intersection => "intersection",
-        Operation::Difference => "difference",
     }
 }
 

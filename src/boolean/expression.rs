@@ -2,7 +2,7 @@
 //! evaluates in one pass, so that a whole CSG tree's constructed points
 //! stay exact from the leaves to the result.
 
-use super::Operation;
+use crate::SetOp;
 
 /// A regularized set expression over operands named by their index in the
 /// operands' list.
@@ -21,12 +21,13 @@ pub enum Expression {
 impl Expression {
     /// `left operation right`.
     #[must_use]
-    pub fn of(operation: Operation, left: Expression, right: Expression) -> Expression {
+    pub fn of(operation: SetOp, left: Expression, right: Expression) -> Expression {
         let (left, right) = (Box::new(left), Box::new(right));
         match operation {
-            Operation::Union => Expression::Union(left, right),
-            Operation::Intersection => Expression::Intersection(left, right),
-            Operation::Difference => Expression::Difference(left, right),
+            SetOp::Union => Expression::Union(left, right),
+            SetOp::Intersection => Expression::Intersection(left, right),
+            SetOp::Difference => Expression::Difference(left, right),
+            SetOp::ReverseDifference => Expression::Difference(right, left),
         }
     }
 
@@ -137,9 +138,9 @@ mod tests {
     #[test]
     fn contains_is_the_set_formula() {
         let e = Expression::of(
-            Operation::Difference,
-            Expression::of(Operation::Union, op(0), op(1)),
-            Expression::of(Operation::Intersection, op(2), op(3)),
+            SetOp::Difference,
+            Expression::of(SetOp::Union, op(0), op(1)),
+            Expression::of(SetOp::Intersection, op(2), op(3)),
         );
         assert_eq!(e.operands(), vec![0, 1, 2, 3]);
         for bits in 0..16u32 {
@@ -164,9 +165,9 @@ mod tests {
     #[test]
     fn empty_operands_simplify_away() {
         let e = Expression::of(
-            Operation::Difference,
-            Expression::of(Operation::Union, op(0), op(1)),
-            Expression::of(Operation::Intersection, op(2), op(3)),
+            SetOp::Difference,
+            Expression::of(SetOp::Union, op(0), op(1)),
+            Expression::of(SetOp::Intersection, op(2), op(3)),
         );
         assert_eq!(
             e.without_empty(&|k| k == 1 || k == 3),
@@ -177,9 +178,9 @@ mod tests {
         assert_eq!(
             e.without_empty(&|k| k == 0),
             Some(Expression::of(
-                Operation::Difference,
+                SetOp::Difference,
                 op(1),
-                Expression::of(Operation::Intersection, op(2), op(3))
+                Expression::of(SetOp::Intersection, op(2), op(3))
             ))
         );
     }

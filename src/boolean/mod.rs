@@ -3,7 +3,7 @@
 //!
 //! The boundaries of `a` and `b` are cut where they meet, and membership
 //! classification decides which cut pieces bound the result (Requicha and
-//! Voelcker's boundary evaluation; the seeds' §9.5). The stages, one file
+//! Voelcker's boundary evaluation, 1985). The stages, one file
 //! each, in the order they run:
 //!
 //! 1. `operand`: each face triangulated exactly, a BVH over the triangles;
@@ -38,6 +38,7 @@ mod points;
 mod select;
 mod split;
 
+use crate::SetOp;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::time::Instant;
 
@@ -56,17 +57,6 @@ use crossings::{Line, Segment};
 use intersect::{Carrier, Contact, PointRef, Tri};
 use operand::Prepared;
 use points::PointTable;
-
-/// A regularized set operation.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Operation {
-    /// `a ∪ b`.
-    Union,
-    /// `a ∩ b`.
-    Intersection,
-    /// `a − b`.
-    Difference,
-}
 
 /// Where a boolean spent its time, in seconds, and how much work it found.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -196,7 +186,7 @@ impl Solid {
     ///
     /// As for [`boolean`].
     pub fn union(&self, other: &Solid) -> Result<Boolean, BooleanError> {
-        boolean(self, other, Operation::Union, BooleanOptions::default())
+        boolean(self, other, SetOp::Union, BooleanOptions::default())
     }
 
     /// `self ∩ other`, exact; see [`boolean`].
@@ -205,12 +195,7 @@ impl Solid {
     ///
     /// As for [`boolean`].
     pub fn intersection(&self, other: &Solid) -> Result<Boolean, BooleanError> {
-        boolean(
-            self,
-            other,
-            Operation::Intersection,
-            BooleanOptions::default(),
-        )
+        boolean(self, other, SetOp::Intersection, BooleanOptions::default())
     }
 
     /// `self − other`, exact; see [`boolean`].
@@ -219,12 +204,7 @@ impl Solid {
     ///
     /// As for [`boolean`].
     pub fn difference(&self, other: &Solid) -> Result<Boolean, BooleanError> {
-        boolean(
-            self,
-            other,
-            Operation::Difference,
-            BooleanOptions::default(),
-        )
+        boolean(self, other, SetOp::Difference, BooleanOptions::default())
     }
 }
 
@@ -237,7 +217,7 @@ impl Solid {
 pub fn boolean(
     a: &Solid,
     b: &Solid,
-    operation: Operation,
+    operation: SetOp,
     options: BooleanOptions,
 ) -> Result<Boolean, BooleanError> {
     let expression = Expression::of(operation, Expression::Operand(0), Expression::Operand(1));

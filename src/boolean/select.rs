@@ -76,14 +76,14 @@ pub(crate) fn covered(own: usize, other: usize, label: Label) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::boolean::Operation;
+    use crate::SetOp;
 
     /// With two operands the rule is the table of the regularized set
     /// operations, written out.
     #[test]
     fn with_two_operands_the_rule_is_the_regularized_set_operation() {
+        use crate::SetOp::*;
         use Label::*;
-        use Operation::*;
         let cases = [
             (
                 Union,
@@ -125,13 +125,9 @@ mod tests {
     #[test]
     fn a_patch_bounds_the_result_where_the_expression_changes_across_it() {
         let e = Expression::of(
-            Operation::Difference,
+            SetOp::Difference,
             Expression::Operand(0),
-            Expression::of(
-                Operation::Union,
-                Expression::Operand(1),
-                Expression::Operand(2),
-            ),
+            Expression::of(SetOp::Union, Expression::Operand(1), Expression::Operand(2)),
         );
         let labels = |inside_c: bool| {
             move |k: usize| {

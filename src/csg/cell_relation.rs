@@ -11,11 +11,12 @@
 //! for every box inside it, so [`LeafSides`] is handed down to sub-boxes
 //! and only the leaves still undecided are asked again.
 
+use crate::SetOp;
 use glam::DVec3;
 use thiserror::Error;
 
 use super::tree::{LeafId, NodeIndex, NodeKind};
-use super::{Containment, Csg, CsgOp, Primitive, Stats};
+use super::{Containment, Csg, Primitive, Stats};
 use crate::geom::Aabb;
 use crate::query::TileError;
 
@@ -232,7 +233,7 @@ impl Csg {
             NodeKind::Op { op, left, right } => {
                 let a = self.node_verdict(left, cell, sides, stats, neighbour);
                 match op {
-                    CsgOp::Union => {
+                    SetOp::Union => {
                         if a == Inside {
                             stats.skipped_right_sides += 1;
                             return Inside;
@@ -243,7 +244,7 @@ impl Csg {
                             Undecided => Undecided,
                         }
                     }
-                    CsgOp::Intersection => {
+                    SetOp::Intersection => {
                         if a == Outside {
                             stats.skipped_right_sides += 1;
                             return Outside;
@@ -254,7 +255,7 @@ impl Csg {
                             Undecided => Undecided,
                         }
                     }
-                    CsgOp::Difference => {
+                    SetOp::Difference => {
                         if a == Outside {
                             stats.skipped_right_sides += 1;
                             return Outside;
@@ -265,7 +266,7 @@ impl Csg {
                             Undecided => Undecided,
                         }
                     }
-                    CsgOp::ReverseDifference => {
+                    SetOp::ReverseDifference => {
                         // right − left.
                         if a == Inside {
                             stats.skipped_right_sides += 1;

@@ -1,10 +1,11 @@
 //! Points against a tree, right at coincident faces.
 
+use crate::SetOp;
 use glam::DVec3;
 
 use super::stats::counting_fallbacks;
 use super::tree::{NodeIndex, NodeKind};
-use super::{Containment, Csg, CsgOp, Stats, normal_alignment};
+use super::{Containment, Csg, Stats, normal_alignment};
 use crate::geom::Sign;
 use crate::query::QueryError;
 
@@ -79,12 +80,12 @@ impl Neighbourhood {
     /// The neighbourhood of the combination `op` of `self` (A) and `other`
     /// (B).
     #[must_use]
-    pub fn combine(self, op: CsgOp, other: Neighbourhood) -> Neighbourhood {
+    pub fn combine(self, op: SetOp, other: Neighbourhood) -> Neighbourhood {
         match op {
-            CsgOp::Union => self.union(other),
-            CsgOp::Intersection => self.intersection(other),
-            CsgOp::Difference => self.intersection(other.complement()),
-            CsgOp::ReverseDifference => self.complement().intersection(other),
+            SetOp::Union => self.union(other),
+            SetOp::Intersection => self.intersection(other),
+            SetOp::Difference => self.intersection(other.complement()),
+            SetOp::ReverseDifference => self.complement().intersection(other),
         }
     }
 }
@@ -167,11 +168,11 @@ impl Csg {
             NodeKind::Op { op, left, right } => {
                 let a = self.node_neighbourhood(left, p, stats);
                 let decided = match (op, a) {
-                    (CsgOp::Union, Neighbourhood::Inside) => Some(Neighbourhood::Inside),
-                    (CsgOp::Intersection | CsgOp::Difference, Neighbourhood::Outside) => {
+                    (SetOp::Union, Neighbourhood::Inside) => Some(Neighbourhood::Inside),
+                    (SetOp::Intersection | SetOp::Difference, Neighbourhood::Outside) => {
                         Some(Neighbourhood::Outside)
                     }
-                    (CsgOp::ReverseDifference, Neighbourhood::Inside) => {
+                    (SetOp::ReverseDifference, Neighbourhood::Inside) => {
                         Some(Neighbourhood::Outside)
                     }
                     _ => None,

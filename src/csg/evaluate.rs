@@ -4,14 +4,15 @@
 //! every other's and no constructed point is rounded until the result is
 //! written, so chained operators are as exact as one.
 
+use crate::SetOp;
 use std::time::Instant;
 
 use thiserror::Error;
 
+use super::TessellateError;
 use super::tessellate::DEFAULT_TOLERANCE;
 use super::tree::{Csg, LeafId, NodeIndex, NodeKind};
-use super::{CsgOp, TessellateError};
-use crate::boolean::{BooleanError, BooleanOptions, BooleanStats, Expression, Operation, combine};
+use crate::boolean::{BooleanError, BooleanOptions, BooleanStats, Expression, combine};
 use crate::mesh::Solid;
 use crate::validate::Report;
 
@@ -191,10 +192,10 @@ fn node(
                 node(csg, right, options, clip, out)?,
             );
             let (a, b, operation) = match op {
-                CsgOp::Union => (l, r, Operation::Union),
-                CsgOp::Intersection => (l, r, Operation::Intersection),
-                CsgOp::Difference => (l, r, Operation::Difference),
-                CsgOp::ReverseDifference => (r, l, Operation::Difference),
+                SetOp::Union => (l, r, SetOp::Union),
+                SetOp::Intersection => (l, r, SetOp::Intersection),
+                SetOp::Difference => (l, r, SetOp::Difference),
+                SetOp::ReverseDifference => (r, l, SetOp::Difference),
             };
             out.operators += 1;
             Ok((
@@ -217,10 +218,10 @@ fn shortened(formula: &str) -> String {
 /// How much of a tree's formula an error quotes.
 const FORMULA_CHARS: usize = 160;
 
-fn symbol(operation: Operation) -> &'static str {
+fn symbol(operation: SetOp) -> &'static str {
     match operation {
-        Operation::Union => "∪",
-        Operation::Intersection => "∩",
-        Operation::Difference => "−",
+        SetOp::Union => "∪",
+        SetOp::Intersection => "∩",
+        SetOp::Difference | SetOp::ReverseDifference => "−",
     }
 }

@@ -1,5 +1,4 @@
-//! The seed's half-space: a plane through `Q` with a normal `N` pointing
-//! OUTSIDE.
+//! The half-space: a plane through `Q` with a normal `N` pointing OUTSIDE.
 
 use glam::DVec3;
 use thiserror::Error;
@@ -27,13 +26,12 @@ pub enum HalfSpaceError {
 }
 
 /// The half-space `{ P : (P − Q) · N ≤ 0 }`: the side the normal does not
-/// point to (the seed's part (b): "if `(P − Q) · N > 0` then OUTSIDE else
-/// INSIDE", with the points of the plane itself reported as `OnBoundary`).
+/// point to (`(P − Q) · N > 0` is OUTSIDE, `< 0` INSIDE, with the points of the plane itself reported as `OnBoundary`).
 ///
 /// # Exactness
 ///
 /// Every decision is exact on the given `Q` and `N`: the side of a point is
-/// the exact sign of `(P − Q) · N` ([`side_of_plane`]), and the seed's ray
+/// the exact sign of `(P − Q) · N` ([`side_of_plane`]), and the ray's
 /// cases — `D · N = 0` (parallel: no crossing), `t < 0` (behind the eye: no
 /// crossing), the eye in the plane — are decided from the exact signs of
 /// `D · N` and `(Q − E) · N` (the sign of `t` is their product). Only the
@@ -80,7 +78,7 @@ impl HalfSpace {
         self.normal
     }
 
-    /// The seed's `rayplane`: the parameter where the ray meets the plane,
+    /// The ray–plane parameter `t = (Q − E) · N / (D · N)`: the parameter where the ray meets the plane,
     /// or `None` when the ray is parallel to it (`D · N = 0`), the meeting
     /// is behind the eye (`t < 0`), or the eye is in the plane (`t = 0`: the
     /// ray starts on the boundary and does not cross it at any `t > 0`).
@@ -210,7 +208,7 @@ mod tests {
     }
 
     #[test]
-    fn the_seeds_ray_plane_cases() {
+    fn the_ray_plane_cases() {
         // z ≤ 1 is inside.
         let h = HalfSpace::try_new(DVec3::new(5., 5., 1.), DVec3::Z).unwrap();
         // From outside towards the plane: one crossing at t = 2.

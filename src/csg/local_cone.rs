@@ -32,10 +32,11 @@
 //! planes (curved surfaces), the answer stays
 //! `OnBoundary`, as before this analysis; no answer is ever guessed.
 
+use crate::SetOp;
 use glam::DVec3;
 
 use super::tree::{NodeIndex, NodeKind};
-use super::{Containment, Csg, CsgOp, Stats};
+use super::{Containment, Csg, Stats};
 use crate::geom::Sign;
 use crate::geom::dyadic::{Dyadic, det3_sign};
 
@@ -203,10 +204,10 @@ impl Csg {
                 let a = self.inside_along(left, p, d, at)?;
                 let b = self.inside_along(right, p, d, at)?;
                 Some(match op {
-                    CsgOp::Union => a || b,
-                    CsgOp::Intersection => a && b,
-                    CsgOp::Difference => a && !b,
-                    CsgOp::ReverseDifference => !a && b,
+                    SetOp::Union => a || b,
+                    SetOp::Intersection => a && b,
+                    SetOp::Difference => a && !b,
+                    SetOp::ReverseDifference => !a && b,
                 })
             }
         }

@@ -1,4 +1,5 @@
-//! The seed's four-state machine that combines two children's ray answers.
+//! Roth's four-state machine (Roth 1982) that combines two children's ray
+//! answers.
 //!
 //! Input: `(INOUT_A, t_A1 < t_A2 < …)` and `(INOUT_B, t_B1 < …)`; output
 //! `(INOUT_C, t_C1 < …)` for `C = A ∪ B`, `A ∩ B`, `A − B` or `B − A`. The
@@ -11,6 +12,7 @@
 //! two boxes sharing a face leave no zero-length span and no phantom
 //! boundary. Equal `t` repeated within one list toggle once per copy.
 
+use crate::SetOp;
 use std::cmp::Ordering;
 
 use glam::DVec3;
@@ -30,21 +32,6 @@ pub struct Hit {
     pub leaf: LeafId,
     /// Which surface of that leaf.
     pub surface: SurfaceId,
-}
-
-/// A CSG operator: the seed's four (B − A is A − B with the children
-/// swapped, kept here so the state machine can be checked against the
-/// seed's table directly).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum CsgOp {
-    /// `A ∪ B`.
-    Union,
-    /// `A ∩ B`.
-    Intersection,
-    /// `A − B`.
-    Difference,
-    /// `B − A`.
-    ReverseDifference,
 }
 
 /// Where a point of the ray is relative to the two children.
@@ -91,48 +78,15 @@ impl MergeState {
     }
 }
 
-impl CsgOp {
-    /// The seed's state X: entering or leaving it keeps the `t`.
+impl MergeState {
+    /// Roth's state X of an operator: entering or leaving it keeps the `t`.
     #[must_use]
-    pub fn state_x(self) -> MergeState {
-        match self {
-            CsgOp::Union => MergeState::InNeither,
-            CsgOp::Intersection => MergeState::InBoth,
-            CsgOp::Difference => MergeState::InJustA,
-            CsgOp::ReverseDifference => MergeState::InJustB,
-        }
-    }
-
-    /// The seed's `INOUT_C`: `A OR B`, `A AND B`, `A AND NOT B`,
-    /// `NOT A AND B`.
-    #[must_use]
-    pub fn inout(self, in_a: bool, in_b: bool) -> bool {
-        match self {
-            CsgOp::Union => in_a || in_b,
-            CsgOp::Intersection => in_a && in_b,
-            CsgOp::Difference => in_a && !in_b,
-            CsgOp::ReverseDifference => !in_a && in_b,
-        }
-    }
-
-    /// The same operator with its children swapped (`A − B` ↔ `B − A`).
-    #[must_use]
-    pub fn swapped(self) -> CsgOp {
-        match self {
-            CsgOp::Difference => CsgOp::ReverseDifference,
-            CsgOp::ReverseDifference => CsgOp::Difference,
-            op => op,
-        }
-    }
-
-    /// The operator's name in scene files and messages.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            CsgOp::Union => "union",
-            CsgOp::Intersection => "intersection",
-            CsgOp::Difference => "difference",
-            CsgOp::ReverseDifference => "reverse difference",
+    pub fn kept_by(op: SetOp) -> MergeState {
+        match op {
+            SetOp::Union => MergeState::InNeither,
+            SetOp::Intersection => MergeState::InBoth,
+            SetOp::Difference => MergeState::InJustA,
+            SetOp::ReverseDifference => MergeState::InJustB,
         }
     }
 }
@@ -144,7 +98,7 @@ impl CsgOp {
 /// (a first-hit query needs one); the returned `INOUT_C` is correct either
 /// way. Returns whether the merge was stopped early as the second value.
 pub fn merge(
-    op: CsgOp,
+    op: SetOp,
     a: (bool, &[Hit]),
     b: (bool, &[Hit]),
     out: &mut Vec<Hit>,
@@ -157,22 +111,22 @@ pub fn merge(
 /// traversal orders hits of different leaves exactly where their rounded
 /// `t` cannot tell): hits that compare `Equal` are taken together.
 pub fn merge_by(
-    op: CsgOp,
+    op: SetOp,
     (in_a, a): (bool, &[Hit]),
     (in_b, b): (bool, &[Hit]),
     out: &mut Vec<Hit>,
     limit: Option<usize>,
     mut order: impl FnMut(&Hit, &Hit) -> Ordering,
 ) -> (bool, bool) {
-    let x = op.state_x();
+    let x = MergeState::kept_by(op);
     let start = MergeState::from_flags(in_a, in_b);
-    debug_assert_eq!(op.inout(in_a, in_b), inside(op, start));
+    debug_assert_eq!(op.contains(in_a, in_b), inside(op, start));
     let mut state = start;
     let (mut i, mut j) = (0, 0);
     let mut kept = 0;
     while i < a.len() || j < b.len() {
         if limit.is_some_and(|l| kept >= l) {
-            return (op.inout(in_a, in_b), true);
+            return (op.contains(in_a, in_b), true);
         }
         let (from_a, from_b) = match (a.get(i), b.get(j)) {
             (Some(ha), Some(hb)) => match order(ha, hb) {
@@ -211,13 +165,13 @@ pub fn merge_by(
         }
         state = next;
     }
-    (op.inout(in_a, in_b), false)
+    (op.contains(in_a, in_b), false)
 }
 
 /// Whether the state lies inside `C`: in X for ∩ and −, outside X for ∪.
-fn inside(op: CsgOp, state: MergeState) -> bool {
+fn inside(op: SetOp, state: MergeState) -> bool {
     let (a, b) = state.flags();
-    op.inout(a, b)
+    op.contains(a, b)
 }
 
 /// The outward normal of the combined solid seen along a ray: the leaf's
@@ -249,7 +203,7 @@ mod tests {
             .collect()
     }
 
-    fn run(op: CsgOp, a: (bool, &[f64]), b: (bool, &[f64])) -> (bool, Vec<f64>) {
+    fn run(op: SetOp, a: (bool, &[f64]), b: (bool, &[f64])) -> (bool, Vec<f64>) {
         let (ha, hb) = (hits(a.1, 0), hits(b.1, 1));
         let mut out = Vec::new();
         let (inout, stopped) = merge(op, (a.0, &ha), (b.0, &hb), &mut out, None);
@@ -257,29 +211,29 @@ mod tests {
         (inout, out.iter().map(|h| h.t).collect())
     }
 
-    const ALL: [CsgOp; 4] = [
-        CsgOp::Union,
-        CsgOp::Intersection,
-        CsgOp::Difference,
-        CsgOp::ReverseDifference,
+    const ALL: [SetOp; 4] = [
+        SetOp::Union,
+        SetOp::Intersection,
+        SetOp::Difference,
+        SetOp::ReverseDifference,
     ];
 
     #[test]
-    fn the_seed_table_of_state_x_and_inout_c() {
+    fn roths_table_of_state_x_and_inout_c() {
         use MergeState::*;
-        let x: Vec<_> = ALL.iter().map(|op| op.state_x()).collect();
+        let x: Vec<_> = ALL.iter().map(|&op| MergeState::kept_by(op)).collect();
         assert_eq!(x, [InNeither, InBoth, InJustA, InJustB]);
         // INOUT_C for (INOUT_A, INOUT_B) = FF, TF, FT, TT.
         let table = [
-            (CsgOp::Union, [false, true, true, true]),
-            (CsgOp::Intersection, [false, false, false, true]),
-            (CsgOp::Difference, [false, true, false, false]),
-            (CsgOp::ReverseDifference, [false, false, true, false]),
+            (SetOp::Union, [false, true, true, true]),
+            (SetOp::Intersection, [false, false, false, true]),
+            (SetOp::Difference, [false, true, false, false]),
+            (SetOp::ReverseDifference, [false, false, true, false]),
         ];
         for (op, expected) in table {
             let got: Vec<bool> = [(false, false), (true, false), (false, true), (true, true)]
                 .iter()
-                .map(|&(a, b)| op.inout(a, b))
+                .map(|&(a, b)| op.contains(a, b))
                 .collect();
             assert_eq!(got, expected, "{op:?}");
             // The state machine's own answer agrees with the table.
@@ -293,21 +247,21 @@ mod tests {
     }
 
     /// A = [1, 4] ∪ [6, 8] along the ray (origin outside), B = [3, 7].
-    /// Worked by hand on the seed's diagram.
+    /// Worked by hand on a diagram of the two span lists.
     #[test]
     fn hand_worked_lists_from_outside() {
         let a = (false, &[1.0, 4.0, 6.0, 8.0][..]);
         let b = (false, &[3.0, 7.0][..]);
-        assert_eq!(run(CsgOp::Union, a, b), (false, vec![1.0, 8.0]));
+        assert_eq!(run(SetOp::Union, a, b), (false, vec![1.0, 8.0]));
         assert_eq!(
-            run(CsgOp::Intersection, a, b),
+            run(SetOp::Intersection, a, b),
             (false, vec![3.0, 4.0, 6.0, 7.0])
         );
         assert_eq!(
-            run(CsgOp::Difference, a, b),
+            run(SetOp::Difference, a, b),
             (false, vec![1.0, 3.0, 7.0, 8.0])
         );
-        assert_eq!(run(CsgOp::ReverseDifference, a, b), (false, vec![4.0, 6.0]));
+        assert_eq!(run(SetOp::ReverseDifference, a, b), (false, vec![4.0, 6.0]));
     }
 
     /// `((INOUT_A, INOUT_B), [(INOUT_C, t_C list) for ∪, ∩, A − B, B − A])`.
@@ -365,20 +319,20 @@ mod tests {
         // Touching boxes along the ray: A = [1, 2], B = [2, 3].
         let a = (false, &[1.0, 2.0][..]);
         let b = (false, &[2.0, 3.0][..]);
-        assert_eq!(run(CsgOp::Union, a, b), (false, vec![1.0, 3.0]));
-        assert_eq!(run(CsgOp::Intersection, a, b), (false, vec![]));
-        assert_eq!(run(CsgOp::Difference, a, b), (false, vec![1.0, 2.0]));
+        assert_eq!(run(SetOp::Union, a, b), (false, vec![1.0, 3.0]));
+        assert_eq!(run(SetOp::Intersection, a, b), (false, vec![]));
+        assert_eq!(run(SetOp::Difference, a, b), (false, vec![1.0, 2.0]));
         // Coincident spans: A = B = [1, 2].
         let b = (false, &[1.0, 2.0][..]);
-        assert_eq!(run(CsgOp::Union, a, b), (false, vec![1.0, 2.0]));
-        assert_eq!(run(CsgOp::Intersection, a, b), (false, vec![1.0, 2.0]));
-        assert_eq!(run(CsgOp::Difference, a, b), (false, vec![]));
-        assert_eq!(run(CsgOp::ReverseDifference, a, b), (false, vec![]));
+        assert_eq!(run(SetOp::Union, a, b), (false, vec![1.0, 2.0]));
+        assert_eq!(run(SetOp::Intersection, a, b), (false, vec![1.0, 2.0]));
+        assert_eq!(run(SetOp::Difference, a, b), (false, vec![]));
+        assert_eq!(run(SetOp::ReverseDifference, a, b), (false, vec![]));
         // B flush with A's far face: A = [1, 3], B = [2, 3]; A − B = [1, 2].
         let a = (false, &[1.0, 3.0][..]);
         let b = (false, &[2.0, 3.0][..]);
-        assert_eq!(run(CsgOp::Difference, a, b), (false, vec![1.0, 2.0]));
-        assert_eq!(run(CsgOp::Union, a, b), (false, vec![1.0, 3.0]));
+        assert_eq!(run(SetOp::Difference, a, b), (false, vec![1.0, 2.0]));
+        assert_eq!(run(SetOp::Union, a, b), (false, vec![1.0, 3.0]));
     }
 
     #[test]
@@ -395,7 +349,7 @@ mod tests {
         let ha = hits(&[1.0, 4.0, 6.0, 8.0], 0);
         let hb = hits(&[3.0, 7.0], 1);
         let mut out = Vec::new();
-        let (inout, stopped) = merge(CsgOp::Union, (false, &ha), (false, &hb), &mut out, Some(1));
+        let (inout, stopped) = merge(SetOp::Union, (false, &ha), (false, &hb), &mut out, Some(1));
         assert!(stopped && !inout);
         assert_eq!(out.len(), 1);
         assert_eq!(out[0].t, 1.0);

@@ -1,4 +1,4 @@
-//! Ray-cast CSG (Roth's method, the seed's part (c)): trees of primitives
+//! Ray-cast CSG (Roth's method, 1982): trees of primitives
 //! combined by union, intersection and difference, answered along rays.
 //!
 //! - A [`Primitive`] answers a ray with whether its origin is inside and the
@@ -6,7 +6,7 @@
 //!   bounds. Kinds: [`HalfSpace`] (exact), [`AxisBox`], [`Sphere`],
 //!   [`Cylinder`] and [`Transformed`].
 //! - A [`Csg`] tree (built from a [`CsgExpr`]) combines two children's
-//!   answers with the seed's four-state machine ([`merge()`]).
+//!   answers with Roth's four-state machine ([`merge()`]).
 //! - Answers: [`Spans`] of a ray, the [`FirstHit`] with its normal when
 //!   asked, point classification right at coincident faces, and volume by
 //!   integrating span lengths ([`VolumeEstimate`]).
@@ -46,7 +46,7 @@ pub use cylinder::{Cylinder, CylinderError};
 pub use evaluate::{EvaluateError, EvaluateOptions, Evaluated, LeafFace, evaluate};
 pub use halfspace::{HalfSpace, HalfSpaceError};
 pub use local_cone::{LocalPlane, MAX_PLANES_AT_A_POINT};
-pub use merge::{CsgOp, Hit, MergeState, merge, merge_by, oriented_normal};
+pub use merge::{Hit, MergeState, merge, merge_by, oriented_normal};
 pub use polyhedron::{Polyhedron, PolyhedronError};
 pub use primitive::{Crossing, Primitive, SurfaceId, normal_alignment, perturbed_side};
 pub use sphere::{Sphere, SphereError};

@@ -50,13 +50,13 @@ pub(crate) fn push_convex_interval(
     inside
 }
 
-/// A solid that answers rays and points: a leaf of a CSG tree (the seed's
-/// "primitive object": one "for which we have a ray-object intersection
-/// algorithm").
+/// A solid that answers rays and points: a leaf of a CSG tree (Roth's
+/// primitive solid, one for which a ray–solid intersection algorithm is
+/// known; Roth 1982).
 ///
 /// # Contract
 ///
-/// - [`intersect_ray`](Primitive::intersect_ray) returns the seed's `INOUT`
+/// - [`intersect_ray`](Primitive::intersect_ray) returns Roth's `INOUT`
 ///   — whether the ray's origin is inside — and appends the crossings with
 ///   `t > 0` in strictly ascending order. "Origin inside" means inside just
 ///   after the origin along the ray (for an origin in the interior that is

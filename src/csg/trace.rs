@@ -1,5 +1,6 @@
 //! Rays through a tree: spans, first hits, normals.
 
+use crate::SetOp;
 use std::cmp::Ordering;
 
 use glam::DVec3;
@@ -8,11 +9,11 @@ use super::crossing_order::{certain_order, compare_exactly};
 use super::merge::{Hit, merge_by, oriented_normal};
 use super::stats::counting_fallbacks;
 use super::tree::{NodeIndex, NodeKind};
-use super::{Crossing, Csg, CsgOp, LeafId, Stats, SurfaceId};
+use super::{Crossing, Csg, LeafId, Stats, SurfaceId};
 use crate::geom::{Aabb, Ray};
 use crate::query::QueryError;
 
-/// The answer of a tree to a ray: the seed's `(INOUT_C, t_C1, t_C2, …)`.
+/// The answer of a tree to a ray: Roth's `(INOUT_C, t_C1, t_C2, …)` (Roth 1982).
 ///
 /// # Invariants
 ///
@@ -410,16 +411,16 @@ impl Csg {
                 let in_a = self.trace_node(left, ray, None, scratch, stats, &mut a);
                 let left_decides = a.is_empty()
                     && match op {
-                        CsgOp::Union => in_a,
-                        CsgOp::Intersection | CsgOp::Difference => !in_a,
-                        CsgOp::ReverseDifference => in_a,
+                        SetOp::Union => in_a,
+                        SetOp::Intersection | SetOp::Difference => !in_a,
+                        SetOp::ReverseDifference => in_a,
                     };
                 if left_decides {
                     stats.skipped_right_sides += 1;
                     scratch.pool.push(a);
                     // ∪ with A everywhere is everything; ∩, − and B − A
                     // here are empty.
-                    return op == CsgOp::Union;
+                    return op == SetOp::Union;
                 }
                 let mut b = scratch.take();
                 let in_b = self.trace_node(right, ray, None, scratch, stats, &mut b);

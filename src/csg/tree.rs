@@ -1,11 +1,12 @@
 //! The CSG tree: leaves, operators, transforms, and the bounds hierarchy.
 
+use crate::SetOp;
 use std::sync::Arc;
 
 use glam::{DAffine3, DVec3};
 use thiserror::Error;
 
-use super::{CsgOp, Primitive, TransformError, Transformed};
+use super::{Primitive, TransformError, Transformed};
 use crate::geom::Aabb;
 
 /// The index of a leaf in a [`Csg`] tree (in the order the leaves were
@@ -127,7 +128,7 @@ pub(crate) type NodeIndex = usize;
 pub(crate) enum NodeKind {
     Leaf(LeafId),
     Op {
-        op: CsgOp,
+        op: SetOp,
         left: NodeIndex,
         right: NodeIndex,
     },
@@ -253,13 +254,13 @@ impl Csg {
         self.nodes.len() - 1
     }
 
-    fn op_node(&mut self, op: CsgOp, left: NodeIndex, right: NodeIndex) -> NodeIndex {
+    fn op_node(&mut self, op: SetOp, left: NodeIndex, right: NodeIndex) -> NodeIndex {
         let (a, b) = (self.nodes[left].bounds, self.nodes[right].bounds);
         let bounds = match op {
-            CsgOp::Union => a.union(b),
-            CsgOp::Intersection => a.intersection(b),
-            CsgOp::Difference => a,
-            CsgOp::ReverseDifference => b,
+            SetOp::Union => a.union(b),
+            SetOp::Intersection => a.intersection(b),
+            SetOp::Difference => a,
+            SetOp::ReverseDifference => b,
         };
         let bounds = if bounds.is_empty() {
             Aabb::EMPTY
@@ -305,11 +306,11 @@ impl Csg {
             }
             CsgExpr::Union(kids) => {
                 let ids = children(self, kids, "union")?;
-                Ok(self.balanced(CsgOp::Union, ids))
+                Ok(self.balanced(SetOp::Union, ids))
             }
             CsgExpr::Intersection(kids) => {
                 let ids = children(self, kids, "intersection")?;
-                Ok(self.balanced(CsgOp::Intersection, ids))
+                Ok(self.balanced(SetOp::Intersection, ids))
             }
             CsgExpr::Difference(kids) => {
                 if kids.len() < 2 {
@@ -320,8 +321,8 @@ impl Csg {
                 }
                 let mut ids = children(self, kids, "difference")?;
                 let rest = ids.split_off(1);
-                let cut = self.balanced(CsgOp::Union, rest);
-                Ok(self.op_node(CsgOp::Difference, ids[0], cut))
+                let cut = self.balanced(SetOp::Union, rest);
+                Ok(self.op_node(SetOp::Difference, ids[0], cut))
             }
             CsgExpr::Transform {
                 transform: m,
@@ -335,7 +336,7 @@ impl Csg {
 
     /// Groups `ids` (non-empty) under `op` as a balanced tree, splitting at
     /// the median of the children's box centres along their widest axis.
-    fn balanced(&mut self, op: CsgOp, mut ids: Vec<NodeIndex>) -> NodeIndex {
+    fn balanced(&mut self, op: SetOp, mut ids: Vec<NodeIndex>) -> NodeIndex {
         if ids.len() == 1 {
             return ids[0];
         }

@@ -1,6 +1,7 @@
 //! Field CSG: union, intersection and difference of two fields by `max`,
 //! `min` and `min(a, 1 − b)`.
 
+use crate::SetOp;
 use glam::DVec3;
 
 use crate::geom::Aabb;
@@ -8,37 +9,19 @@ use crate::geom::Aabb;
 use super::scalar_field::{Field, NodeBox, ValueRange};
 use super::stats::FieldStats;
 
-/// How a [`FieldCsg`] node combines its two fields `a` and `b`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FieldOp {
-    /// `max(a, b)`: inside where either is ≥ ½.
-    Union,
-    /// `min(a, b)`: inside where both are ≥ ½.
-    Intersection,
-    /// `min(a, 1 − b)`: inside where `a ≥ ½` and `b ≤ ½` (A − B; the points
-    /// on B's surface stay in, so the result is closed).
-    Difference,
-}
-
-impl FieldOp {
-    /// The operator's name as in field documents.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            FieldOp::Union => "union",
-            FieldOp::Intersection => "intersection",
-            FieldOp::Difference => "difference",
-        }
-    }
-}
-
-/// Two fields combined by a [`FieldOp`]: itself a [`Field`], so trees nest.
+/// Two fields combined by a [`SetOp`]: itself a [`Field`], so trees nest.
+///
+/// - union: `max(a, b)`, inside where either is ≥ ½;
+/// - intersection: `min(a, b)`, inside where both are ≥ ½;
+/// - difference: `min(a, 1 − b)`, inside where `a ≥ ½` and `b ≤ ½` (the
+///   points on B's surface stay in, so the result is closed); the reverse
+///   difference is `min(b, 1 − a)`.
 ///
 /// Unlike ray-cast CSG there is no boundary to merge: the combination is a
 /// new scalar field whose ½ level set is the combined solid's surface, and
 /// marching cubes meshes it like any other field.
 pub struct FieldCsg {
-    op: FieldOp,
+    op: SetOp,
     a: Box<dyn Field>,
     b: Box<dyn Field>,
 }
@@ -46,13 +29,13 @@ pub struct FieldCsg {
 impl FieldCsg {
     /// `a op b`.
     #[must_use]
-    pub fn new(op: FieldOp, a: Box<dyn Field>, b: Box<dyn Field>) -> FieldCsg {
+    pub fn new(op: SetOp, a: Box<dyn Field>, b: Box<dyn Field>) -> FieldCsg {
         FieldCsg { op, a, b }
     }
 
     /// The operator.
     #[must_use]
-    pub fn op(&self) -> FieldOp {
+    pub fn op(&self) -> SetOp {
         self.op
     }
 }
@@ -71,9 +54,10 @@ impl Field for FieldCsg {
         let a = self.a.value_counted(p, stats);
         let b = self.b.value_counted(p, stats);
         match self.op {
-            FieldOp::Union => a.max(b),
-            FieldOp::Intersection => a.min(b),
-            FieldOp::Difference => a.min(1.0 - b),
+            SetOp::Union => a.max(b),
+            SetOp::Intersection => a.min(b),
+            SetOp::Difference => a.min(1.0 - b),
+            SetOp::ReverseDifference => b.min(1.0 - a),
         }
     }
 
@@ -85,9 +69,10 @@ impl Field for FieldCsg {
         self.b.sample_nodes(nodes, &mut other, stats);
         for (a, b) in values.iter_mut().zip(other) {
             *a = match self.op {
-                FieldOp::Union => a.max(b),
-                FieldOp::Intersection => a.min(b),
-                FieldOp::Difference => a.min(1.0 - b),
+                SetOp::Union => a.max(b),
+                SetOp::Intersection => a.min(b),
+                SetOp::Difference => a.min(1.0 - b),
+                SetOp::ReverseDifference => b.min(1.0 - *a),
             };
         }
     }
@@ -98,17 +83,21 @@ impl Field for FieldCsg {
     fn bound(&self, region: &Aabb) -> ValueRange {
         let (a, b) = (self.a.bound(region), self.b.bound(region));
         match self.op {
-            FieldOp::Union => ValueRange {
+            SetOp::Union => ValueRange {
                 low: a.low.max(b.low),
                 high: a.high.max(b.high),
             },
-            FieldOp::Intersection => ValueRange {
+            SetOp::Intersection => ValueRange {
                 low: a.low.min(b.low),
                 high: a.high.min(b.high),
             },
-            FieldOp::Difference => ValueRange {
+            SetOp::Difference => ValueRange {
                 low: a.low.min(1.0 - b.high),
                 high: a.high.min(1.0 - b.low),
+            },
+            SetOp::ReverseDifference => ValueRange {
+                low: b.low.min(1.0 - a.high),
+                high: b.high.min(1.0 - a.low),
             },
         }
     }
@@ -116,16 +105,17 @@ impl Field for FieldCsg {
     fn bounds(&self) -> Aabb {
         let (a, b) = (self.a.bounds(), self.b.bounds());
         match self.op {
-            FieldOp::Union => match (a.is_empty(), b.is_empty()) {
+            SetOp::Union => match (a.is_empty(), b.is_empty()) {
                 (true, _) => b,
                 (_, true) => a,
                 _ => a.union(b),
             },
-            FieldOp::Intersection => {
+            SetOp::Intersection => {
                 let both = a.intersection(b);
                 if both.is_empty() { Aabb::EMPTY } else { both }
             }
-            FieldOp::Difference => a,
+            SetOp::Difference => a,
+            SetOp::ReverseDifference => b,
         }
     }
 }
@@ -151,17 +141,13 @@ mod tests {
             (2.4, true, false, false),
             (3.0, false, false, false),
         ] {
-            assert_eq!(probe(FieldOp::Union, x), union, "union at {x}");
-            assert_eq!(
-                probe(FieldOp::Intersection, x),
-                inter,
-                "intersection at {x}"
-            );
-            assert_eq!(probe(FieldOp::Difference, x), diff, "difference at {x}");
+            assert_eq!(probe(SetOp::Union, x), union, "union at {x}");
+            assert_eq!(probe(SetOp::Intersection, x), inter, "intersection at {x}");
+            assert_eq!(probe(SetOp::Difference, x), diff, "difference at {x}");
         }
-        let far = FieldCsg::new(FieldOp::Intersection, ball(0.0), ball(10.0));
+        let far = FieldCsg::new(SetOp::Intersection, ball(0.0), ball(10.0));
         assert!(far.bounds().is_empty());
-        let d = FieldCsg::new(FieldOp::Difference, ball(0.0), ball(10.0));
+        let d = FieldCsg::new(SetOp::Difference, ball(0.0), ball(10.0));
         assert_eq!(d.bounds(), ball(0.0).bounds());
     }
 }

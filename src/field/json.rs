@@ -13,19 +13,19 @@
 //! a `{"field": DOCUMENT}` leaf (`wingedge::scene`), which is meshed into a
 //! polyhedron ([`read_document`] reads it at the leaf's JSON path).
 
-use std::path::{Path, PathBuf};
+use crate::SetOp;
+use std::path::Path;
 
 use glam::DVec3;
 use serde_json::{Map, Value};
-use thiserror::Error;
 
 use super::blobs::Blobs;
-use super::combine::{FieldCsg, FieldOp};
+use super::combine::FieldCsg;
 use super::error::FieldError;
 use super::falloff::Falloff;
 use super::scalar_field::Field;
 use super::source::Source;
-use crate::io::json_value::{self, JsonValueError};
+use crate::io::json_value::{self, JsonError};
 
 /// The most sources a document may hold, all nodes together.
 pub const MAX_DOCUMENT_SOURCES: usize = 1_000_000;
@@ -35,50 +35,6 @@ pub use crate::io::json_value::MAX_JSON_DEPTH;
 
 const NODE_KEYS: &str = "blobs (with falloff), union, intersection, difference";
 const SOURCE_KEYS: &str = "center, radius, strength";
-
-/// Why a field document cannot be loaded: each variant names the file or
-/// the JSON path (`field.union[1].blobs[3].radius`).
-#[derive(Debug, Error)]
-pub enum FieldJsonError {
-    /// The file could not be read.
-    #[error("{file}: cannot read: {source}")]
-    Read {
-        /// The file.
-        file: PathBuf,
-        /// Why.
-        source: std::io::Error,
-    },
-    /// The text is not JSON.
-    #[error("{file}: line {line}, column {column}: not valid JSON: {message}")]
-    Json {
-        /// The file (`<string>` for text).
-        file: String,
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        column: usize,
-        /// The parser's message.
-        message: String,
-    },
-    /// A value is missing, has the wrong type or is out of range.
-    #[error("{at}: {message}")]
-    Value {
-        /// The JSON path.
-        at: String,
-        /// What is wrong.
-        message: String,
-    },
-    /// A key the format does not have.
-    #[error("{at}: unknown key \"{key}\" (expected {expected})")]
-    UnknownKey {
-        /// The JSON path of the object.
-        at: String,
-        /// The key found.
-        key: String,
-        /// The keys allowed there.
-        expected: &'static str,
-    },
-}
 
 /// A loaded field document: the field and the resolution it asks for.
 pub struct FieldDocument {
@@ -104,11 +60,11 @@ impl std::fmt::Debug for FieldDocument {
 ///
 /// # Errors
 ///
-/// [`FieldJsonError`] naming the file, the JSON position or the JSON path.
-pub fn load_json(path: &Path) -> Result<FieldDocument, FieldJsonError> {
+/// [`JsonError`] naming the file, the JSON position or the JSON path.
+pub fn load_json(path: &Path) -> Result<FieldDocument, JsonError> {
     // The bounded reader every input goes through (size limit, stops at a
     // NUL byte); what is not UTF-8 text is refused as binary data.
-    let read_error = |source| FieldJsonError::Read {
+    let read_error = |source| JsonError::Read {
         file: path.to_path_buf(),
         source,
     };
@@ -126,12 +82,12 @@ pub fn load_json(path: &Path) -> Result<FieldDocument, FieldJsonError> {
 /// # Errors
 ///
 /// As [`load_json`], with `<string>` as the file name.
-pub fn parse_json(text: &str) -> Result<FieldDocument, FieldJsonError> {
+pub fn parse_json(text: &str) -> Result<FieldDocument, JsonError> {
     parse_named(text, "<string>")
 }
 
-fn parse_named(text: &str, name: &str) -> Result<FieldDocument, FieldJsonError> {
-    let value = json_value::parse_json::<FieldJsonError>(text, name)?;
+fn parse_named(text: &str, name: &str) -> Result<FieldDocument, JsonError> {
+    let value = json_value::parse_json::<JsonError>(text, name)?;
     read_document(&value, "field")
 }
 
@@ -141,8 +97,8 @@ fn parse_named(text: &str, name: &str) -> Result<FieldDocument, FieldJsonError> 
 ///
 /// # Errors
 ///
-/// [`FieldJsonError::Value`] or [`FieldJsonError::UnknownKey`].
-pub fn read_document(value: &Value, at: &str) -> Result<FieldDocument, FieldJsonError> {
+/// [`JsonError::Value`] or [`JsonError::UnknownKey`].
+pub fn read_document(value: &Value, at: &str) -> Result<FieldDocument, JsonError> {
     let o = value
         .as_object()
         .ok_or_else(|| bad(at, "an object", value))?;
@@ -170,16 +126,16 @@ fn read_node(
     o: &Map<String, Value>,
     at: &str,
     sources: &mut usize,
-) -> Result<Box<dyn Field>, FieldJsonError> {
+) -> Result<Box<dyn Field>, JsonError> {
     let op = |name: &str| match name {
-        "union" => Some(FieldOp::Union),
-        "intersection" => Some(FieldOp::Intersection),
-        "difference" => Some(FieldOp::Difference),
+        "union" => Some(SetOp::Union),
+        "intersection" => Some(SetOp::Intersection),
+        "difference" => Some(SetOp::Difference),
         _ => None,
     };
     let Some(kind) = o.keys().find(|k| k.as_str() == "blobs" || op(k).is_some()) else {
         return match o.keys().next() {
-            Some(key) => Err(FieldJsonError::UnknownKey {
+            Some(key) => Err(JsonError::UnknownKey {
                 at: at.to_string(),
                 key: key.clone(),
                 expected: NODE_KEYS,
@@ -195,13 +151,13 @@ fn read_node(
     } else {
         &[kind.as_str()]
     };
-    json_value::check_keys::<FieldJsonError>(o, at, allowed, NODE_KEYS)?;
+    json_value::check_keys::<JsonError>(o, at, allowed, NODE_KEYS)?;
     let here = format!("{at}.{kind}");
     let list = o[kind.as_str()]
         .as_array()
         .ok_or_else(|| bad(&here, "an array", &o[kind.as_str()]))?;
     if let Some(op) = op(kind) {
-        let least = if op == FieldOp::Difference { 2 } else { 1 };
+        let least = if op == SetOp::Difference { 2 } else { 1 };
         if list.len() < least {
             return Err(value_error(
                 &here,
@@ -255,13 +211,8 @@ fn read_node(
     Ok(Box::new(blobs))
 }
 
-fn read_source(v: &Value, at: &str) -> Result<Source, FieldJsonError> {
-    let o = json_value::fields::<FieldJsonError>(
-        v,
-        at,
-        &["center", "radius", "strength"],
-        SOURCE_KEYS,
-    )?;
+fn read_source(v: &Value, at: &str) -> Result<Source, JsonError> {
+    let o = json_value::fields::<JsonError>(v, at, &["center", "radius", "strength"], SOURCE_KEYS)?;
     let center = match o.get("center") {
         Some(c) => point(c, &format!("{at}.center"))?,
         None => return Err(value_error(&format!("{at}.center"), "missing".into())),
@@ -287,21 +238,21 @@ fn read_source(v: &Value, at: &str) -> Result<Source, FieldJsonError> {
     })
 }
 
-fn number(v: &Value, at: &str) -> Result<f64, FieldJsonError> {
+fn number(v: &Value, at: &str) -> Result<f64, JsonError> {
     json_value::number(v, at)
 }
 
-fn point(v: &Value, at: &str) -> Result<DVec3, FieldJsonError> {
+fn point(v: &Value, at: &str) -> Result<DVec3, JsonError> {
     json_value::vec3(v, at)
 }
 
-fn value_error(at: &str, message: String) -> FieldJsonError {
+fn value_error(at: &str, message: String) -> JsonError {
     json_value::value_error(at, message)
 }
 
 /// A field error, at the path of the source value it concerns (below the
 /// blobs list `at`).
-fn located(at: &str, e: FieldError) -> FieldJsonError {
+fn located(at: &str, e: FieldError) -> JsonError {
     let path = match &e {
         FieldError::NonFiniteCenter { source_index, .. } => format!("{at}[{source_index}].center"),
         FieldError::BadRadius { source_index, .. } => format!("{at}[{source_index}].radius"),
@@ -321,30 +272,8 @@ fn located(at: &str, e: FieldError) -> FieldJsonError {
     value_error(&path, e.to_string())
 }
 
-fn bad(at: &str, expected: &str, found: &Value) -> FieldJsonError {
+fn bad(at: &str, expected: &str, found: &Value) -> JsonError {
     json_value::bad(at, expected, found)
-}
-
-impl From<JsonValueError> for FieldJsonError {
-    fn from(e: JsonValueError) -> FieldJsonError {
-        match e {
-            JsonValueError::Text {
-                file,
-                line,
-                column,
-                message,
-            } => FieldJsonError::Json {
-                file,
-                line,
-                column,
-                message,
-            },
-            JsonValueError::Value { at, message } => FieldJsonError::Value { at, message },
-            JsonValueError::UnknownKey { at, key, expected } => {
-                FieldJsonError::UnknownKey { at, key, expected }
-            }
-        }
-    }
 }
 
 #[cfg(test)]

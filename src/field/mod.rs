@@ -27,12 +27,11 @@ mod source_grid;
 mod stats;
 
 pub use blobs::Blobs;
-pub use combine::{FieldCsg, FieldOp};
+pub use combine::FieldCsg;
 pub use error::FieldError;
 pub use falloff::Falloff;
 pub use json::{
-    FieldDocument, FieldJsonError, MAX_DOCUMENT_SOURCES, MAX_JSON_DEPTH, load_json, parse_json,
-    read_document,
+    FieldDocument, MAX_DOCUMENT_SOURCES, MAX_JSON_DEPTH, load_json, parse_json, read_document,
 };
 pub use marching::{
     MAX_SAMPLES, MarchingOptions, Meshed, Placement, SampleGrid, try_mesh, try_mesh_solid,

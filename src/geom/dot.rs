@@ -1,7 +1,7 @@
 //! Exact signs of dot products: which side of a plane given by a point and a
 //! normal a point lies on, and which way a direction points across it.
 //!
-//! These are the half-space predicates of the seed's ray–plane method: the
+//! These are the half-space predicates of the ray–plane method: the
 //! side of `P` is the sign of `(P − Q) · N`, and whether a ray runs towards or
 //! away from the plane is the sign of `D · N`. As in
 //! [`orient3d`](super::orient3d), a floating-point filter decides the common

@@ -53,8 +53,8 @@ pub struct PlaneFit {
     /// (counter-clockwise seen from the side it points to).
     pub plane: Plane,
     /// The largest distance of a polygon vertex from `plane`. Zero (up to
-    /// rounding) for a planar polygon; the seed's warning — "4 points or more
-    /// may not be co-planar" — made measurable.
+    /// rounding) for a planar polygon; four or more points need not be
+    /// coplanar, and this measures by how much they are not.
     pub max_deviation: f64,
     /// The polygon's vector area `½ Σ pᵢ × pᵢ₊₁`; its length is the area of a
     /// planar polygon.
@@ -81,12 +81,12 @@ impl Plane {
         })
     }
 
-    /// The seed's method (1), done in general: solve `A xᵢ + B yᵢ + C zᵢ + D = 0`
+    /// The plane through three points by determinants, done in general: solve `A xᵢ + B yᵢ + C zᵢ + D = 0`
     /// for three points by 3×3 determinants, then scale to a unit normal.
     ///
     /// `A`, `B`, `C` and `D` are the cofactors of the matrix whose rows are
     /// `(xᵢ, yᵢ, zᵢ, 1)`: `A = |y z 1|`, `B = |z x 1|`, `C = |x y 1|`,
-    /// `D = -|x y z|`. Unlike the seed's shortcut (set `D = 1` and solve), this
+    /// `D = -|x y z|`. Unlike the common shortcut (set `D = 1` and solve), this
     /// works for planes through the origin. The points are taken relative to
     /// their centroid first, which leaves `A`, `B`, `C` unchanged and keeps the
     /// determinants accurate far from the origin. The normal points to the side
@@ -121,7 +121,7 @@ impl Plane {
         })
     }
 
-    /// The seed's method (2): the normal is the cross product of two edge
+    /// The plane through three points by the cross product: the normal is the cross product of two edge
     /// vectors, `(p1 − p2) × (p2 − p3)`, normalised; `D = −n · p`.
     ///
     /// The normal points to the side from which `p1, p2, p3` appear
@@ -275,10 +275,10 @@ mod tests {
         (a - b).abs() <= tol
     }
 
-    /// The seed's shortcut for method (1): fix `D = 1` and solve the 3×3
+    /// The common shortcut for the determinant method: fix `D = 1` and solve the 3×3
     /// system `[p₁; p₂; p₃] (A, B, C)ᵀ = −1` by Cramer's rule. Kept here only
     /// to show why it is not used.
-    fn seed_shortcut(p1: DVec3, p2: DVec3, p3: DVec3) -> Option<Plane> {
+    fn d_equals_one_shortcut(p1: DVec3, p2: DVec3, p3: DVec3) -> Option<Plane> {
         let m = DMat3::from_cols(p1, p2, p3).transpose();
         let det = m.determinant();
         if det == 0.0 {
@@ -293,14 +293,14 @@ mod tests {
     }
 
     #[test]
-    fn the_seed_shortcut_fails_for_planes_through_the_origin() {
+    fn the_d_equals_one_shortcut_fails_for_planes_through_the_origin() {
         let (p1, p2, p3) = (
             DVec3::new(1., 0., 0.),
             DVec3::new(0., 1., 0.),
             DVec3::new(-1., -1., 0.),
         );
         // z = 0 passes through the origin: with D = 1 the system is singular.
-        assert!(seed_shortcut(p1, p2, p3).is_none());
+        assert!(d_equals_one_shortcut(p1, p2, p3).is_none());
         for plane in [
             Plane::try_from_points_determinant(p1, p2, p3).unwrap(),
             Plane::try_from_points_cross(p1, p2, p3).unwrap(),
@@ -310,7 +310,7 @@ mod tests {
         }
         // Away from the origin the shortcut works and agrees.
         let q = DVec3::new(0., 0., 2.);
-        let shortcut = seed_shortcut(p1 + q, p2 + q, p3 + q).unwrap();
+        let shortcut = d_equals_one_shortcut(p1 + q, p2 + q, p3 + q).unwrap();
         let general = Plane::try_from_points_determinant(p1 + q, p2 + q, p3 + q).unwrap();
         assert!(close(shortcut.normal.dot(general.normal).abs(), 1.0, 1e-12));
     }

@@ -1,4 +1,5 @@
-//! Polygons projected onto an axis plane (the seed's "ignore one coordinate").
+//! Polygons projected onto an axis plane (dropping the coordinate of the
+//! normal's largest component).
 //!
 //! A planar polygon is projected onto the coordinate plane most nearly
 //! parallel to it: the one perpendicular to the largest component of its

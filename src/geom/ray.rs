@@ -2,7 +2,8 @@
 
 use glam::DVec3;
 
-/// A ray `P(t) = origin + t · direction` for `t ≥ 0` (the seed's `E + t D`).
+/// A ray `P(t) = origin + t · direction` for `t ≥ 0` (`E + t D`: eye and
+/// direction).
 ///
 /// The direction need not be unit length; parameters `t` are measured in
 /// multiples of it.
@@ -35,8 +36,8 @@ impl Ray {
     }
 }
 
-/// The segment `P(u) = start + u · (end − start)` for `u ∈ [0, 1]` (the seed's
-/// finite line from `P1` to `P2`).
+/// The segment `P(u) = start + u · (end − start)` for `u ∈ [0, 1]` (the finite
+/// line from `P1` to `P2`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment {
     /// `P1`, at `u = 0`.

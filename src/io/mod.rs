@@ -8,6 +8,7 @@ mod read;
 mod weld;
 
 pub use crate::mesh::PolygonSoup;
+pub use json_value::JsonError;
 pub use obj::{
     DEFAULT_MAX_FACE_CORNERS, ObjError, ObjImport, ObjOptions, import_obj, import_obj_bytes,
     read_obj,

@@ -18,6 +18,7 @@
 //!    that would appear twice in one face, is not merged; the refusal is
 //!    reported ([`WeldRefusal`]). This repeats until nothing is refused.
 
+use crate::disjoint_sets::DisjointSets;
 use std::collections::HashMap;
 
 use glam::DVec3;
@@ -87,28 +88,6 @@ pub struct WeldReport {
     pub refused: Vec<WeldRefusal>,
 }
 
-struct UnionFind(Vec<usize>);
-
-impl UnionFind {
-    fn new(n: usize) -> UnionFind {
-        UnionFind((0..n).collect())
-    }
-    fn find(&mut self, mut i: usize) -> usize {
-        while self.0[i] != i {
-            self.0[i] = self.0[self.0[i]];
-            i = self.0[i];
-        }
-        i
-    }
-    fn union(&mut self, a: usize, b: usize) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            // The smaller index becomes the root: the first copy represents.
-            self.0[ra.max(rb)] = ra.min(rb);
-        }
-    }
-}
-
 /// Welds `soup` as `mode` says and compacts it: each merged class becomes its
 /// first copy. Returns the soup, the `v` line and OBJ number of each new
 /// vertex, and the report.
@@ -146,7 +125,7 @@ pub(crate) fn weld(
     let mut blocked = vec![false; n];
     let mut refused = Vec::new();
     let uf = loop {
-        let mut uf = UnionFind::new(n);
+        let mut uf = DisjointSets::new(n);
         for &[a1, b1, a2, b2] in &candidates {
             if ![a1, b1, a2, b2].iter().any(|&v| blocked[v]) {
                 uf.union(a1, b2);
@@ -187,7 +166,7 @@ fn clusters(positions: &[DVec3], mode: WeldMode) -> Option<Vec<usize>> {
             // cell, where the distance test still decides.
             let cell = |p: DVec3| (p / d).floor().as_i64vec3();
             let mut grid: HashMap<glam::I64Vec3, Vec<usize>> = HashMap::new();
-            let mut uf = UnionFind::new(positions.len());
+            let mut uf = DisjointSets::new(positions.len());
             for (i, &p) in positions.iter().enumerate() {
                 let c = cell(p);
                 for dx in -1..=1 {
@@ -280,7 +259,7 @@ fn incident_polygons(soup: &PolygonSoup) -> (Vec<usize>, Vec<usize>) {
 
 /// Blocks every member of the classes whose roots are given: one pass over
 /// the vertices however many classes are blocked.
-fn block_classes(uf: &mut UnionFind, blocked: &mut [bool], roots: &[usize]) {
+fn block_classes(uf: &mut DisjointSets, blocked: &mut [bool], roots: &[usize]) {
     if roots.is_empty() {
         return;
     }
@@ -294,7 +273,7 @@ fn block_classes(uf: &mut UnionFind, blocked: &mut [bool], roots: &[usize]) {
 
 fn refuse_repeats(
     soup: &PolygonSoup,
-    uf: &mut UnionFind,
+    uf: &mut DisjointSets,
     blocked: &mut [bool],
     refused: &mut Vec<WeldRefusal>,
 ) {
@@ -325,7 +304,7 @@ fn refuse_pinches(
     soup: &PolygonSoup,
     incident: &(Vec<usize>, Vec<usize>),
     vertex_lines: &[usize],
-    uf: &mut UnionFind,
+    uf: &mut DisjointSets,
     blocked: &mut [bool],
     refused: &mut Vec<WeldRefusal>,
 ) {
@@ -364,7 +343,7 @@ fn refuse_pinches(
                 }
             }
         }
-        let mut fans = UnionFind::new(polygons.len());
+        let mut fans = DisjointSets::new(polygons.len());
         for slots in by_neighbour.values() {
             for w in slots.windows(2) {
                 fans.union(w[0], w[1]);
@@ -386,7 +365,7 @@ fn compact(
     soup: PolygonSoup,
     vertex_lines: Vec<usize>,
     numbers: Vec<usize>,
-    mut uf: UnionFind,
+    mut uf: DisjointSets,
     mode: WeldMode,
     refused: Vec<WeldRefusal>,
 ) -> (PolygonSoup, Vec<usize>, Vec<usize>, WeldReport) {

@@ -1,5 +1,5 @@
-//! Where a line, ray or segment meets one face (the seed's "Where does a
-//! line strike a face?").
+//! Where a line, ray or segment meets one face: the line's parameter at
+//! the face's plane, then the point-in-polygon test in the face.
 
 use glam::DVec3;
 
@@ -23,7 +23,7 @@ pub enum LineKind {
 
 /// How a line meets a face.
 ///
-/// The parameter `u` (`P1 + u (P2 − P1)`, the seed's
+/// The parameter `u` (`P1 + u (P2 − P1)`, from the plane equation
 /// `u = (−D − N·P1) / (N·(P2 − P1))`) is a rounded construction, except that
 /// it is exactly `0` or `1` when `P1` or `P2` lies in the face's plane. The
 /// variant is decided exactly.
@@ -63,11 +63,12 @@ pub enum LineFaceHit {
 /// Intersects the line through `p1` and `p2` (or the ray or segment, by
 /// `kind`) with face `face` of `solid`.
 ///
-/// Method, after the seed, but exact: the face's plane is that of its pivot
+/// Method: the classical line–plane parameter and point-in-polygon test,
+/// but exact: the face's plane is that of its pivot
 /// triangle ([`Solid::face_pivot`]); "parallel" is the exact sign of
 /// `det[P2 − P1, b − a, c − a]`, "in the plane" and the ray/segment range are
 /// exact `orient3d` signs of `P1` and `P2`. The hit point `H` is never
-/// computed for a decision: the seed projects `H` and the face onto the axis
+/// computed for a decision: the classical test projects `H` and the face onto the axis
 /// plane closest to the face and tests the 2-D polygon; every 2-D
 /// orientation `orient2d(vᵢ, vⱼ, H)` of that test equals, up to one global
 /// sign, `orient3d(P1, P2, vᵢ, vⱼ)`, which is what is evaluated (exactly).

@@ -53,9 +53,9 @@ mod x_direction;
 mod x_ray;
 mod x_ray_triangle;
 
+pub use accel::NotConvex;
 pub use accel::{Accel, AccelStats};
 pub use boundary_tiles::{BoundaryTiles, TileError};
-pub use accel::NotConvex;
 pub use line_face::{LineFaceHit, LineKind, intersect_line_face};
 pub use point_in_solid::Method;
 pub use ray_answers::{Crossing, RayCrossings, Transition, TraversalStats};

@@ -11,8 +11,8 @@ impl Accel {
     /// strictly on the outer side of any fan triangle's plane, on the
     /// boundary if on none's outer side but exactly on one's plane, inside
     /// otherwise. Each side is an exact `orient3d` on the triangle's corners
-    /// (the seed's "dot product of the normal with a vector to a vertex",
-    /// without rounding). Cost `O(faces)`.
+    /// (the sign of the normal's dot product with a vector to a vertex of
+    /// the face, without rounding). Cost `O(faces)`.
     ///
     /// Convexity is decided exactly on first use and cached
     /// ([`Accel::convexity`], [`NotConvex`](super::NotConvex)): closed, one

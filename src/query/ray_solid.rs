@@ -8,9 +8,9 @@ use rayon::prelude::*;
 use crate::geom::{Ray, Sign};
 
 use super::accel::Accel;
+use super::accel::ray_stream::WalkScratch;
 use super::ray_answers::{Crossing, RayCrossings, TraversalStats};
 use super::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
-use super::accel::ray_stream::WalkScratch;
 use super::ray_triangle::TriHit;
 use super::{Containment, QueryError};
 
@@ -219,8 +219,8 @@ pub(super) mod tests {
     use super::*;
     use crate::mesh::builders;
     use crate::query::Transition;
-    use crate::query::ray_scaling::unit_scaled;
     use crate::query::accel::ray_stream::{self, WalkScratch};
+    use crate::query::ray_scaling::unit_scaled;
     use crate::spatial::bvh::ray_box::{INV_GROW, INV_SHRINK, ORIGIN_WIDEN, Row};
     use crate::spatial::bvh::{
         BoxFrame, Node8, NodeLanes, Portable, RayBox, WIDTH, for_each_lanes,
@@ -342,7 +342,8 @@ pub(super) mod tests {
     fn both_node_openers_give_the_same_hits() {
         let accel = Accel::new(&builders::sphere(24));
         let rays = rays_towards_the_centre(0x3C6E_F372_FE94_F82B, 4000, 0.5);
-        let cast = |lanes: &dyn Fn(&[Ray], &mut [Option<Crossing>])| {
+        type Cast<'a> = &'a dyn Fn(&[Ray], &mut [Option<Crossing>]);
+        let cast = |lanes: Cast| {
             let mut out = vec![None; rays.len()];
             lanes(&rays, &mut out);
             out

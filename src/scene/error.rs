@@ -6,48 +6,15 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 use crate::csg::CsgError;
+use crate::io::JsonError;
 
 /// Why a scene could not be loaded.
 #[derive(Debug, Error)]
 pub enum SceneError {
-    /// The file could not be read.
-    #[error("{file}: cannot read: {source}")]
-    Read {
-        /// The scene file.
-        file: PathBuf,
-        /// Why.
-        source: std::io::Error,
-    },
-    /// The text is not JSON.
-    #[error("{file}: line {line}, column {column}: not valid JSON: {message}")]
-    Json {
-        /// The scene file (`<string>` for text).
-        file: String,
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        column: usize,
-        /// The parser's message.
-        message: String,
-    },
-    /// A value is missing, has the wrong type or is out of range.
-    #[error("{at}: {message}")]
-    Value {
-        /// The JSON path, e.g. `root.difference[1].sphere.radius`.
-        at: String,
-        /// What is wrong.
-        message: String,
-    },
-    /// A key the format does not have.
-    #[error("{at}: unknown key \"{key}\" (expected {expected})")]
-    UnknownKey {
-        /// The JSON path of the object.
-        at: String,
-        /// The key found.
-        key: String,
-        /// The keys allowed there.
-        expected: &'static str,
-    },
+    /// The file could not be read, is not JSON, or a value or key in it is
+    /// refused (naming the file, the position or the JSON path).
+    #[error(transparent)]
+    Json(#[from] JsonError),
     /// A mesh leaf could not be loaded or is not a valid closed solid.
     #[error("{at}: mesh {file}: {message}")]
     Mesh {
@@ -133,8 +100,7 @@ fn mesh_file_text(file: &Path, message: &str) -> String {
 /// that already do are returned as they are).
 pub(super) fn in_file(file: &Path, error: SceneError) -> SceneError {
     match error {
-        SceneError::Read { .. }
-        | SceneError::Json { .. }
+        SceneError::Json(JsonError::Read { .. } | JsonError::Syntax { .. })
         | SceneError::InFile { .. }
         | SceneError::MeshFile { .. } => error,
         other => SceneError::InFile {

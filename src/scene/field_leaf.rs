@@ -8,7 +8,8 @@ use serde_json::Value;
 
 use super::SceneError;
 use crate::csg::{Polyhedron, Primitive};
-use crate::field::{FieldError, FieldJsonError, MarchingOptions, read_document, try_mesh_solid};
+use crate::field::{FieldError, MarchingOptions, read_document, try_mesh_solid};
+use crate::io::JsonError;
 use crate::validate::{Options, Validity, validate_soup};
 
 /// The resolution of a field leaf whose document gives none.
@@ -37,19 +38,13 @@ pub(super) fn field_leaf(
                 value_error(
                     at,
                     match e {
-                        FieldJsonError::Read { .. } | FieldJsonError::Json { .. } => e.to_string(),
+                        JsonError::Read { .. } | JsonError::Syntax { .. } => e.to_string(),
                         _ => format!("{}: {e}", file.display()),
                     },
                 )
             })?
         }
-        _ => read_document(body, at).map_err(|e| match e {
-            FieldJsonError::UnknownKey { at, key, expected } => {
-                SceneError::UnknownKey { at, key, expected }
-            }
-            FieldJsonError::Value { at, message } => SceneError::Value { at, message },
-            other => value_error(at, other.to_string()),
-        })?,
+        _ => read_document(body, at)?,
     };
     let resolution = doc.resolution.unwrap_or(DEFAULT_FIELD_RESOLUTION);
     if resolution > MAX_FIELD_RESOLUTION {
@@ -86,8 +81,8 @@ pub(super) fn field_leaf(
 }
 
 fn value_error(at: &str, message: String) -> SceneError {
-    SceneError::Value {
+    SceneError::Json(JsonError::Value {
         at: at.to_string(),
         message,
-    }
+    })
 }

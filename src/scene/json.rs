@@ -1,12 +1,12 @@
 //! Reading JSON values of the scene format by JSON path (the readers are
-//! shared with field documents: `io::json_value`), and how their refusals
-//! become [`SceneError`]s.
+//! shared with field documents: `io::json_value`), refusing with
+//! [`SceneError::Json`].
 
 use glam::DVec3;
 use serde_json::{Map, Value};
 
 use super::SceneError;
-use crate::io::json_value::{self as shared, JsonValueError};
+use crate::io::json_value as shared;
 
 /// Parses JSON text, naming `name` and the position on failure.
 pub(super) fn parse_json(text: &str, name: &str) -> Result<Value, SceneError> {
@@ -75,26 +75,4 @@ pub(super) fn vec3_or(
     default: DVec3,
 ) -> Result<DVec3, SceneError> {
     shared::vec3_or(o, at, key, default)
-}
-
-impl From<JsonValueError> for SceneError {
-    fn from(e: JsonValueError) -> SceneError {
-        match e {
-            JsonValueError::Text {
-                file,
-                line,
-                column,
-                message,
-            } => SceneError::Json {
-                file,
-                line,
-                column,
-                message,
-            },
-            JsonValueError::Value { at, message } => SceneError::Value { at, message },
-            JsonValueError::UnknownKey { at, key, expected } => {
-                SceneError::UnknownKey { at, key, expected }
-            }
-        }
-    }
 }

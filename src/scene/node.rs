@@ -11,6 +11,7 @@ use super::json::{bad, check_keys, fields, object, positive, req, vec3, vec3_or}
 use super::reader::Reader;
 use super::solid_leaf;
 use crate::csg::{AxisBox, CsgExpr, Cylinder, HalfSpace, Primitive, Sphere};
+use crate::io::JsonError;
 
 const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, sweep, revolve, loft, field, union, intersection, difference, scene, or transform with child";
 
@@ -27,9 +28,11 @@ impl Reader<'_> {
         if obj.contains_key("transform") {
             check_keys(obj, at, &["transform", "child"], "transform and child")?;
             let transform = transform(&obj["transform"], &format!("{at}.transform"))?;
-            let child = obj.get("child").ok_or_else(|| SceneError::Value {
-                at: at.to_string(),
-                message: "transform without \"child\"".into(),
+            let child = obj.get("child").ok_or_else(|| {
+                SceneError::Json(JsonError::Value {
+                    at: at.to_string(),
+                    message: "transform without \"child\"".into(),
+                })
             })?;
             let child = self.node(child, &format!("{at}.child"), depth + 1)?;
             return Ok(child.transformed(transform));
@@ -38,17 +41,17 @@ impl Reader<'_> {
         let (key, body) = match (entries.next(), entries.next()) {
             (Some(entry), None) => entry,
             (None, _) => {
-                return Err(SceneError::Value {
+                return Err(SceneError::Json(JsonError::Value {
                     at: at.to_string(),
                     message: format!("empty node; expected {NODE_KEYS}"),
-                });
+                }));
             }
             (Some(_), Some((second, _))) => {
-                return Err(SceneError::UnknownKey {
+                return Err(SceneError::Json(JsonError::UnknownKey {
                     at: at.to_string(),
                     key: second.clone(),
                     expected: NODE_KEYS,
-                });
+                }));
             }
         };
         let here = format!("{at}.{key}");
@@ -88,11 +91,11 @@ impl Reader<'_> {
                 };
                 self.include(&self.base.join(relative), &here, depth)
             }
-            _ => Err(SceneError::UnknownKey {
+            _ => Err(SceneError::Json(JsonError::UnknownKey {
                 at: at.to_string(),
                 key: key.clone(),
                 expected: NODE_KEYS,
-            }),
+            })),
         }
     }
 
@@ -109,10 +112,10 @@ impl Reader<'_> {
         };
         let minimum = if key == "difference" { 2 } else { 1 };
         if items.len() < minimum {
-            return Err(SceneError::Value {
+            return Err(SceneError::Json(JsonError::Value {
                 at: here.to_string(),
                 message: format!("needs at least {minimum} node(s), found {}", items.len()),
-            });
+            }));
         }
         let kids = items
             .iter()
@@ -129,10 +132,10 @@ impl Reader<'_> {
 
 /// A refusal by a primitive's constructor, placed at `at`.
 fn refused(at: &str, error: impl std::fmt::Display) -> SceneError {
-    SceneError::Value {
+    SceneError::Json(JsonError::Value {
         at: at.to_string(),
         message: error.to_string(),
-    }
+    })
 }
 
 fn halfspace(body: &Value, here: &str) -> Result<Arc<dyn Primitive>, SceneError> {

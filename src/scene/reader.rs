@@ -14,6 +14,7 @@ use super::json::{check_keys, object, parse_json};
 use super::limits::{IncludedSize, NodeBudget};
 use super::mesh_leaf::MeshLeaves;
 use crate::csg::CsgExpr;
+use crate::io::JsonError;
 
 const TOP_KEYS: &str = "root, camera, light, shadows";
 
@@ -53,9 +54,11 @@ pub(super) fn read_scene_file(
     mut files: Vec<PathBuf>,
     depth: usize,
 ) -> Result<(Value, CsgExpr), SceneError> {
-    let read_error = |source| SceneError::Read {
-        file: path.to_path_buf(),
-        source,
+    let read_error = |source| {
+        SceneError::Json(JsonError::Read {
+            file: path.to_path_buf(),
+            source,
+        })
     };
     if std::fs::metadata(path).map_err(read_error)?.is_dir() {
         return Err(read_error(std::io::Error::other(
@@ -68,12 +71,12 @@ pub(super) fn read_scene_file(
     let text_len = crate::io::text_len(&bytes);
     let valid = &bytes[..text_len];
     let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
-    let binary = SceneError::Json {
+    let binary = SceneError::Json(JsonError::Syntax {
         file: path.display().to_string(),
         line: 1 + valid.iter().filter(|&&b| b == b'\n').count(),
         column: 1 + valid.len() - line_start,
         message: "binary data (not UTF-8 text)".into(),
-    };
+    });
     if text_len < bytes.len() {
         return Err(binary);
     }
@@ -104,9 +107,11 @@ impl Reader<'_> {
             &["root", "camera", "light", "shadows"],
             TOP_KEYS,
         )?;
-        let root = top.get("root").ok_or_else(|| SceneError::Value {
-            at: "scene".into(),
-            message: "missing \"root\"".into(),
+        let root = top.get("root").ok_or_else(|| {
+            SceneError::Json(JsonError::Value {
+                at: "scene".into(),
+                message: "missing \"root\"".into(),
+            })
         })?;
         Ok((top, self.node(root, "root", depth)?))
     }

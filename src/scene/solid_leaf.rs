@@ -27,6 +27,7 @@ use super::SceneError;
 use super::json::{bad, fields, number, positive, req, vec3, vec3_or};
 use crate::csg::{Polyhedron, Primitive};
 use crate::curve::{BSpline, KnotVector, Nurbs};
+use crate::io::JsonError;
 use crate::mesh::Solid;
 use crate::shape::{
     RevolveAxis, Segments, SweepError, try_loft, try_revolve, try_revolve_curve,
@@ -111,10 +112,10 @@ pub(super) fn revolve(body: &Value, here: &str) -> Result<Arc<dyn Primitive>, Sc
     let profile = req(o, here, "profile")?;
     let solid = if profile.is_object() {
         if o.contains_key("segments") {
-            return Err(SceneError::Value {
+            return Err(SceneError::Json(JsonError::Value {
                 at: format!("{here}.segments"),
                 message: "a curve profile is divided by \"tolerance\", not \"segments\"".into(),
-            });
+            }));
         }
         let tolerance = tolerance_of(o, here)?;
         match curve(profile, &profile_at)? {
@@ -125,10 +126,10 @@ pub(super) fn revolve(body: &Value, here: &str) -> Result<Arc<dyn Primitive>, Sc
         let points = points_2d(profile, &profile_at)?;
         let segments = match (o.get("segments"), o.get("tolerance")) {
             (Some(_), Some(_)) => {
-                return Err(SceneError::Value {
+                return Err(SceneError::Json(JsonError::Value {
                     at: here.to_string(),
                     message: "give \"segments\" or \"tolerance\", not both".into(),
-                });
+                }));
             }
             (Some(v), None) => Segments::Count(count(v, &format!("{here}.segments"))?),
             _ => Segments::Tolerance(tolerance_of(o, here)?),
@@ -157,9 +158,11 @@ pub(super) fn loft(body: &Value, here: &str) -> Result<Arc<dyn Primitive>, Scene
 /// The leaf of a built solid: validated, then a [`Polyhedron`]. A builder's
 /// refusal is placed at `here` with its message.
 fn leaf(solid: Result<Solid, SweepError>, here: &str) -> Result<Arc<dyn Primitive>, SceneError> {
-    let refused = |message: String| SceneError::Value {
-        at: here.to_string(),
-        message,
+    let refused = |message: String| {
+        SceneError::Json(JsonError::Value {
+            at: here.to_string(),
+            message,
+        })
     };
     let solid = solid.map_err(|e| refused(e.to_string()))?;
     // The validator on the exact triangulation of the faces (rings
@@ -207,13 +210,17 @@ fn curve(value: &Value, at: &str) -> Result<SceneCurve, SceneError> {
         Some(v) => KnotVector::try_new(numbers(v, &knots_at)?, degree),
         None => KnotVector::try_open_uniform(points.len(), degree),
     }
-    .map_err(|e| SceneError::Value {
-        at: knots_at.clone(),
-        message: e.to_string(),
+    .map_err(|e| {
+        SceneError::Json(JsonError::Value {
+            at: knots_at.clone(),
+            message: e.to_string(),
+        })
     })?;
-    let refused = |at: String, e: crate::curve::CurveError| SceneError::Value {
-        at,
-        message: e.to_string(),
+    let refused = |at: String, e: crate::curve::CurveError| {
+        SceneError::Json(JsonError::Value {
+            at,
+            message: e.to_string(),
+        })
     };
     match o.get("weights") {
         Some(v) => {

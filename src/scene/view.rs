@@ -6,6 +6,7 @@ use serde_json::Value;
 
 use super::SceneError;
 use super::json::{bad, fields, positive, req, vec3, vec3_or};
+use crate::io::JsonError;
 
 /// Where the camera is and what it looks at.
 ///
@@ -67,10 +68,10 @@ pub(super) fn camera(value: &Value, at: &str) -> Result<CameraSpec, SceneError> 
     let eye = vec3(req(o, at, "eye")?, &format!("{at}.eye"))?;
     let look_at = vec3(req(o, at, "look_at")?, &format!("{at}.look_at"))?;
     if eye == look_at {
-        return Err(SceneError::Value {
+        return Err(SceneError::Json(JsonError::Value {
             at: format!("{at}.look_at"),
             message: "the camera looks at its own eye point".into(),
-        });
+        }));
     }
     let up = vec3_or(o, at, "up", DVec3::Z)?;
     let fov_at = format!("{at}.fov_deg");
@@ -80,17 +81,17 @@ pub(super) fn camera(value: &Value, at: &str) -> Result<CameraSpec, SceneError> 
         .transpose()?
         .unwrap_or(DEFAULT_FOV_DEG);
     if fov_deg >= 180.0 {
-        return Err(SceneError::Value {
+        return Err(SceneError::Json(JsonError::Value {
             at: fov_at,
             message: format!("field of view {fov_deg} must be below 180 degrees"),
-        });
+        }));
     }
     let forward = look_at - eye;
     if up == DVec3::ZERO || forward.cross(up) == DVec3::ZERO {
-        return Err(SceneError::Value {
+        return Err(SceneError::Json(JsonError::Value {
             at: format!("{at}.up"),
             message: "up must not be zero or parallel to the view direction".into(),
-        });
+        }));
     }
     Ok(CameraSpec {
         eye,
@@ -121,10 +122,10 @@ pub(super) fn light(value: &Value, at: &str) -> Result<LightSpec, SceneError> {
             let d_at = format!("{at}.direction");
             let direction = vec3(d, &d_at)?;
             if direction == DVec3::ZERO {
-                return Err(SceneError::Value {
+                return Err(SceneError::Json(JsonError::Value {
                     at: d_at,
                     message: "the light direction must not be zero".into(),
-                });
+                }));
             }
             Ok(LightSpec::Directional { direction, ambient })
         }
@@ -132,9 +133,9 @@ pub(super) fn light(value: &Value, at: &str) -> Result<LightSpec, SceneError> {
             position: vec3(p, &format!("{at}.position"))?,
             ambient,
         }),
-        _ => Err(SceneError::Value {
+        _ => Err(SceneError::Json(JsonError::Value {
             at: at.to_string(),
             message: "give exactly one of \"direction\" and \"position\"".into(),
-        }),
+        })),
     }
 }

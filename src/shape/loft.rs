@@ -15,10 +15,10 @@ use glam::DVec3;
 use crate::geom::polygon::Projection;
 use crate::geom::{Aabb, Plane, Sign, Tolerance, orient3d, triangulate_3d};
 
-use crate::mesh::Solid;
 use super::sweep::{
     Argument, SweepError, check_collisions, check_profile, check_stacking, stacked_soup,
 };
+use crate::mesh::Solid;
 
 /// Lofts a solid through `sections`: at least two planar, simple polygons
 /// with the same vertex count, each strictly beyond the previous one,

@@ -6,9 +6,10 @@ use serde::Serialize;
 /// A rule an imported polyhedron must satisfy, named after what is wrong
 /// when it is broken.
 ///
-/// The first seven come from the seed's "Validating a polyhedron" (its rule
-/// 4, "every edge appears in exactly 2 face lists", is split into holes and
-/// non-manifold edges); the rest are the defects real files show.
+/// The first seven are the topological validity rules of a polyhedral
+/// boundary model (Baumgart 1975; Mäntylä 1988), numbered 1–6 below; rule
+/// 4, "every edge lies on exactly two faces", is split into holes and
+/// non-manifold edges. The rest are the defects real files show.
 ///
 /// Each defect is reported once, by the most specific rule: a face with
 /// fewer than three distinct vertices is not also reported as having fewer
@@ -19,22 +20,22 @@ use serde::Serialize;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Rule {
-    /// Seed rule 1: a vertex lies on fewer than three edges.
+    /// Validity rule 1: a vertex lies on fewer than three edges.
     VertexInFewerThanThreeEdges,
-    /// Seed rule 2: a vertex lies on fewer than three faces.
+    /// Validity rule 2: a vertex lies on fewer than three faces.
     VertexInFewerThanThreeFaces,
-    /// Seed rule 3: an edge joins a vertex to itself (a face lists the same
+    /// Validity rule 3: an edge joins a vertex to itself (a face lists the same
     /// vertex twice in a row).
     EdgeWithoutTwoDistinctVertices,
-    /// Seed rule 4, first half: an edge has only one face (it borders a
+    /// Validity rule 4, first half: an edge has only one face (it borders a
     /// hole).
     EdgeInOneFace,
-    /// Seed rule 4, second half: an edge has three or more faces
+    /// Validity rule 4, second half: an edge has three or more faces
     /// (non-manifold edge).
     EdgeInMoreThanTwoFaces,
-    /// Seed rule 5: a face has fewer than three distinct vertices.
+    /// Validity rule 5: a face has fewer than three distinct vertices.
     FaceWithFewerThanThreeVertices,
-    /// Seed rule 6: a face has fewer than three distinct edges.
+    /// Validity rule 6: a face has fewer than three distinct edges.
     FaceWithFewerThanThreeEdges,
     /// A vertex that no face uses.
     UnreferencedVertex,

@@ -2,14 +2,14 @@
 //! owner of the shared BVH, the fan triangles in its order, their leaf
 //! packets, and the lazily built point grid and convexity verdict.
 
-pub(super) mod fan;
-pub(super) mod triangle_records;
-pub(super) mod tri_packet;
-pub(super) mod point_grid;
 pub(super) mod cell_gaps;
+pub(super) mod convexity;
+pub(super) mod fan;
+pub(super) mod point_grid;
 pub(super) mod ray_leaves;
 pub(super) mod ray_stream;
-pub(super) mod convexity;
+pub(super) mod tri_packet;
+pub(super) mod triangle_records;
 pub(super) mod triangles_holding;
 
 use std::time::{Duration, Instant};

@@ -5,8 +5,8 @@ use crate::geom::Ray;
 use crate::spatial::bvh::RayLeaves;
 
 use super::Accel;
-use crate::query::ray_answers::Tally;
 use super::tri_packet::{PacketRay, TriPacket};
+use crate::query::ray_answers::Tally;
 
 /// The leaves of a ray walk as the ray queries see them: `visit(i, t)` is
 /// called for every triangle `i` of a leaf reached that the leaf's packet

@@ -20,10 +20,10 @@ use crate::spatial::bvh::{
 use crate::spatial::raw::prefetch::prefetch_bytes;
 
 use super::Accel;
-use crate::query::ray_answers::{BestHit, Crossing, Nearest};
-use crate::query::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
 use super::tri_packet::{PacketRay, TriPacket};
 use super::triangle_records::YzTri;
+use crate::query::ray_answers::{BestHit, Crossing, Nearest};
+use crate::query::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
 
 /// Rays walked in turn on accels that stay in the caches...
 const LANES: usize = 8;

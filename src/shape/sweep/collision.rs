@@ -14,8 +14,8 @@ use glam::DVec3;
 
 use crate::geom::{Aabb, triangles_intersect};
 
-use crate::mesh::PolygonSoup;
 use super::SweepError;
+use crate::mesh::PolygonSoup;
 
 /// One triangle of the stacked solid: soup indices and the section its
 /// band (or cap) starts at.

@@ -13,11 +13,11 @@ use glam::DVec2;
 use crate::curve::Curve;
 use crate::geom::triangulate;
 
-use crate::mesh::{Polygon, PolygonSoup, Solid};
 use super::{
     Argument, PathFrames, SweepError, check_collisions, check_profile, check_size, check_stacking,
     push_quad, stacked_soup, try_sweep,
 };
+use crate::mesh::{Polygon, PolygonSoup, Solid};
 
 /// Sweeps `profile` with `holes` (2-D polygons, either winding, strictly
 /// inside the profile and apart from each other) along `path`, as

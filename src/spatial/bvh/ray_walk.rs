@@ -121,7 +121,8 @@ impl<L: RayLeaves> LanesJob for WalkRay<'_, L> {
 
     #[inline(always)]
     fn run(self, lanes: impl NodeLanes) {
-        self.bvh.walk_ray_with(lanes, self.ray, self.t_max, self.leaves);
+        self.bvh
+            .walk_ray_with(lanes, self.ray, self.t_max, self.leaves);
     }
 }
 

@@ -1,4 +1,4 @@
-//! Seed rule 4, second half: an edge with three or more faces is
+//! Validity rule 4, second half: an edge with three or more faces is
 //! non-manifold.
 
 use super::super::context::Context;

@@ -1,4 +1,4 @@
-//! Seed rule 4, first half: an edge with only one face borders a hole.
+//! Validity rule 4, first half: an edge with only one face borders a hole.
 
 use super::super::context::Context;
 use super::super::report::{Rule, Violation};

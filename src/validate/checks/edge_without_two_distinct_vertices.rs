@@ -1,4 +1,4 @@
-//! Seed rule 3: every edge appears in exactly two vertex lists, that is,
+//! Validity rule 3: every edge appears in exactly two vertex lists, that is,
 //! joins two distinct vertices.
 
 use super::super::context::Context;

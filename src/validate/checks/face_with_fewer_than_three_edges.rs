@@ -1,4 +1,4 @@
-//! Seed rule 6: every face has at least three edges.
+//! Validity rule 6: every face has at least three edges.
 
 use super::super::context::{Context, Shape};
 use super::super::report::{Rule, Violation};

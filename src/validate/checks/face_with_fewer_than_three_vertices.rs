@@ -1,4 +1,4 @@
-//! Seed rule 5: every face has at least three vertices.
+//! Validity rule 5: every face has at least three vertices.
 
 use super::super::context::{Context, Shape};
 use super::super::report::{Rule, Violation};

@@ -5,6 +5,7 @@ use rayon::prelude::*;
 
 use super::super::context::Context;
 use super::super::report::{Rule, Violation};
+use crate::disjoint_sets::DisjointSets;
 
 /// Every vertex whose faces fall into more than one group when faces are
 /// joined through the edges they share at the vertex.
@@ -17,29 +18,19 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
             if faces.len() < 2 {
                 return None;
             }
-            let mut parent: Vec<usize> = (0..faces.len()).collect();
-            fn root(parent: &mut [usize], mut i: usize) -> usize {
-                while parent[i] != i {
-                    parent[i] = parent[parent[i]];
-                    i = parent[i];
-                }
-                i
-            }
+            let mut fans = DisjointSets::new(faces.len());
             for &e in ctx.vertex_edges(v) {
                 let uses = ctx.uses(e as usize);
                 let slot = |f: usize| faces.binary_search(&f).ok();
                 if let Some(first) = uses.first().and_then(|u| slot(u.face())) {
                     for u in &uses[1..] {
                         if let Some(other) = slot(u.face()) {
-                            let (a, b) = (root(&mut parent, first), root(&mut parent, other));
-                            parent[a] = b;
+                            fans.union(first, other);
                         }
                     }
                 }
             }
-            let fans = (0..faces.len())
-                .filter(|&i| root(&mut parent, i) == i)
-                .count();
+            let fan_count = (0..faces.len()).filter(|&i| fans.find(i) == i).count();
             // A fan is open when one of its edges at the vertex has only
             // one face: a hole passes the vertex there.
             let mut open: Vec<usize> = Vec::new();
@@ -47,7 +38,7 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
                 if let [only] = ctx.uses(e as usize)
                     && let Ok(i) = faces.binary_search(&only.face())
                 {
-                    open.push(root(&mut parent, i));
+                    open.push(fans.find(i));
                 }
             }
             open.sort_unstable();
@@ -57,10 +48,10 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
             } else {
                 String::new()
             };
-            (fans > 1).then(|| Violation {
+            (fan_count > 1).then(|| Violation {
                 rule: Rule::NonManifoldVertex,
                 message: format!(
-                    "{} is a pinch point: its {} faces form {fans} separate fans{holes}",
+                    "{} is a pinch point: its {} faces form {fan_count} separate fans{holes}",
                     ctx.vertex_name(v),
                     faces.len()
                 ),
@@ -68,7 +59,7 @@ pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
                 lines: ctx.vertex_line(v).into_iter().collect(),
                 vertices: vec![v],
                 faces,
-                value: Some(fans as f64),
+                value: Some(fan_count as f64),
             })
         })
         .collect()

@@ -1,5 +1,5 @@
-//! A face whose vertices do not lie in one plane (the seed: "4 points or
-//! more may not be co-planar"), beyond the planarity tolerance.
+//! A face whose vertices do not lie in one plane (four or more points need
+//! not be coplanar), beyond the planarity tolerance.
 
 use glam::DVec3;
 

@@ -1,4 +1,4 @@
-//! Seed rule 1: every vertex appears in at least three edge lists.
+//! Validity rule 1: every vertex appears in at least three edge lists.
 
 use rayon::prelude::*;
 

@@ -1,4 +1,4 @@
-//! Seed rule 2: every vertex appears in at least three face lists.
+//! Validity rule 2: every vertex appears in at least three face lists.
 
 use rayon::prelude::*;
 
