@@ -11,9 +11,9 @@ every core.
 [1, 0, -1]
 
 The package is split by topic: ``_solid`` (solids, built-in solids,
-``combine``), ``_scene``, ``_report`` (``validate``, ``Report``,
-``Violation``), ``_io`` and ``_arrays`` (the array checks they share).
-Import from ``wingedge`` itself.
+``combine``), ``_scene``, ``_report`` (``validate``; ``Report`` and
+``Violation`` are the native module's), ``_io`` and ``_arrays`` (the array
+checks they share). Import from ``wingedge`` itself.
 """
 
 from . import _wingedge
