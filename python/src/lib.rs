@@ -1,6 +1,8 @@
 //! The Python binding of wingedge: the native module `wingedge._wingedge`,
 //! wrapped by the pure-Python package `wingedge` (`python/wingedge/`), which
 //! adds array checks, interop with trimesh and manifold3d, and the type stub.
+//! Validation reports (`Report`, `Violation`) are native classes the package
+//! re-exports as they are.
 //!
 //! No geometry lives here: every answer comes from the `wingedge` crate.
 //! Batch calls copy the caller's array once into the crate's layout, release
@@ -25,6 +27,8 @@ fn _wingedge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     m.add_class::<solid::PySolid>()?;
     m.add_class::<soup::PySoupWinding>()?;
+    m.add_class::<report::PyReport>()?;
+    m.add_class::<report::PyViolation>()?;
     scene::register(m)?;
     m.add_function(wrap_pyfunction!(solid::load_obj, m)?)?;
     m.add_function(wrap_pyfunction!(solid::builtin, m)?)?;

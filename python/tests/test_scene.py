@@ -66,3 +66,12 @@ def test_scene_rays_are_scaled_and_refused_beyond_f64(fixtures):
         scene.first_hit([[-5.0, 0.9, 0.9], [-1.7e308, 0.9, 0.9]], [[1.0, 0, 0], [1.0, 0, 0]])
     with pytest.raises(wingedge.QueryError, match="overflows"):
         scene.spans([-5, 0.9, 0.9], [5e-324, 0, 0])
+
+
+def test_numbers_from_python_reach_the_scene_exactly():
+    # 1 - 2**-53 is written as 0.9999999999999999, which serde_json's
+    # default float parser reads as 1.0; the binding parses floats exactly.
+    x = 1 - 2**-53
+    scene = wingedge.Scene.from_dict({"root": {"box": {"min": [0, 0, 0], "max": [x, 1, 1]}}})
+    assert scene.bounds[1, 0] == x
+    assert scene.classify([[x, 0.5, 0.5], [1.0, 0.5, 0.5]]).tolist() == [0, -1]

@@ -28,6 +28,6 @@ def test_the_stub_is_installed_and_matches_the_native_module():
     top, members = _stub_names()
     native = {n for n in dir(_wingedge) if not n.startswith("__") or n == "__version__"}
     assert top == native
-    for cls in ("NativeSolid", "NativeScene"):
+    for cls in ("NativeSolid", "NativeScene", "Report", "Violation"):
         have = {n for n in vars(getattr(_wingedge, cls)) if not n.startswith("__")}
         assert members[cls] == have, cls

@@ -4,7 +4,7 @@ which wraps these classes and checks array shapes and dtypes first; use it
 rather than this module."""
 
 from os import PathLike
-from typing import Optional, Sequence, Tuple, Union
+from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -132,6 +132,86 @@ class NativeScene:
     def evaluate(self, tolerance: Optional[float] = None) -> NativeSolid:
         """The tree as one valid solid by exact booleans."""
 
+class Violation:
+    """One broken rule, located: ``line`` is the OBJ line of the first
+    element named, ``vertices``/``faces`` 0-based element ids. Immutable,
+    compared by value, picklable."""
+
+    @property
+    def rule(self) -> str:
+        """The rule broken, by name (a key of ``Report.counts``)."""
+    @property
+    def message(self) -> str: ...
+    @property
+    def line(self) -> Optional[int]: ...
+    @property
+    def lines(self) -> List[int]: ...
+    @property
+    def vertices(self) -> List[int]: ...
+    @property
+    def faces(self) -> List[int]: ...
+    @property
+    def value(self) -> Optional[float]:
+        """A measured quantity (deviation, signed volume, edge count), if any."""
+    def to_json(self) -> str:
+        """The violation as in ``wingedge validate --json``."""
+    @classmethod
+    def _from_json(cls, text: str) -> Violation:
+        """A violation from the text of ``to_json`` (unpickling)."""
+
+class Report:
+    """What validation found: the content of ``wingedge validate --json``
+    for one file, as typed fields. Immutable, compared by value, picklable.
+    Measures that overflow ``f64`` are None and named in ``overflow``."""
+
+    @property
+    def valid(self) -> bool: ...
+    @property
+    def verdict(self) -> str: ...
+    @property
+    def validity(self) -> str: ...
+    @property
+    def vertices(self) -> int: ...
+    @property
+    def edges(self) -> int: ...
+    @property
+    def faces(self) -> int: ...
+    @property
+    def shells(self) -> int: ...
+    @property
+    def holes(self) -> int: ...
+    @property
+    def genus(self) -> Optional[int]: ...
+    @property
+    def volume(self) -> Optional[float]: ...
+    @property
+    def area(self) -> Optional[float]: ...
+    @property
+    def not_built(self) -> Optional[str]: ...
+    @property
+    def counts(self) -> Dict[str, int]:
+        """Violations per rule, every rule named."""
+    @property
+    def violations(self) -> List[Violation]: ...
+    @property
+    def shell_details(self) -> List[dict]:
+        """Per-shell measures, a dict each."""
+    @property
+    def file(self) -> Optional[str]: ...
+    @property
+    def weld(self) -> Optional[dict]:
+        """For a file: ``mode``, ``merged`` and the ``refused`` merges."""
+    @property
+    def overflow(self) -> List[str]:
+        """The measures too large for ``f64``, reported as None."""
+    def to_json(self) -> str:
+        """The element ``wingedge validate --json`` prints for the file."""
+    def to_dict(self) -> dict:
+        """``json.loads(self.to_json())``."""
+    @classmethod
+    def _from_json(cls, text: str) -> Report:
+        """A report from the text of ``to_json`` (unpickling)."""
+
 def load_obj(path: _Path, weld: Optional[object] = None, max_face_corners: Optional[int] = None) -> NativeSolid:
     """Reads an OBJ file into a solid; ``ObjError`` names the file and line."""
 def builtin(name: str) -> NativeSolid:
@@ -146,7 +226,7 @@ def boolean(a: NativeSolid, b: NativeSolid, operation: str) -> NativeSolid:
     """``a op b`` for ``"union"``, ``"intersection"`` or ``"difference"``."""
 def combine(solids: Sequence[NativeSolid], expression: object) -> NativeSolid:
     """A set expression of nested tuples over indices into ``solids``."""
-def validate_path(path: _Path, weld: Optional[object] = None, planarity: Optional[float] = None) -> str:
-    """The JSON report ``validate --json`` prints for a file."""
-def validate_solid(solid: NativeSolid, planarity: Optional[float] = None) -> str:
-    """The JSON report for a solid's source soup."""
+def validate_path(path: _Path, weld: Optional[object] = None, planarity: Optional[float] = None) -> Report:
+    """The report ``validate --json`` prints for a file."""
+def validate_solid(solid: NativeSolid, planarity: Optional[float] = None) -> Report:
+    """The report for a solid's source soup."""

@@ -1,0 +1,20 @@
+"""Reading files: :func:`load_obj`."""
+
+from __future__ import annotations
+
+from typing import Optional
+
+from . import _wingedge
+from ._solid import Solid
+
+
+def load_obj(path, weld=None, max_face_corners: Optional[int] = None) -> Solid:
+    """Reads an OBJ file into a :class:`Solid`.
+
+    ``weld``: ``None``/``"exact"`` merges bit-identical positions where that
+    closes open edges (the default), ``"none"`` merges nothing, a number is a
+    weld tolerance as a fraction of the bounding-box diagonal. Raises
+    ``ObjError`` (file and line) for an unreadable file and
+    ``ValidationError`` when the faces cannot form a winged-edge solid (use
+    :func:`validate` to see every defect)."""
+    return Solid(_wingedge.load_obj(str(path), weld, max_face_corners))
