@@ -181,7 +181,7 @@ def _command_line():
 def test_reports_are_what_the_command_line_prints(fixtures, tmp_path):
     cli = _command_line()
     if cli is None:
-        pytest.skip("no wingedge binary in target/ (cargo test or cargo build makes one)")
+        pytest.fail("no wingedge binary in target/: run the README's test command (its `cargo test` builds one)")
     huge = tmp_path / "huge.obj"
     huge.write_text(HUGE_TETRAHEDRON)
     repeat = tmp_path / "repeat.obj"
