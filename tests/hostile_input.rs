@@ -258,7 +258,10 @@ fn a_scene_nested_a_hundred_thousand_deep() {
     let path = dir.write("deep.json", &text);
     let e = Scene::from_file(&path).unwrap_err();
     assert!(
-        matches!(e, SceneError::Json(wingedge::io::JsonError::Syntax { line: 1, .. })),
+        matches!(
+            e,
+            SceneError::Json(wingedge::io::JsonError::Syntax { line: 1, .. })
+        ),
         "{e}"
     );
     let scene = path.to_string_lossy().into_owned();

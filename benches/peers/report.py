@@ -307,12 +307,11 @@ def render_goal_summary(record):
                 " (%.3f)" % r["setup_s"] for r in group if r["library"].startswith("open3d"))
     settled = sum(v["settled"] for by in record["exact"].values() for v in by.values())
     wrong = sum(v["wingedge_wrong"] for by in record["exact"].values() for v in by.values())
-    load = info["load"]
-    out = ["Measured %s on %s (%d cores), %d threads, wingedge and open3d taking turns in one run "
-           "(load average %.1f at its start, %.1f at its end). Each cell: wingedge's millions of queries per "
+    out = ["Measured %s on %s (%d cores), %d threads, wingedge and open3d taking turns in one run. "
+           "Each cell: wingedge's millions of queries per "
            "second and, in bold, that rate over open3d's. Of %s queries settled by exact rational "
            "arithmetic (disputed ones and a control sample), wingedge answered %d wrong."
-           % (info["date"], info["cpu"], info["cores"], info["threads"], load[0], load[1],
+           % (info["date"][:10], info["cpu"], info["cores"], info["threads"],
               format(settled, ","), wrong),
            "",
            "| mesh (triangles) | " + " | ".join(words for _, _, words in SUMMARY_COLUMNS)

@@ -14,28 +14,14 @@ use crate::geom::Plane;
 
 mod around_edge;
 mod error;
+mod half_edges;
 use super::{
     Edge, EdgeId, EdgeUse, Face, FaceId, Loop, LoopId, LoopStart, PolygonSoup, Side, Solid, Vertex,
     VertexId,
 };
 use around_edge::{EdgeUse as AroundEdge, pair_around_edge};
 pub use error::BuildError;
-
-/// Half-edges in index space: corners of polygons, then holes' half-edges.
-struct HalfEdges {
-    from: Vec<usize>,
-    to: Vec<usize>,
-    /// The polygon of each face half-edge.
-    polygon: Vec<usize>,
-    next: Vec<usize>,
-    prev: Vec<usize>,
-    twin: Vec<usize>,
-    /// How many half-edges belong to polygons; the rest run around holes.
-    face_count: usize,
-    /// The soup vertex of each vertex made by splitting a pinch: vertex
-    /// `soup.positions.len() + k` is a copy of `split_from[k]`.
-    split_from: Vec<usize>,
-}
+use half_edges::{HalfEdges, Outgoing};
 
 impl Solid {
     /// Builds a solid from positions and polygons given as index lists.
@@ -216,69 +202,6 @@ fn corner_half_edges(soup: &PolygonSoup) -> HalfEdges {
     }
     h.twin = vec![usize::MAX; corners];
     h
-}
-
-/// Outgoing lists up to this length are scanned; longer ones are sorted and
-/// searched by halving.
-const SCANNED: usize = 32;
-
-/// Compressed table of the face half-edges leaving each soup vertex.
-struct Outgoing {
-    offsets: Vec<usize>,
-    list: Vec<usize>,
-}
-
-impl Outgoing {
-    fn new(vertex_count: usize, from: &[usize]) -> Outgoing {
-        let mut offsets = vec![0usize; vertex_count + 1];
-        for &v in from {
-            offsets[v + 1] += 1;
-        }
-        for i in 0..vertex_count {
-            offsets[i + 1] += offsets[i];
-        }
-        let mut fill = offsets.clone();
-        let mut list = vec![0usize; from.len()];
-        for (h, &v) in from.iter().enumerate() {
-            list[fill[v]] = h;
-            fill[v] += 1;
-        }
-        Outgoing { offsets, list }
-    }
-
-    fn of(&self, v: usize) -> &[usize] {
-        &self.list[self.offsets[v]..self.offsets[v + 1]]
-    }
-
-    /// Sorts the lists longer than [`SCANNED`] by the half-edges' end
-    /// vertices, stably (half-edges with one end stay in index order).
-    fn sort_by_end(&mut self, to: &[usize]) {
-        for v in 0..self.offsets.len() - 1 {
-            let list = &mut self.list[self.offsets[v]..self.offsets[v + 1]];
-            if list.len() > SCANNED {
-                list.sort_by_key(|&g| to[g]);
-            }
-        }
-    }
-
-    /// The half-edges from `a` to `b`, in index order (after
-    /// [`Outgoing::sort_by_end`]).
-    fn towards<'a>(
-        &'a self,
-        a: usize,
-        b: usize,
-        to: &'a [usize],
-    ) -> impl Iterator<Item = usize> + Clone + 'a {
-        let list = self.of(a);
-        let candidates = if list.len() <= SCANNED {
-            list
-        } else {
-            let start = list.partition_point(|&g| to[g] < b);
-            let end = start + list[start..].partition_point(|&g| to[g] == b);
-            &list[start..end]
-        };
-        candidates.iter().copied().filter(move |&g| to[g] == b)
-    }
 }
 
 /// How many face half-edges run one half-edge's edge its way (itself
