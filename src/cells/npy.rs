@@ -4,7 +4,8 @@
 use std::io::Write;
 use std::path::Path;
 
-/// Writes `data`, `n³` bytes in C order, as an `(n, n, n)` `uint8` array.
+/// Writes `data`, `n³` bytes in C order, as an `(n, n, n)` `uint8` array,
+/// atomically ([`write_atomically`](crate::io::write_atomically)).
 ///
 /// # Errors
 ///
@@ -23,13 +24,13 @@ pub fn write_npy(path: &Path, data: &[u8], n: usize) -> std::io::Result<()> {
     let unpadded = 10 + header.len() + 1;
     header.push_str(&" ".repeat(unpadded.next_multiple_of(64) - unpadded));
     header.push('\n');
-    let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
-    file.write_all(b"\x93NUMPY\x01\x00")?;
-    let length = u16::try_from(header.len()).map_err(std::io::Error::other)?;
-    file.write_all(&length.to_le_bytes())?;
-    file.write_all(header.as_bytes())?;
-    file.write_all(data)?;
-    file.flush()
+    crate::io::write_atomically(path, |file| {
+        file.write_all(b"\x93NUMPY\x01\x00")?;
+        let length = u16::try_from(header.len()).map_err(std::io::Error::other)?;
+        file.write_all(&length.to_le_bytes())?;
+        file.write_all(header.as_bytes())?;
+        file.write_all(data)
+    })
 }
 
 #[cfg(test)]

@@ -63,13 +63,15 @@ fn write_polygon(out: &mut String, vertices: impl Iterator<Item = usize>) {
     out.push('\n');
 }
 
-/// Writes the solid to `path` as OBJ; see [`to_obj_string`].
+/// Writes the solid to `path` as OBJ, atomically
+/// ([`write_atomically`](super::write_atomically)); see [`to_obj_string`].
 ///
 /// # Errors
 ///
-/// Any error from creating or writing the file.
+/// Any error from creating or writing the file; `path` is then untouched.
 pub fn write_obj(solid: &Solid, path: &Path) -> io::Result<()> {
-    std::fs::write(path, to_obj_string(solid))
+    let text = to_obj_string(solid);
+    super::write_atomically(path, |w| io::Write::write_all(w, text.as_bytes()))
 }
 
 #[cfg(test)]

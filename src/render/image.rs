@@ -68,7 +68,8 @@ impl Image {
             .then(|| self.pixels[(y as usize) * (self.width as usize) + x as usize])
     }
 
-    /// Writes the image as a PNG file.
+    /// Writes the image as a PNG file, atomically
+    /// ([`write_atomically`](crate::io::write_atomically)).
     ///
     /// # Errors
     ///
@@ -78,17 +79,30 @@ impl Image {
             file: path.to_path_buf(),
             source,
         };
-        let file = std::fs::File::create(path).map_err(io)?;
         let encode = |e: png::EncodingError| ImageError::Encode {
             file: path.to_path_buf(),
             message: e.to_string(),
         };
-        let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), self.width, self.height);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        let mut writer = encoder.write_header().map_err(encode)?;
         let data: Vec<u8> = self.pixels.iter().flatten().copied().collect();
-        writer.write_image_data(&data).map_err(encode)?;
-        writer.finish().map_err(encode)
+        let mut encoding = None;
+        let written = crate::io::write_atomically(path, |file| {
+            let mut encoder = png::Encoder::new(file, self.width, self.height);
+            encoder.set_color(png::ColorType::Rgb);
+            encoder.set_depth(png::BitDepth::Eight);
+            let encoded = encoder.write_header().and_then(|mut writer| {
+                writer.write_image_data(&data)?;
+                writer.finish()
+            });
+            encoded.map_err(|e| {
+                let refusal = std::io::Error::other(e.to_string());
+                encoding = Some(e);
+                refusal
+            })
+        });
+        match (written, encoding) {
+            (Ok(()), _) => Ok(()),
+            (Err(_), Some(e)) if !matches!(e, png::EncodingError::IoError(_)) => Err(encode(e)),
+            (Err(e), _) => Err(io(e)),
+        }
     }
 }
