@@ -123,7 +123,6 @@ fn unreadable_input_names_file_and_line() {
             Some(2),
             "binary",
         ),
-        (scratch.write("empty.obj", b""), None, "no faces"),
         (
             scratch.write("zero.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"),
             Some(4),
@@ -210,4 +209,28 @@ fn indices_at_the_ends_of_i64_are_errors_naming_the_line() {
         let located = format!("{}:10:", path.display());
         assert!(out.contains(&located), "{name}: {out}");
     }
+}
+
+/// The empty solid is a solid: what `csg` writes for an empty result (a
+/// comment, no vertices, no faces), an empty file and a file of comments
+/// validate as it, exit 0; vertices without faces stay unreadable.
+#[test]
+fn empty_files_are_the_empty_solid() {
+    let scratch = TempDir::new("cli-validate-empty");
+    for (name, text) in [
+        ("empty.obj", ""),
+        ("comments.obj", "# nothing\n\n# here\n"),
+        ("written.obj", "# the empty solid: no vertices, no faces\n"),
+    ] {
+        let path = scratch.write(name, text.as_bytes());
+        let p = path.to_string_lossy().into_owned();
+        let (code, files) = json(&[&p]);
+        assert_eq!(code, 0, "{p}: {files:?}");
+        assert_eq!(files[0]["valid"], true, "{p}");
+        assert_eq!(files[0]["validity"], "empty", "{p}: {files:?}");
+        assert_eq!(files[0]["faces"], 0, "{p}");
+    }
+    let only = scratch.write("only.obj", b"v 0 0 0\nv 1 0 0\n");
+    let (code, files) = json(&[&only.to_string_lossy()]);
+    assert_eq!(code, 2, "{files:?}");
 }

@@ -72,7 +72,6 @@ fn every_bad_input_is_in_the_manifest_and_every_row_has_its_file() {
         "missing.obj",
         "directory.obj",
         "binary.obj",
-        "empty.obj",
         "vertices_only.obj",
         "two_corners.obj",
         "index_zero.obj",

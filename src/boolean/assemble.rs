@@ -1,25 +1,22 @@
-//! Stage 6: the kept pieces made into a winged-edge solid — implicit
-//! points rounded to `f64` only now, after every decision was made on their
-//! exact definitions — and the rounded solid proven valid by wingedge's
-//! own validator.
+//! Stage 7: the kept pieces made into a soup of `f64` triangles — implicit
+//! points rounded to the nearest `f64` only now, after every decision was
+//! made on their exact definitions — with the collapses the output stage
+//! asked for applied.
 
-use rustc_hash::FxHashMap as HashMap;
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use glam::DVec3;
 
 use crate::compressed_rows::compressed_rows;
 use crate::geom::implicit::rounded_point;
+use crate::geom::triangulate_3d;
 use rayon::prelude::*;
-use slotmap::SecondaryMap;
 use smallvec::SmallVec;
 
-use crate::mesh::{Face, FaceId, Polygon, PolygonSoup, Solid, VertexId};
-use crate::validate::{
-    Options, Report, Validity, check_rings, validate_soup, validate_soup_near_changed,
-};
+use crate::mesh::{FaceId, Polygon, PolygonSoup};
+use crate::validate::Report;
 
-use super::BooleanError;
-use super::merge::{PieceSource, merge_faces};
+use super::merge::PieceSource;
 use super::operand::{FaceOrigin, Prepared};
 use super::points::PointTable;
 
@@ -40,69 +37,312 @@ pub(crate) struct KeptPiece {
     pub alone: bool,
 }
 
-/// The soup of the kept pieces: each canonical point once, rounded; each
-/// polygon with its source.
-pub(crate) fn soup_of(
-    table: &PointTable,
-    pieces: &[KeptPiece],
-    operands: &[Prepared],
-) -> (PolygonSoup, Vec<PieceSource>) {
-    // Soup index of each point, numbered in order of first use.
-    let mut index: Vec<Option<usize>> = vec![None; table.canonical.len()];
-    let mut used: Vec<u32> = Vec::new();
-    for piece in pieces {
-        for &c in &piece.corners {
-            let slot = &mut index[c as usize];
-            if slot.is_none() {
-                *slot = Some(used.len());
-                used.push(c);
+/// Every point the kept pieces use, rounded once: the correctly rounded
+/// `f64` of each constructed point, and whether it is an operand vertex
+/// (or otherwise exact), which a collapse never moves.
+pub(crate) struct Rounded {
+    /// The canonical points used, in order of first use.
+    used: Vec<u32>,
+    /// The slot in `used` of each canonical point (`u32::MAX`: unused).
+    slot: Vec<u32>,
+    /// The position of each used point.
+    pub position: Vec<DVec3>,
+    /// Whether each used point is exact as written (never moved).
+    pub exact: Vec<bool>,
+}
+
+impl Rounded {
+    /// Rounds every point the pieces use.
+    pub(crate) fn new(table: &PointTable, pieces: &[KeptPiece]) -> Rounded {
+        let mut slot = vec![u32::MAX; table.canonical.len()];
+        let mut used: Vec<u32> = Vec::new();
+        for piece in pieces {
+            for &c in &piece.corners {
+                if slot[c as usize] == u32::MAX {
+                    slot[c as usize] = used.len() as u32;
+                    used.push(c);
+                }
             }
         }
+        let (position, exact) = used
+            .par_iter()
+            .map(|&c| match table.get(c).explicit() {
+                Some(p) => (p, true),
+                None => (rounded_point(&table.get(c)), false),
+            })
+            .unzip();
+        Rounded {
+            used,
+            slot,
+            position,
+            exact,
+        }
     }
-    let (positions, constructed): (Vec<DVec3>, Vec<bool>) = used
+
+    /// The slot of canonical point `c` (used by some piece).
+    pub(crate) fn slot_of(&self, c: u32) -> usize {
+        self.slot[c as usize] as usize
+    }
+
+    /// How many points are used.
+    pub(crate) fn len(&self) -> usize {
+        self.used.len()
+    }
+}
+
+/// What the output stage changed in the rounded result, round by round
+/// (see `output`): pieces kept apart from their neighbours, points
+/// collapsed onto others, and edges split at a point near them. Points are
+/// named by their slot in [`Rounded`]; points the fixes made (a midpoint)
+/// get slots after those.
+pub(crate) struct Fixes {
+    /// Pieces (by index) that merge with no neighbour.
+    pub blocked: HashSet<usize>,
+    /// Pieces (by index) left out: shells thinner than `f64` can hold.
+    pub dropped: HashSet<usize>,
+    /// Pairs of pieces (smaller index first) that merge although they lie
+    /// in two planes: near-coplanar sheets folded by rounding.
+    pub joined: HashSet<(usize, usize)>,
+    /// The slot each slot was collapsed onto (itself when not).
+    onto: Vec<usize>,
+    /// Edges split at a point: `(a, b, at)`, by slots.
+    splits: Vec<(usize, usize, usize)>,
+    /// The positions of the points the fixes made.
+    made: Vec<DVec3>,
+    /// Edges tried as slits (by collapsed slots, smaller first).
+    slits: HashSet<(usize, usize)>,
+    /// How many points [`Rounded`] holds.
+    rounded: usize,
+}
+
+impl Fixes {
+    /// No fix yet, for the points of `rounded`.
+    pub(crate) fn new(rounded: &Rounded) -> Fixes {
+        Fixes {
+            blocked: HashSet::default(),
+            dropped: HashSet::default(),
+            joined: HashSet::default(),
+            onto: (0..rounded.len()).collect(),
+            splits: Vec::new(),
+            made: Vec::new(),
+            slits: HashSet::default(),
+            rounded: rounded.len(),
+        }
+    }
+
+    /// The slot `s` ends on after every collapse.
+    pub(crate) fn collapsed(&self, mut s: usize) -> usize {
+        while self.onto[s] != s {
+            s = self.onto[s];
+        }
+        s
+    }
+
+    /// The position of slot `s`.
+    pub(crate) fn position(&self, rounded: &Rounded, s: usize) -> DVec3 {
+        if s < self.rounded {
+            rounded.position[s]
+        } else {
+            self.made[s - self.rounded]
+        }
+    }
+
+    /// Whether slot `s` is exact as written: an operand vertex or a point
+    /// that rounds to itself, which a collapse never moves.
+    pub(crate) fn exact(&self, rounded: &Rounded, s: usize) -> bool {
+        s < self.rounded && rounded.exact[s]
+    }
+
+    /// Collapses the points of slots `a` and `b` into one, keeping an
+    /// exact point where it is. Returns whether anything changed: not when
+    /// both are exact, unless `move_exact` (then the smaller slot stays).
+    pub(crate) fn collapse(
+        &mut self,
+        rounded: &Rounded,
+        a: usize,
+        b: usize,
+        move_exact: bool,
+    ) -> bool {
+        let (a, b) = (self.collapsed(a), self.collapsed(b));
+        if a == b {
+            return false;
+        }
+        match (self.exact(rounded, a), self.exact(rounded, b)) {
+            (true, true) if !move_exact => return false,
+            (true, true) => self.onto[a.max(b)] = a.min(b),
+            (true, false) => self.onto[b] = a,
+            (false, true) => self.onto[a] = b,
+            (false, false) => self.onto[a.max(b)] = a.min(b),
+        }
+        true
+    }
+
+    /// Splits the edge between slots `a` and `b` at slot `at`. Returns
+    /// whether this is new.
+    pub(crate) fn split(&mut self, a: usize, b: usize, at: usize) -> bool {
+        let (a, b, at) = (self.collapsed(a), self.collapsed(b), self.collapsed(at));
+        let key = (a.min(b), a.max(b), at);
+        if a == b || at == a || at == b || self.splits.contains(&key) {
+            return false;
+        }
+        self.splits.push(key);
+        true
+    }
+
+    /// Whether `slot` (collapsed) is a point a fix made.
+    pub(crate) fn is_made(&self, slot: usize) -> bool {
+        self.collapsed(slot) >= self.rounded
+    }
+
+    /// Marks the edge between slots `a` and `b` as split for a slit;
+    /// returns whether it was not marked before (each edge is tried once:
+    /// an edge that is a diagonal of a piece's polygon has no split).
+    pub(crate) fn try_slit(&mut self, a: usize, b: usize) -> bool {
+        let (a, b) = (self.collapsed(a), self.collapsed(b));
+        self.slits.insert((a.min(b), a.max(b)))
+    }
+
+    /// A new point at `position` (a slot of its own).
+    pub(crate) fn make_point(&mut self, position: DVec3) -> usize {
+        self.made.push(position);
+        self.onto.push(self.onto.len());
+        self.onto.len() - 1
+    }
+
+    /// The split points of each edge, by collapsed slots.
+    fn split_points(&self) -> HashMap<(usize, usize), Vec<usize>> {
+        let mut points: HashMap<(usize, usize), Vec<usize>> = HashMap::default();
+        for &(a, b, at) in &self.splits {
+            let (a, b, at) = (self.collapsed(a), self.collapsed(b), self.collapsed(at));
+            if a != b && at != a && at != b {
+                let list = points.entry((a.min(b), a.max(b))).or_default();
+                if !list.contains(&at) {
+                    list.push(at);
+                }
+            }
+        }
+        points
+    }
+}
+
+/// The soup of the kept pieces with the fixes applied: each point once —
+/// points that round to one `f64` position are one vertex — and each piece
+/// a triangle with its source, or, where an edge of it was split, the
+/// triangles of the polygon its corners and split points make. A piece
+/// whose corners became one is dropped, and so is a pair of triangles that
+/// became one triangle wound both ways. Returns also the slot of each soup
+/// vertex.
+pub(crate) fn soup_of(
+    rounded: &Rounded,
+    fixes: &Fixes,
+    pieces: &[KeptPiece],
+    operands: &[Prepared],
+) -> (PolygonSoup, Vec<PieceSource>, Vec<usize>) {
+    let splits = fixes.split_points();
+    // Each piece's polygon of slots: its collapsed corners with the split
+    // points of its edges between them, in order along each edge.
+    let polygons: Vec<(usize, SmallVec<[usize; 3]>)> = pieces
         .par_iter()
-        .map(|&c| match table.get(c).explicit() {
-            Some(p) => (p, false),
-            None => (rounded_point(&table.get(c)), true),
+        .enumerate()
+        .filter(|(i, _)| !fixes.dropped.contains(i))
+        .map(|(i, piece)| {
+            let corners = piece.corners.map(|c| fixes.collapsed(rounded.slot_of(c)));
+            let mut polygon: SmallVec<[usize; 3]> = SmallVec::new();
+            for k in 0..3 {
+                let (a, b) = (corners[k], corners[(k + 1) % 3]);
+                polygon.push(a);
+                if let Some(on) = splits.get(&(a.min(b), a.max(b))) {
+                    let (pa, pb) = (fixes.position(rounded, a), fixes.position(rounded, b));
+                    let mut along: Vec<(f64, usize)> = on
+                        .iter()
+                        .map(|&s| ((fixes.position(rounded, s) - pa).dot(pb - pa), s))
+                        .collect();
+                    along.sort_by(|x, y| x.0.total_cmp(&y.0));
+                    polygon.extend(along.into_iter().map(|(_, s)| s));
+                }
+            }
+            (i, without_spikes(polygon))
         })
-        .unzip();
-    let snapped = snap(&positions, &constructed);
-    // Each piece's corners after the snap, or `None` once it collapsed.
-    let corners: Vec<Option<[usize; 3]>> = pieces
+        .collect();
+    // Each slot's vertex: the first slot at its position.
+    let key = |p: DVec3| (p + DVec3::ZERO).to_array().map(f64::to_bits);
+    let mut vertex_of: HashMap<usize, usize> = HashMap::default();
+    let mut at: HashMap<[u64; 3], usize> = HashMap::default();
+    let mut positions: Vec<DVec3> = Vec::new();
+    let mut slots: Vec<usize> = Vec::new();
+    for (_, polygon) in &polygons {
+        for &s in polygon {
+            if vertex_of.contains_key(&s) {
+                continue;
+            }
+            let p = fixes.position(rounded, s);
+            let v = *at.entry(key(p)).or_insert_with(|| {
+                positions.push(p);
+                slots.push(s);
+                positions.len() - 1
+            });
+            vertex_of.insert(s, v);
+        }
+    }
+    // The triangles: a piece as it is, or its polygon triangulated.
+    let triangles: Vec<(usize, [usize; 3])> = polygons
         .par_iter()
-        .map(|piece| {
-            let c = piece
-                .corners
-                .map(|c| snapped[index[c as usize].unwrap_or_default()]);
-            (c[0] != c[1] && c[1] != c[2] && c[2] != c[0]).then_some(c)
+        .flat_map_iter(|(i, polygon)| {
+            let vertices: SmallVec<[usize; 3]> =
+                without_spikes(polygon.iter().map(|s| vertex_of[s]).collect());
+            let out: SmallVec<[(usize, [usize; 3]); 2]> = match vertices.len() {
+                0..=2 => SmallVec::new(),
+                3 => smallvec::smallvec![(*i, [vertices[0], vertices[1], vertices[2]])],
+                _ => {
+                    let points: Vec<DVec3> = vertices.iter().map(|&v| positions[v]).collect();
+                    match triangulate_3d(&points, &[]) {
+                        Ok(ts) => ts
+                            .into_iter()
+                            .map(|t| (*i, t.map(|k| vertices[k])))
+                            .collect(),
+                        // Not simple once rounded: a fan, which the proof
+                        // will judge.
+                        Err(_) => (1..vertices.len() - 1)
+                            .map(|k| (*i, [vertices[0], vertices[k], vertices[k + 1]]))
+                            .collect(),
+                    }
+                }
+            };
+            out
         })
+        .collect();
+    let corners: Vec<Option<[usize; 3]>> = triangles
+        .iter()
+        .map(|&(_, c)| (c[0] != c[1] && c[1] != c[2] && c[2] != c[0]).then_some(c))
         .collect();
     let alive = kept_after_mirror_cancel(&corners, positions.len());
-    // The kept pieces listed first, so that the polygons are made by an
-    // indexed parallel map, each written in its place.
-    let survivors: Vec<(usize, [usize; 3])> = corners
-        .iter()
-        .zip(&alive)
-        .enumerate()
-        .filter_map(|(i, (c, &alive))| Some((i, (*c).filter(|_| alive)?)))
-        .collect();
-    let (polygons, sources): (Vec<Polygon>, Vec<PieceSource>) = survivors
+    let (polygons, sources): (Vec<Polygon>, Vec<PieceSource>) = triangles
         .par_iter()
-        .map(|&(i, c)| {
+        .zip(&corners)
+        .zip(&alive)
+        .filter_map(|((&(i, _), c), &alive)| Some((i, (*c).filter(|_| alive)?)))
+        .map(|(i, c)| {
             let piece = &pieces[i];
             let operand = &operands[piece.operand];
             let mut polygon = Polygon::new(c);
             let face = operand.solid.face(piece.face);
             polygon.attributes.group = face.attributes.group.clone();
             polygon.attributes.material = face.attributes.material.clone();
+            let whole = c.iter().all(|v| {
+                piece
+                    .corners
+                    .iter()
+                    .any(|&k| slots[*v] == fixes.collapsed(rounded.slot_of(k)))
+            });
             let source = PieceSource {
+                piece: i,
                 origin: FaceOrigin {
                     operand: operand.index,
                     face: piece.face,
                 },
                 plane: piece.plane,
-                changed: piece.changed,
-                alone: piece.alone,
+                changed: piece.changed || !whole,
+                alone: piece.alone && whole,
             };
             (polygon, source)
         })
@@ -113,7 +353,37 @@ pub(crate) fn soup_of(
             polygons,
         },
         sources,
+        slots,
     )
+}
+
+/// The polygon without what a collapse or a split point made flat:
+/// consecutive repeats, and spikes (`… u, w, u …`, a corner that goes out
+/// and comes straight back).
+fn without_spikes(mut polygon: SmallVec<[usize; 3]>) -> SmallVec<[usize; 3]> {
+    loop {
+        let n = polygon.len();
+        if n < 3 {
+            return if n == 0 { polygon } else { SmallVec::new() };
+        }
+        let repeat = (0..n).find(|&k| polygon[k] == polygon[(k + 1) % n]);
+        if let Some(k) = repeat {
+            polygon.remove(k);
+            continue;
+        }
+        let spike = (0..n).find(|&k| polygon[k] == polygon[(k + 2) % n]);
+        match spike {
+            Some(k) => {
+                // Remove the tip and one copy of its base.
+                let tip = (k + 1) % n;
+                let base = (k + 2) % n;
+                let (first, second) = (tip.max(base), tip.min(base));
+                polygon.remove(first);
+                polygon.remove(second);
+            }
+            None => return polygon,
+        }
+    }
 }
 
 /// Whether each piece is kept: not collapsed (`None`), and not cancelled
@@ -186,263 +456,6 @@ fn rotated_to_smallest(mut corners: [usize; 3]) -> [usize; 3] {
     let first = (0..3).min_by_key(|&k| corners[k]).unwrap_or(0);
     corners.rotate_left(first);
     corners
-}
-
-/// Snap rounding of the constructed points: a constructed point whose
-/// rounded position lies within [`SNAP`] (relative to the largest
-/// coordinate) of another point's is moved onto it, so that features the
-/// exact result has but `f64` cannot represent (two intersection points a
-/// few units in the last place apart) collapse instead of folding. Returns
-/// the representative index of each position. Input vertices are never
-/// moved onto each other.
-fn snap(positions: &[DVec3], constructed: &[bool]) -> Vec<usize> {
-    let scale = positions
-        .iter()
-        .map(|p| p.abs().max_element())
-        .fold(0.0f64, f64::max);
-    let reach = scale * SNAP;
-    let mut representative: Vec<usize> = (0..positions.len()).collect();
-    if reach == 0.0 || !reach.is_finite() {
-        return representative;
-    }
-    let cell = |p: DVec3| ((p / reach).floor()).as_i64vec3().to_array();
-    // The points by grid cell (then by index): a cell's points are a run.
-    let mut grid: Vec<([i64; 3], usize)> = positions
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| (cell(p), i))
-        .collect();
-    grid.sort_unstable();
-    let in_cell = |c: [i64; 3]| {
-        let start = grid.partition_point(|&(d, _)| d < c);
-        let end = start + grid[start..].partition_point(|&(d, _)| d == c);
-        grid[start..end].iter().map(|&(_, j)| j)
-    };
-    let find = |rep: &Vec<usize>, mut i: usize| {
-        while rep[i] != i {
-            i = rep[i];
-        }
-        i
-    };
-    for (i, &p) in positions.iter().enumerate() {
-        if !constructed[i] {
-            continue;
-        }
-        let c = cell(p);
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    for j in in_cell([c[0] + dx, c[1] + dy, c[2] + dz]) {
-                        if j == i || (positions[j] - p).abs().max_element() > reach {
-                            continue;
-                        }
-                        let (ri, rj) = (find(&representative, i), find(&representative, j));
-                        if ri == rj {
-                            continue;
-                        }
-                        // An input vertex stays where it is.
-                        if constructed[ri] {
-                            representative[ri] = rj;
-                        } else if constructed[rj] {
-                            representative[rj] = ri;
-                        }
-                    }
-                }
-            }
-        }
-    }
-    (0..positions.len())
-        .map(|i| find(&representative, i))
-        .collect()
-}
-
-/// How close (relative to the largest coordinate) a constructed point must
-/// round to another point to be snapped onto it: 2⁻⁴⁸, a few units in the
-/// last place.
-const SNAP: f64 = 1.0 / (1u64 << 48) as f64;
-
-/// A built result: the solid, its faces' origins, the validator's report
-/// and the seconds the proof took.
-pub(crate) type Built = (Solid, Vec<FaceOrigin>, Report, f64);
-
-/// Builds the solid of `soup`, merges coplanar neighbours, and validates
-/// the result (every rule, the exact self-intersection check included, on
-/// the faces' exact triangulations; rings by their own checks). Returns
-/// the solid (faces' `source_index` into the returned origins), the
-/// origins and the validator's report.
-pub(crate) fn build_and_prove(
-    soup: &PolygonSoup,
-    sources: &[PieceSource],
-) -> Result<Built, BooleanError> {
-    if soup.polygons.is_empty() {
-        let solid = Solid::default();
-        let report = prove(&solid)?;
-        return Ok((solid, Vec::new(), report, 0.0));
-    }
-    let mut solid =
-        Solid::try_from_touching_soup(soup).map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
-    let changed = merge_faces(&mut solid, sources);
-    // The faces' origins are numbered while the result is proven (the
-    // proof reads no source index).
-    let ((origins, renumbered), proved) = rayon::join(
-        || origins_of(&solid, sources),
-        || {
-            let clock = std::time::Instant::now();
-            prove_changed(&solid, &changed).map(|report| (report, clock.elapsed().as_secs_f64()))
-        },
-    );
-    let (report, proof_seconds) = proved?;
-    for (f, index) in renumbered {
-        let mut attributes = solid.face(f).attributes.clone();
-        attributes.source_index = Some(index);
-        solid.set_face_attributes(f, attributes);
-    }
-    Ok((solid, origins, report, proof_seconds))
-}
-
-/// Each operand face the result's faces came from, once, in the order of
-/// the faces; and for each face with a source, its index in that list.
-fn origins_of(solid: &Solid, sources: &[PieceSource]) -> (Vec<FaceOrigin>, Vec<(FaceId, usize)>) {
-    let mut origins = Vec::new();
-    // Per operand, the index of each of its faces in `origins`.
-    let operands = sources.iter().map(|s| s.origin.operand + 1).max();
-    let mut origin_index: Vec<SecondaryMap<FaceId, usize>> =
-        vec![SecondaryMap::new(); operands.unwrap_or(0)];
-    let mut renumbered = Vec::with_capacity(solid.face_count());
-    for (f, face) in solid.faces() {
-        let Some(i) = face.attributes.source_index else {
-            continue;
-        };
-        let origin = sources[i].origin;
-        let known = &mut origin_index[origin.operand];
-        let index = match known.get(origin.face) {
-            Some(&index) => index,
-            None => {
-                origins.push(origin);
-                known.insert(origin.face, origins.len() - 1);
-                origins.len() - 1
-            }
-        };
-        renumbered.push((f, index));
-    }
-    (origins, renumbered)
-}
-
-/// Validates a boolean's result like [`prove`], the self-intersection
-/// check restricted to pairs with a face in `changed`. Sound because every
-/// other face is a whole triangle of an operand, or several merged: two
-/// such faces of one operand do not meet beyond their shared vertices and
-/// edges (the operand is a valid solid), and two of different operands do
-/// not meet at all (the intersection stage tested every pair of their
-/// triangles whose boxes overlap, exactly, and found no contact — else
-/// both would have been cut, or share the point as a vertex).
-fn prove_changed(
-    solid: &Solid,
-    changed: &rustc_hash::FxHashSet<FaceId>,
-) -> Result<Report, BooleanError> {
-    let (proof, polygon_changed) = triangulated(solid, Some(changed))?;
-    let report = validate_soup_near_changed(&proof, &polygon_changed)
-        .map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
-    judged(solid, report)
-}
-
-/// Validates `solid`: every rule on the exact triangulations of its faces,
-/// and its rings.
-pub(crate) fn prove(solid: &Solid) -> Result<Report, BooleanError> {
-    let (proof, _) = triangulated(solid, None)?;
-    let report = validate_soup(&proof, None, &Options::default())
-        .map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
-    judged(solid, report)
-}
-
-/// The report on `solid` made a verdict: an error with the located defects
-/// unless it is a valid solid with valid rings (or empty).
-fn judged(solid: &Solid, report: Report) -> Result<Report, BooleanError> {
-    if solid.face_count() == 0 {
-        return Ok(report);
-    }
-    let rings = check_rings(solid);
-    if report.validity != Validity::ValidSolid || !rings.is_empty() {
-        let mut located = summary(&report);
-        for r in rings.iter().take(5) {
-            located.push_str("; ");
-            located.push_str(&r.message);
-        }
-        return Err(BooleanError::InvalidResult {
-            validity: report.validity.describe().to_string(),
-            report: located,
-        });
-    }
-    Ok(report)
-}
-
-/// The solid as a soup of the exact triangulations of its faces (rings
-/// included), which the soup validator can check; with `changed`, whether
-/// each triangle's face is in it. Faces are triangulated in parallel; the
-/// soup lists them in the solid's face order, and a face that cannot be
-/// triangulated is reported as the first such face in that order.
-fn triangulated(
-    solid: &Solid,
-    changed: Option<&rustc_hash::FxHashSet<FaceId>>,
-) -> Result<(PolygonSoup, Vec<bool>), BooleanError> {
-    let mut index: SecondaryMap<VertexId, usize> =
-        SecondaryMap::with_capacity(solid.vertex_count());
-    let mut positions = Vec::with_capacity(solid.vertex_count());
-    for (i, (v, vertex)) in solid.vertices().enumerate() {
-        index.insert(v, i);
-        positions.push(vertex.position);
-    }
-    let faces: Vec<(FaceId, &Face)> = solid.faces().collect();
-    let triangles: Vec<Result<FaceTriangles, BooleanError>> = faces
-        .par_iter()
-        .map(|&(f, _)| face_triangles(solid, f, &index))
-        .collect();
-    let triangles: Vec<FaceTriangles> = triangles.into_iter().collect::<Result<_, _>>()?;
-    let (polygons, polygon_changed): (Vec<Polygon>, Vec<bool>) = faces
-        .par_iter()
-        .zip(&triangles)
-        .flat_map_iter(|(&(f, face), of_face)| {
-            let is_changed = changed.is_none_or(|c| c.contains(&f));
-            of_face.iter().map(move |t| {
-                (
-                    Polygon {
-                        vertices: t.iter().copied().collect(),
-                        attributes: face.attributes.clone(),
-                    },
-                    is_changed,
-                )
-            })
-        })
-        .unzip();
-    Ok((
-        PolygonSoup {
-            positions,
-            polygons,
-        },
-        polygon_changed,
-    ))
-}
-
-/// One face's triangles, as soup indices (most faces are one triangle).
-type FaceTriangles = SmallVec<[[usize; 3]; 1]>;
-
-/// The exact triangulation of face `f` ([`Solid::try_triangulate_face`]),
-/// its corners numbered by `index`; a triangle without its allocation.
-fn face_triangles(
-    solid: &Solid,
-    f: FaceId,
-    index: &SecondaryMap<VertexId, usize>,
-) -> Result<FaceTriangles, BooleanError> {
-    if let Some(triangle) = solid.face_as_triangle(f) {
-        return Ok(smallvec::smallvec![triangle.map(|v| index[v])]);
-    }
-    let triangles = solid
-        .try_triangulate_face(f)
-        .map_err(|e| BooleanError::InvalidResult {
-            validity: "a face is not a simple polygon after rounding".into(),
-            report: format!("face {f:?}: {e}"),
-        })?;
-    Ok(triangles.into_iter().map(|t| t.map(|v| index[v])).collect())
 }
 
 /// The first few defects of a report, one line each.

@@ -25,6 +25,8 @@ use super::operand::FaceOrigin;
 /// was built from (indexed by the faces' `source_index`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PieceSource {
+    /// The kept piece's index (stable over the output stage's rounds).
+    pub piece: usize,
     pub origin: FaceOrigin,
     /// The operand triangle the piece lies in, wound as the piece faces.
     pub plane: [DVec3; 3],
@@ -49,9 +51,21 @@ pub(crate) struct PieceSource {
 /// would end inside the other sheet's edge. At a corner the edges between
 /// faces that cannot merge stay, so the corner does.
 ///
+/// Pieces in `blocked` (by [`PieceSource::piece`]) merge with nothing: the
+/// output stage blocks the pieces of a merged face that could not be
+/// written valid. Pairs in `joined` (smaller piece first) merge although
+/// they lie in two planes: pieces of two sheets so nearly coplanar that
+/// rounding folds them over each other, which one flat face does not.
+///
 /// Returns the faces after the merge that hold a changed piece (see
-/// [`PieceSource::changed`]).
-pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet<FaceId> {
+/// [`PieceSource::changed`]), and the pairs of soup polygons (by source
+/// index) whose faces were merged.
+pub(crate) fn merge_faces(
+    solid: &mut Solid,
+    sources: &[PieceSource],
+    blocked: &HashSet<usize>,
+    joined: &HashSet<(usize, usize)>,
+) -> (HashSet<FaceId>, Vec<(usize, usize)>) {
     let source_of =
         |solid: &Solid, f: FaceId| solid.face(f).attributes.source_index.map(|i| sources[i]);
     let mut changed: HashSet<FaceId> = solid
@@ -64,7 +78,12 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
         .map(|(f, _)| f)
         .collect();
     let mut merge_rule = MergeRule::default();
-    let mut mergeable = |l: &PieceSource, r: &PieceSource| merge_rule.allows(l, r);
+    let mut mergeable = |l: &PieceSource, r: &PieceSource| {
+        let pair = (l.piece.min(r.piece), l.piece.max(r.piece));
+        !blocked.contains(&l.piece)
+            && !blocked.contains(&r.piece)
+            && (joined.contains(&pair) || merge_rule.allows(l, r))
+    };
     let mut touching = touching_vertices(solid);
     touching.retain(|&v| {
         let creases = solid
@@ -84,6 +103,7 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
     // when any face of its group did (an allowed merge that the Euler
     // operators then skip only makes the set larger).
     let mut merged: Vec<(FaceId, FaceId)> = Vec::new();
+    let mut merged_sources: Vec<(usize, usize)> = Vec::new();
     solid.merge_faces_where(|solid, left, right| {
         let (Some(l), Some(r)) = (source_of(solid, left), source_of(solid, right)) else {
             return false;
@@ -98,6 +118,8 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
         let allowed = mergeable(&l, &r);
         if allowed {
             merged.push((left, right));
+            let index = |f: FaceId| solid.face(f).attributes.source_index.unwrap_or_default();
+            merged_sources.push((index(left), index(right)));
         }
         allowed
     });
@@ -124,7 +146,7 @@ pub(crate) fn merge_faces(solid: &mut Solid, sources: &[PieceSource]) -> HashSet
         }
     }
     changed.retain(|&f| solid.get_face(f).is_some());
-    changed
+    (changed, merged_sources)
 }
 
 /// Whether two neighbouring pieces may merge: from one operand face, or
@@ -214,6 +236,7 @@ mod tests {
         let cube = builders::cube();
         let faces: Vec<FaceId> = cube.faces().map(|(f, _)| f).collect();
         let source = |face: FaceId, plane: [DVec3; 3]| PieceSource {
+            piece: 0,
             origin: FaceOrigin { operand: 0, face },
             plane,
             changed: true,

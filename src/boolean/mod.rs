@@ -34,6 +34,7 @@ mod expression;
 mod intersect;
 mod merge;
 mod operand;
+mod output;
 mod points;
 mod select;
 mod split;
@@ -422,8 +423,8 @@ pub fn combine(
             .collect();
         kept.extend(of_operand);
     }
-    let (soup, sources) = assemble::soup_of(&table, &kept, &prepared);
-    let (solid, origins, report, proof_seconds) = assemble::build_and_prove(&soup, &sources)?;
+    let (solid, origins, report, proof_seconds) =
+        output::build_and_prove(&table, &kept, &prepared)?;
     stats.proof_seconds = proof_seconds;
     stats.output_seconds = clock.elapsed().as_secs_f64() - proof_seconds;
     Ok(Boolean {
@@ -541,15 +542,17 @@ fn check_operand(solid: &Solid, operand: usize) -> Result<(), BooleanError> {
     })
 }
 
-/// Validates `solid` with every rule (the exact self-intersection check
-/// included) on the exact triangulations of its faces, and its rings by
-/// their own checks; an empty solid (no faces) is valid.
+/// Validates `solid` as it would be written ([`to_obj_string`]: polygons,
+/// and faces with rings as their exact triangulations) with every rule,
+/// the exact self-intersection check included; the empty solid is valid.
+///
+/// [`to_obj_string`]: crate::io::to_obj_string
 ///
 /// # Errors
 ///
 /// [`BooleanError::InvalidResult`] with the located defects.
 pub fn prove(solid: &Solid) -> Result<Report, BooleanError> {
-    assemble::prove(solid)
+    output::prove(solid)
 }
 
 /// Every pair of triangles of two operands that meet, with its contact, in

@@ -26,7 +26,7 @@ pub use aabb::Aabb;
 pub use box_triangle::box_meets_triangle;
 pub use dot::{dot_sign, side_of_plane};
 pub use exact::{line_side, line_side_sos};
-pub use plane::{Plane, PlaneError, PlaneFit, newell_vector_area};
+pub use plane::{Plane, PlaneError, PlaneFit, newell_vector_area, unit_direction};
 pub use predicates::{
     Sign, exact_fallbacks, incircle, orient2d, orient3d, reset_exact_fallbacks, tie_breaks,
 };

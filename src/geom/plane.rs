@@ -72,9 +72,7 @@ impl Plane {
         if !point.is_finite() || !normal.is_finite() {
             return Err(PlaneError::NonFinite);
         }
-        let normal = normal
-            .try_normalize()
-            .ok_or(PlaneError::ZeroArea { vertices: 0 })?;
+        let normal = unit_direction(normal).ok_or(PlaneError::ZeroArea { vertices: 0 })?;
         Ok(Plane {
             normal,
             d: -normal.dot(point),
@@ -164,7 +162,7 @@ impl Plane {
         let origin = points[0];
         let vector_area = newell_vector_area(points, origin);
         let centroid = points.iter().map(|&p| p - origin).sum::<DVec3>() / points.len() as f64;
-        let normal = vector_area.try_normalize().ok_or(zero_area)?;
+        let normal = unit_direction(vector_area).ok_or(zero_area)?;
         let plane = Plane {
             normal,
             d: -normal.dot(centroid + origin),
@@ -252,6 +250,23 @@ pub fn newell_vector_area(points: &[DVec3], origin: DVec3) -> DVec3 {
         sum += p.cross(q);
     }
     sum * 0.5
+}
+
+/// `v` scaled to unit length, or `None` when it is zero or not finite. `v`
+/// is first scaled exactly by a power of two that brings its largest
+/// component near 1, so that the squared length neither underflows
+/// (a face of side 1e-90 has a vector area of 1e-180) nor overflows (side
+/// 1e100: 1e200): the direction of any non-zero finite vector is found.
+#[must_use]
+pub fn unit_direction(v: DVec3) -> Option<DVec3> {
+    let largest = v.abs().max_element();
+    if largest == 0.0 || !largest.is_finite() {
+        return None;
+    }
+    // 2^−e in two exact halves, each a normal power of two.
+    let e = largest.log2().floor() as i32;
+    let (half, rest) = (-e / 2, -e - (-e / 2));
+    (v * 2f64.powi(half) * 2f64.powi(rest)).try_normalize()
 }
 
 fn check_triangle(p1: DVec3, p2: DVec3, p3: DVec3) -> Result<(), PlaneError> {

@@ -15,6 +15,6 @@ pub use obj::{
     DEFAULT_MAX_FACE_CORNERS, ObjError, ObjImport, ObjOptions, import_obj, import_obj_bytes,
     read_obj,
 };
-pub use obj_write::{to_obj_string, write_obj};
+pub use obj_write::{to_obj_string, write_obj, written_soup};
 pub use read::{MAX_INPUT_BYTES, read_input, read_input_from, text_len};
 pub use weld::{WeldMode, WeldRefusal, WeldReport};

@@ -6,52 +6,84 @@ use std::path::Path;
 
 use slotmap::SecondaryMap;
 
-use crate::mesh::{Solid, VertexId};
+use crate::mesh::{FaceId, Polygon, PolygonSoup, Solid, VertexId};
 
 /// The solid as OBJ text: one `v` line per vertex (shortest decimal that
-/// reads back as the same `f64`), then one `f` line per face with its
-/// vertices counter-clockwise seen from outside (polygons are not
-/// triangulated). Faces carrying a group name are preceded by a `g` line when
-/// the group changes.
-///
-/// OBJ has no faces with holes: a face with rings is written as the
-/// triangles of its exact constrained triangulation
-/// ([`Solid::try_triangulate_face`]: no sliver of zero area, no flipped
-/// triangle), one `f` line each, wound like the face. A face whose loops do
-/// not bound a valid face (a ring outside or crossing, which validation
-/// reports) cannot be triangulated; its loops are then written as polygons
-/// of their own, so that reading the file back shows the defect.
+/// reads back as the same `f64`), then one `f` line per polygon of
+/// [`written_soup`], counter-clockwise seen from outside. Faces carrying a
+/// group name are preceded by a `g` line when the group changes. The empty
+/// solid is a comment saying so, which reads back as the empty solid.
 #[must_use]
 pub fn to_obj_string(solid: &Solid) -> String {
-    let mut out = String::with_capacity(solid.vertex_count() * 40 + solid.face_count() * 24);
+    let (soup, _) = written_soup(solid);
+    let mut out = String::with_capacity(soup.positions.len() * 40 + soup.polygons.len() * 24);
     out.push_str("# written by wingedge\n");
-    let mut index: SecondaryMap<VertexId, usize> =
-        SecondaryMap::with_capacity(solid.vertex_count());
-    for (i, (id, v)) in solid.vertices().enumerate() {
-        index.insert(id, i + 1);
-        let p = v.position;
+    if soup.polygons.is_empty() && soup.positions.is_empty() {
+        out.push_str("# the empty solid: no vertices, no faces\n");
+    }
+    for p in &soup.positions {
         let _ = writeln!(out, "v {:?} {:?} {:?}", p.x, p.y, p.z);
     }
     let mut group: Option<&str> = None;
-    for (id, face) in solid.faces() {
-        let g = face.attributes.group.as_deref();
+    for polygon in &soup.polygons {
+        let g = polygon.attributes.group.as_deref();
         if g.is_some() && g != group {
             let _ = writeln!(out, "g {}", g.unwrap_or_default());
             group = g;
         }
+        write_polygon(&mut out, polygon.vertices.iter().map(|&v| v + 1));
+    }
+    out
+}
+
+/// Exactly what [`to_obj_string`] writes, as a soup: every vertex of the
+/// solid in its order, and the faces as polygons, each with the face it
+/// comes from. This is what a proof of a written solid validates.
+///
+/// OBJ has no faces with holes: a face with rings is written as the
+/// triangles of its exact constrained triangulation
+/// ([`Solid::try_triangulate_face`]: no sliver of zero area, no flipped
+/// triangle), wound like the face. A face whose loops do not bound a valid
+/// face (a ring outside or crossing, which validation reports) cannot be
+/// triangulated; its loops are then written as polygons of their own, so
+/// that reading the file back shows the defect.
+#[must_use]
+pub fn written_soup(solid: &Solid) -> (PolygonSoup, Vec<FaceId>) {
+    let mut index: SecondaryMap<VertexId, usize> =
+        SecondaryMap::with_capacity(solid.vertex_count());
+    let mut positions = Vec::with_capacity(solid.vertex_count());
+    for (i, (id, v)) in solid.vertices().enumerate() {
+        index.insert(id, i);
+        positions.push(v.position);
+    }
+    let mut polygons = Vec::with_capacity(solid.face_count());
+    let mut faces = Vec::with_capacity(solid.face_count());
+    let mut push = |face: FaceId, vertices: &mut dyn Iterator<Item = VertexId>| {
+        let mut polygon = Polygon::new(vertices.map(|v| index[v]));
+        polygon.attributes = solid.face(face).attributes.clone();
+        polygons.push(polygon);
+        faces.push(face);
+    };
+    for (id, face) in solid.faces() {
         if face.rings.is_empty() {
-            write_polygon(&mut out, solid.face_vertices(id).map(|v| index[v]));
+            push(id, &mut solid.face_vertices(id));
         } else if let Ok(triangles) = solid.try_triangulate_face(id) {
             for t in triangles {
-                write_polygon(&mut out, t.iter().map(|&v| index[v]));
+                push(id, &mut t.into_iter());
             }
         } else {
             for l in solid.face_loops(id) {
-                write_polygon(&mut out, solid.loop_vertices(l).map(|v| index[v]));
+                push(id, &mut solid.loop_vertices(l));
             }
         }
     }
-    out
+    (
+        PolygonSoup {
+            positions,
+            polygons,
+        },
+        faces,
+    )
 }
 
 /// One `f` line with the given 1-based vertex numbers.

@@ -103,6 +103,9 @@ fn build(soup: &PolygonSoup, sharing: EdgeSharing) -> Result<Solid, BuildError> 
     pair_twins(soup, &mut halves, &mut outgoing, sharing)?;
     link_holes(&mut halves);
     split_pinches(soup, &mut halves, &outgoing);
+    if sharing == EdgeSharing::Touching {
+        check_no_parallel_edges(soup, &halves)?;
+    }
     // Freed before the solid's tables are allocated (lowers the peak).
     drop(outgoing);
     Ok(assemble(soup, &halves))
@@ -418,6 +421,41 @@ fn walk_fan(h: &HalfEdges, e: usize, seen: &mut [bool]) -> usize {
             return size;
         }
     }
+}
+
+/// Refuses sheets paired along an edge whose end vertices stayed shared
+/// (their fans are joined elsewhere): the copies of the edge would run
+/// between the same two vertices, which the winged-edge tables cannot hold.
+fn check_no_parallel_edges(soup: &PolygonSoup, h: &HalfEdges) -> Result<(), BuildError> {
+    let len = soup.positions.len();
+    let soup_vertex = |v: usize| if v < len { v } else { h.split_from[v - len] };
+    let mut first: rustc_hash::FxHashMap<(usize, usize), usize> = Default::default();
+    for e in 0..h.face_count {
+        let t = h.twin[e];
+        if t < h.face_count && t < e {
+            continue;
+        }
+        let key = (h.from[e].min(h.to[e]), h.from[e].max(h.to[e]));
+        if let Some(&other) = first.get(&key) {
+            let mut polygons: Vec<usize> = [e, h.twin[e], other, h.twin[other]]
+                .into_iter()
+                .filter(|&g| g < h.face_count)
+                .map(|g| h.polygon[g])
+                .collect();
+            polygons.sort_unstable();
+            polygons.dedup();
+            return Err(BuildError::NonManifoldEdge {
+                vertices: [soup_vertex(h.from[e]), soup_vertex(h.to[e])],
+                lines: polygons
+                    .iter()
+                    .map(|&p| soup.polygons[p].attributes.line)
+                    .collect(),
+                polygons,
+            });
+        }
+        first.insert(key, e);
+    }
+    Ok(())
 }
 
 fn assemble(soup: &PolygonSoup, h: &HalfEdges) -> Solid {

@@ -218,6 +218,9 @@ fn run(
     keep: Keep,
 ) -> (Report, Option<Solid>) {
     let start = std::time::Instant::now();
+    if soup.polygons.is_empty() && soup.positions.is_empty() {
+        return (empty_report(), keep_solid(keep));
+    }
     // The soup usually needs no cleaning (no repeats in a row, no duplicate
     // or broken faces): build the solid from it while the context is made.
     let (ctx, raw) = match keep {
@@ -329,6 +332,30 @@ fn run(
         ],
     };
     (report, solid)
+}
+
+/// The report on the empty solid: nothing to check, nothing wrong.
+fn empty_report() -> Report {
+    Report {
+        validity: Validity::Empty,
+        vertices: 0,
+        edges: 0,
+        faces: 0,
+        shells: 0,
+        holes: 0,
+        genus: None,
+        volume: Some(0.0),
+        area: 0.0,
+        not_built: None,
+        shell_details: Vec::new(),
+        violations: Vec::new(),
+        stage_seconds: Vec::new(),
+    }
+}
+
+/// The empty solid when the caller keeps the solid.
+fn keep_solid(keep: Keep) -> Option<Solid> {
+    matches!(keep, Keep::Solid).then(Solid::default)
 }
 
 /// The grade the violations allow. A soup that could not be built into a

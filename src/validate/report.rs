@@ -176,6 +176,10 @@ pub enum Validity {
     ClosedOrientedSurface,
     /// A closed oriented surface with no defect at all: a valid solid.
     ValidSolid,
+    /// The empty solid: no vertices and no faces (what `A − A` is). Valid
+    /// vacuously, and ordered above [`Validity::ValidSolid`], so that
+    /// `validity >= Validity::ValidSolid` holds for every valid solid.
+    Empty,
 }
 
 impl Validity {
@@ -188,6 +192,7 @@ impl Validity {
             Validity::OrientedSurface => "oriented surface with holes",
             Validity::ClosedOrientedSurface => "closed oriented surface with defects",
             Validity::ValidSolid => "valid closed solid",
+            Validity::Empty => "the empty solid (no faces)",
         }
     }
 }
@@ -259,10 +264,10 @@ pub struct Report {
 }
 
 impl Report {
-    /// Whether the polyhedron is a valid closed solid.
+    /// Whether the polyhedron is a valid closed solid, or the empty solid.
     #[must_use]
     pub fn is_valid(&self) -> bool {
-        self.validity == Validity::ValidSolid
+        self.validity >= Validity::ValidSolid
     }
 
     /// How many violations of `rule` were found.

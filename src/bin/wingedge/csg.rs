@@ -56,7 +56,8 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
             "rings": solid.ring_count(),
             "shells": report.shells,
             "genus": report.genus,
-            "volume": solid.volume(),
+            "volume": solid.volume() + 0.0,
+            "empty": solid.face_count() == 0,
             "validity": report.validity,
             "seconds": seconds_by_stage,
         });

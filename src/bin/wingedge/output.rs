@@ -71,6 +71,8 @@ impl Out {
 /// extreme ones (never hundreds of digits), and `overflow` when it does not
 /// fit in `f64` (never a bare `NaN`).
 pub fn measure(x: f64, decimals: usize) -> String {
+    // −0 (the volume of the empty solid, summed from nothing) is 0.
+    let x = x + 0.0;
     if !x.is_finite() {
         "overflow".to_string()
     } else if x == 0.0 || (1e-5..1e16).contains(&x.abs()) {

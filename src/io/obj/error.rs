@@ -32,9 +32,9 @@ pub enum ObjError {
         /// The first line holding a non-text byte.
         line: usize,
     },
-    /// The file holds no face at all (empty, comments only, or only
-    /// vertices).
-    #[error("{}: holds no faces (the file is empty or has no `f` lines)", .path.display())]
+    /// The file holds vertices or polylines but no face. (A file with no
+    /// element at all, only comments or nothing, is the empty solid.)
+    #[error("{}: holds vertices but no faces (no `f` lines)", .path.display())]
     Empty {
         /// The file.
         path: PathBuf,

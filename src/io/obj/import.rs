@@ -117,6 +117,25 @@ pub fn import_obj_bytes(
     // indices far out of range, texture and normal indices included (found
     // by fuzzing).
     let scan = scan(path, bytes).map_err(|e| earliest_error(path, bytes, e))?;
+    if scan.faces.is_empty() && scan.vertex_lines.is_empty() {
+        // No element at all (only comments or nothing): the empty solid,
+        // as `to_obj_string` writes it.
+        return Ok(ObjImport {
+            path: path.to_path_buf(),
+            soup: PolygonSoup::default(),
+            vertex_lines: Vec::new(),
+            vertex_numbers: Vec::new(),
+            weld: WeldReport {
+                mode: options.weld,
+                merged: 0,
+                refused: Vec::new(),
+            },
+            stage_seconds: vec![(
+                "parse (line pass, then tobj)",
+                start.elapsed().as_secs_f64(),
+            )],
+        });
+    }
     let models = run_tobj(path, bytes)?;
     let parsed = start.elapsed().as_secs_f64();
     let positions = align_positions(path, bytes, &scan, &models)?;
@@ -283,7 +302,15 @@ mod tests {
         assert!(matches!(e, ObjError::Parse { line: Some(2), .. }), "{e}");
         let e = read("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 a 3\n").unwrap_err();
         assert!(matches!(e, ObjError::BadCorner { line: 4, .. }), "{e}");
-        assert!(matches!(read("").unwrap_err(), ObjError::Empty { .. }));
+        // Nothing at all is the empty solid; vertices without a face are not.
+        assert!(read("").unwrap().soup.polygons.is_empty());
+        assert!(
+            read("# the empty solid\n\n")
+                .unwrap()
+                .soup
+                .positions
+                .is_empty()
+        );
         assert!(matches!(
             read("# only\nv 1 2 3\n").unwrap_err(),
             ObjError::Empty { .. }

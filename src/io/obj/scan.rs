@@ -194,7 +194,10 @@ pub(super) fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
             });
         }
     }
-    if !s.faces.iter().any(|f| !f.polyline) {
+    // A file with no element at all is the empty solid; vertices or
+    // polylines without a face are not a solid of any kind.
+    let nothing = s.faces.is_empty() && s.vertex_lines.is_empty();
+    if !nothing && !s.faces.iter().any(|f| !f.polyline) {
         return Err(ObjError::Empty { path: p() });
     }
     Ok(s)

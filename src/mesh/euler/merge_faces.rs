@@ -98,7 +98,11 @@ fn tidy_inside_faces(solid: &mut Solid) {
         let face = solid.edge(bridge).left_face;
         if let Ok(ring) = solid.kemr(bridge) {
             let outer = solid.face(face).outer;
-            if loop_area(solid, ring, face) > loop_area(solid, outer, face) {
+            let origin = solid
+                .loop_vertices(outer)
+                .next()
+                .map_or(DVec3::ZERO, |v| solid.position(v));
+            if loop_area(solid, ring, face, origin) > loop_area(solid, outer, face, origin) {
                 solid.swap_outer_loop(face, ring);
             }
         } else {
@@ -123,13 +127,11 @@ fn tidy_inside_faces(solid: &mut Solid) {
 }
 
 /// The loop's signed area about the face's normal (Newell): positive for
-/// a loop wound counter-clockwise seen from outside.
-fn loop_area(solid: &Solid, l: LoopId, face: FaceId) -> f64 {
+/// a loop wound counter-clockwise seen from outside. Summed relative to
+/// `origin` (a point of the face): on absolute coordinates far from the
+/// origin the products' rounding would exceed the area itself.
+fn loop_area(solid: &Solid, l: LoopId, face: FaceId, origin: DVec3) -> f64 {
     let points: Vec<DVec3> = solid.loop_vertices(l).map(|v| solid.position(v)).collect();
     let normal = solid.face(face).plane.map(|p| p.normal).unwrap_or(DVec3::Z);
-    let n = points.len();
-    (0..n)
-        .map(|i| points[i].cross(points[(i + 1) % n]))
-        .sum::<DVec3>()
-        .dot(normal)
+    crate::geom::newell_vector_area(&points, origin).dot(normal)
 }
