@@ -212,13 +212,9 @@ impl PyScene {
         };
         let scene = &self.scene;
         let image = py.detach(|| render(scene, &options, &|_| {}).0);
-        let mut bytes = Vec::with_capacity(width as usize * height as usize * 3);
-        for y in 0..height {
-            for x in 0..width {
-                bytes.extend(image.pixel(x, y).unwrap_or([0, 0, 0]));
-            }
-        }
-        bytes
+        image
+            .rgb_bytes()
+            .to_vec()
             .into_pyarray(py)
             .reshape([height as usize, width as usize, 3])
     }
