@@ -42,7 +42,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         tree = Some(t);
     }
     let tree = tree.ok_or("no run")?;
-    let (low, high) = tree.volume_bounds();
+    let (low, high) = tree.try_volume_bounds().unwrap();
     let count = |label| tree.leaves().iter().filter(|c| c.label == label).count();
     let (origin, side) = tree.root();
     println!(

@@ -77,14 +77,14 @@ fn row(args: &[String]) -> Result<()> {
             };
             let (t, tree) =
                 best_of_3(|| Ok(Octree::classify_csg(&scene.csg, n, &mut Stats::default())?))?;
-            let (low, high) = tree.volume_bounds();
+            let (low, high) = tree.try_volume_bounds().unwrap();
             (t, low, high, tree.leaves().len())
         }
         "mesh" => {
             let soup: PolygonSoup = read_obj(Path::new(target))?;
             let solid = Solid::try_from_soup(&soup)?;
             let (t, tree) = best_of_3(|| Ok(Octree::classify(&solid, n)?))?;
-            let (low, high) = tree.volume_bounds();
+            let (low, high) = tree.try_volume_bounds().unwrap();
             (t, low, high, tree.leaves().len())
         }
         "field" => {

@@ -17,7 +17,7 @@ fn fixture(name: &str) -> Solid {
 }
 
 fn assert_holds(tree: &Octree, volume: f64, what: &str) {
-    let (low, high) = tree.volume_bounds();
+    let (low, high) = tree.try_volume_bounds().unwrap();
     assert!(
         low <= volume && volume <= high,
         "{what}: {volume} not in [{low}, {high}]"
@@ -52,7 +52,7 @@ fn intervals_hold_closed_form_volumes_and_shrink_with_depth() {
         for depth in [2, 3, 5] {
             let tree = Octree::classify(&solid, depth).unwrap();
             assert_holds(&tree, volume, name);
-            let (low, high) = tree.volume_bounds();
+            let (low, high) = tree.try_volume_bounds().unwrap();
             assert!(
                 high - low <= width,
                 "{name}: the interval grows at depth {depth}"
@@ -208,7 +208,7 @@ fn cells_of_the_drilled_cube_hold_its_closed_form_volume() {
     for depth in 2..=7 {
         let tree = Octree::classify_csg(&drilled.csg, depth, &mut Stats::default()).unwrap();
         assert_holds(&tree, exact, &format!("drilled cube, depth {depth}"));
-        let (low, high) = tree.volume_bounds();
+        let (low, high) = tree.try_volume_bounds().unwrap();
         assert!(high - low < width, "depth {depth}: {low} {high}");
         width = high - low;
         if depth <= 5 {
@@ -268,7 +268,7 @@ fn cells_of_scenes_hold_their_volumes_and_agree_with_classify() {
                 "{stats} for {cells} leaves"
             );
         }
-        let (low, high) = tree.volume_bounds();
+        let (low, high) = tree.try_volume_bounds().unwrap();
         let estimate = s.csg.try_volume(0.03).unwrap().volume;
         assert!(
             0.0 < low && low < estimate && estimate < high,
@@ -292,7 +292,7 @@ fn assert_valid_shell(tree: &Octree, what: &str) -> wingedge::cells::InShell {
     );
     let solid = Solid::try_from_soup(&shell.soup).unwrap();
     assert_eq!(solid.volume(), shell.volume, "{what}");
-    let (low, high) = tree.volume_bounds();
+    let (low, high) = tree.try_volume_bounds().unwrap();
     assert!(low <= shell.volume && shell.volume <= high, "{what}");
     assert_eq!(shell.filled == 0, shell.volume == low, "{what}");
     shell
@@ -394,7 +394,7 @@ fn in_shells_of_random_cut_boxes_are_valid_solids() {
         ));
         let csg = Csg::try_new(CsgExpr::Union(parts)).unwrap();
         let tree = Octree::classify_csg(&csg, 4 + trial % 2, &mut Stats::default()).unwrap();
-        if tree.volume_bounds().0 == 0.0 {
+        if tree.try_volume_bounds().unwrap().0 == 0.0 {
             // No In cell: no faces.
             assert!(tree.in_shell().unwrap().soup.polygons.is_empty());
             empty += 1;

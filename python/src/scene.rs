@@ -10,8 +10,9 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rayon::prelude::*;
-use wingedge::csg::{EvaluateError, EvaluateOptions, Stats, evaluate};
+use wingedge::csg::{EvaluateError, EvaluateOptions, Stats, VolumeError, evaluate};
 use wingedge::geom::Ray;
+use wingedge::geom::Readable;
 use wingedge::glam::DVec3;
 use wingedge::query::QueryError as CoreQueryError;
 use wingedge::render::{RenderOptions, render};
@@ -149,18 +150,45 @@ impl PyScene {
         flat.into_pyarray(py).reshape([intervals.len(), 2])
     }
 
-    /// Volume by ray integration on a grid of spacing `spacing`:
-    /// `(volume, spacing used, rays cast, closed form or None)`.
-    fn volume(&self, py: Python<'_>, spacing: f64) -> PyResult<(f64, f64, u64, Option<f64>)> {
+    /// Volume by ray integration on a grid of spacing `spacing` (`None`:
+    /// the default grid, fine enough for every leaf that adds volume):
+    /// `(volume, spacing used, rays cast, closed form or None, warning or
+    /// None)`; the warning names a leaf narrower than a cell.
+    #[pyo3(signature = (spacing=None))]
+    #[allow(clippy::type_complexity)]
+    fn volume(
+        &self,
+        py: Python<'_>,
+        spacing: Option<f64>,
+    ) -> PyResult<(f64, f64, u64, Option<f64>, Option<String>)> {
         let csg = &self.scene.csg;
         let estimate = py
-            .detach(|| csg.try_volume(spacing))
-            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+            .detach(|| match spacing {
+                Some(h) => csg.try_volume(h),
+                None => csg.try_default_volume(),
+            })
+            .map_err(|e| match e {
+                VolumeError::BadSpacing { .. } => PyValueError::new_err(format!("spacing: {e}")),
+                other => PyValueError::new_err(other.to_string()),
+            })?;
+        let warning = estimate.unresolved.map(|u| {
+            let label = csg
+                .leaf(u.narrowest)
+                .map_or("a leaf", |l| l.label.as_str());
+            format!(
+                "{} leaf(s) narrower than a grid cell may be missed: {label} is {} wide along {} (cells of {}); give a smaller spacing",
+                u.count,
+                Readable(u.width),
+                ["x", "y"][u.axis],
+                Readable(estimate.spacing)
+            )
+        });
         Ok((
             estimate.volume,
             estimate.spacing,
             estimate.rays,
             estimate.exact,
+            warning,
         ))
     }
 
@@ -184,13 +212,9 @@ impl PyScene {
         };
         let scene = &self.scene;
         let image = py.detach(|| render(scene, &options, &|_| {}).0);
-        let mut bytes = Vec::with_capacity(width as usize * height as usize * 3);
-        for y in 0..height {
-            for x in 0..width {
-                bytes.extend(image.pixel(x, y).unwrap_or([0, 0, 0]));
-            }
-        }
-        bytes
+        image
+            .rgb_bytes()
+            .to_vec()
             .into_pyarray(py)
             .reshape([height as usize, width as usize, 3])
     }

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import warnings
 from typing import Optional
 
 import numpy as np
@@ -57,10 +58,18 @@ class Scene:
         """The intervals of one ray inside the solid, ``(n, 2)``."""
         return self._native._spans(_point(origin, "origin"), _point(direction, "direction"))
 
-    def volume(self, spacing: float) -> float:
+    def volume(self, spacing: Optional[float] = None) -> float:
         """The volume by ray integration on a grid of cells of side at most
-        ``spacing`` (the closed form when the tree is one leaf that has one)."""
-        volume, _, _, exact = self._native.volume(float(spacing))
+        ``spacing`` (the closed form when the tree is one leaf that has one).
+        Without ``spacing``, the default grid: 400 cells across the longest
+        side, and at least 4 across every leaf that adds volume. A
+        ``RuntimeWarning`` names a leaf narrower than a cell (the grid may
+        miss it)."""
+        volume, _, _, exact, warning = self._native.volume(
+            None if spacing is None else float(spacing)
+        )
+        if warning is not None and exact is None:
+            warnings.warn(warning, RuntimeWarning, stacklevel=2)
         return exact if exact is not None else volume
 
     def render(self, width: int = 640, height: int = 480) -> np.ndarray:

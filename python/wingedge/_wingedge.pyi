@@ -125,8 +125,11 @@ class NativeScene:
         """First hits: ``t`` (inf for a miss) and the leaf hit (-1)."""
     def _spans(self, origin: _Vec3, direction: _Vec3) -> _F64:
         """``(n, 2)`` intervals ``[t_enter, t_leave]`` of one ray inside."""
-    def volume(self, spacing: float) -> Tuple[float, float, int, Optional[float]]:
-        """``(volume, spacing used, rays cast, closed form or None)``."""
+    def volume(
+        self, spacing: Optional[float] = None
+    ) -> Tuple[float, float, int, Optional[float], Optional[str]]:
+        """``(volume, spacing used, rays cast, closed form or None, warning
+        or None)``; no spacing: the default grid."""
     def render(self, width: int, height: int) -> npt.NDArray[np.uint8]:
         """A ray-cast image ``(height, width, 3)``."""
     def evaluate(self, tolerance: Optional[float] = None) -> NativeSolid:

@@ -175,7 +175,8 @@ impl Octree {
     /// # Errors
     ///
     /// [`CellsError::Repair`] if removing the contacts would fill more than
-    /// a bounded number of sub-cells.
+    /// a bounded number of sub-cells; [`CellsError::VolumeOutOfRange`] as
+    /// [`Octree::try_volume_bounds`].
     pub fn in_shell(&self) -> Result<InShell, CellsError> {
         let mut grid = SubGrid {
             tree: self,
@@ -202,7 +203,7 @@ impl Octree {
         Ok(InShell {
             soup,
             filled: grid.filled.len(),
-            volume: self.volume_bounds().0 + grid.filled.len() as f64 * sub_cell,
+            volume: self.try_volume_bounds()?.0 + grid.filled.len() as f64 * sub_cell,
         })
     }
 

@@ -119,6 +119,21 @@ pub enum CellsError {
         /// Why.
         message: String,
     },
+    /// The certified volume interval cannot be held in `f64`: the finest
+    /// cell's volume `2^exponent` times the cell counts overflows, or
+    /// underflows below the normal range (where it would be rounded).
+    #[error(
+        "the certified volume interval cannot be held in f64: {low_cells} to {high_cells} finest cells of volume 2^{exponent} each {}",
+        if *.exponent > 0 { "overflow" } else { "underflow" }
+    )]
+    VolumeOutOfRange {
+        /// The binary exponent of the finest cell's volume.
+        exponent: i32,
+        /// The lower end of the interval, in finest cells.
+        low_cells: u128,
+        /// The upper end of the interval, in finest cells.
+        high_cells: u128,
+    },
     /// The solid's box is too large for cell corners to be exact.
     #[error("the solid's box (size {}) is too large or too far out for exact cell corners", Readable(*.size))]
     OutOfRange {
@@ -442,23 +457,44 @@ impl Octree {
         self.regions
     }
 
-    /// The certified volume interval `[V_in, V_in + V_on]`, which holds
-    /// the solid's exact volume.
-    #[must_use]
-    pub fn volume_bounds(&self) -> (f64, f64) {
+    /// The certified volume interval `[V_in, V_in + V_on]`: finite, and
+    /// holding the solid's exact volume.
+    ///
+    /// # Errors
+    ///
+    /// [`CellsError::VolumeOutOfRange`] when an end of the interval does
+    /// not fit in `f64` as a normal number (a box of side 1e300 overflows,
+    /// a ball of radius 1e-300 underflows): no interval is claimed then.
+    pub fn try_volume_bounds(&self) -> Result<(f64, f64), CellsError> {
         // Sums in units of the finest cell (a cell at depth d is 8^(depth − d)
         // of them): integers, exact. Converted to f64 rounding down and up,
-        // then scaled by the finest cell's volume (a power of two).
+        // then scaled by the finest cell's volume, a power of two: exact
+        // unless the product leaves the normal range, which is refused.
         let (mut inside, mut on) = (0u128, 0u128);
         for (d, c) in self.counts.iter().enumerate() {
             let units = 1u128 << (3 * (self.depth as usize - d));
             inside += u128::from(c.inside) * units;
             on += u128::from(c.on) * units;
         }
-        let finest = (self.side / f64::from(1u32 << self.depth)).powi(3);
-        let low = round_down(inside) * finest;
-        let high = round_up(inside + on) * finest;
-        (low, high)
+        // The root's side is a power of two (`root_cube`), and so is the
+        // finest side.
+        let finest_side = self.side / f64::from(1u32 << self.depth);
+        let exponent = 3 * finest_side.log2().round() as i32;
+        let refused = CellsError::VolumeOutOfRange {
+            exponent,
+            low_cells: inside,
+            high_cells: inside + on,
+        };
+        // The steps of the product move monotonically from `cells` (an
+        // integer) to the result, so a normal result was never rounded.
+        let scaled = |cells: f64| {
+            let v = times_power_of_two(cells, exponent);
+            (cells == 0.0 || v.is_normal()).then_some(v)
+        };
+        match (scaled(round_down(inside)), scaled(round_up(inside + on))) {
+            (Some(low), Some(high)) => Ok((low, high)),
+            _ => Err(refused),
+        }
     }
 
     /// The dense array of the finest cells, `n³` bytes for `n = 2^depth`,
@@ -498,6 +534,16 @@ impl Octree {
         }
         Ok(out)
     }
+}
+
+/// `x · 2^k`, exact whenever the result is a normal number.
+fn times_power_of_two(mut x: f64, mut k: i32) -> f64 {
+    while k != 0 {
+        let step = k.clamp(-1000, 1000);
+        x *= 2f64.powi(step);
+        k -= step;
+    }
+    x
 }
 
 /// `n` as an `f64` no larger than `n`.
@@ -574,13 +620,43 @@ mod tests {
                 assert_eq!(one.leaves, all.leaves, "{name} at depth {depth}");
                 assert_eq!(one.counts, all.counts, "{name} at depth {depth}");
                 assert_eq!(one.regions, all.regions, "{name} at depth {depth}");
-                let (low, high) = all.volume_bounds();
+                let (low, high) = all.try_volume_bounds().unwrap();
                 let v = solid.volume();
                 assert!(
                     low <= v && v <= high,
                     "{name} at depth {depth}: {v} not in [{low}, {high}]"
                 );
             }
+        }
+    }
+
+    /// A certified interval is finite and holds the volume, or there is
+    /// none: a cube of side 2^1001 (volume 2^3003) overflows and one of
+    /// side 2^-344 (volume 2^-1032) underflows, each refused by name where
+    /// an audit found `[NaN, inf]` and `[0, 0]` called certified.
+    #[test]
+    fn a_volume_interval_out_of_f64_is_refused() {
+        let scaled = |k: i32| {
+            let mut soup = cube().to_soup();
+            for p in &mut soup.positions {
+                *p *= 2f64.powi(k);
+            }
+            Octree::classify(&Solid::try_from_soup(&soup).unwrap(), 3)
+        };
+        for k in [1000, -345] {
+            let e = scaled(k).unwrap().try_volume_bounds().unwrap_err();
+            assert!(matches!(e, CellsError::VolumeOutOfRange { .. }), "{e}");
+            let words = if k > 0 { "overflow" } else { "underflow" };
+            assert!(e.to_string().ends_with(words), "{e}");
+        }
+        for k in [300, -300] {
+            let tree = scaled(k).unwrap();
+            let (low, high) = tree.try_volume_bounds().unwrap();
+            let v = 8.0 * 2f64.powi(3 * k);
+            assert!(
+                low.is_finite() && high.is_finite() && low <= v && v <= high,
+                "{k}"
+            );
         }
     }
 }

@@ -7,7 +7,7 @@ use super::cell_relation::{CELL_ROUNDING, CELL_UNDERFLOW, centre, corners};
 use super::primitive::push_convex_interval;
 use super::sphere::quadratic_roots;
 use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
-use crate::geom::{Aabb, Ray};
+use crate::geom::{Aabb, Ray, Readable, ReadableVec};
 
 /// Why a cylinder could not be made.
 #[derive(Clone, Debug, Error, PartialEq)]
@@ -22,6 +22,26 @@ pub enum CylinderError {
         axis: DVec3,
         /// The radius given.
         radius: f64,
+    },
+    /// The cylinder is below `f64`'s resolution where it sits: its rounded
+    /// box is flat along an axis (a unit cylinder at 1e17, where
+    /// neighbouring `f64` are 16 apart).
+    #[error(
+        "cylinder with base {}, axis {} and radius {} collapses below f64's resolution there (its box is flat along {})",
+        ReadableVec(*.base),
+        ReadableVec(*.axis),
+        Readable(*.radius),
+        ["x", "y", "z"][*.flat_axis]
+    )]
+    Collapsed {
+        /// The base centre given.
+        base: DVec3,
+        /// The axis given (base to top).
+        axis: DVec3,
+        /// The radius given.
+        radius: f64,
+        /// The axis along which the box is flat (0, 1, 2 for x, y, z).
+        flat_axis: usize,
     },
 }
 
@@ -69,13 +89,39 @@ impl Cylinder {
         if !height.is_finite() || height == 0.0 {
             return Err(invalid);
         }
-        Ok(Cylinder {
+        let cylinder = Cylinder {
             base,
             axis,
             radius,
             unit_axis,
             height,
-        })
+        };
+        let (min, max) = cylinder.rounded_box();
+        if let Some(flat_axis) = (0..3).find(|&k| min[k] >= max[k]) {
+            return Err(CylinderError::Collapsed {
+                base,
+                axis,
+                radius,
+                flat_axis,
+            });
+        }
+        Ok(cylinder)
+    }
+
+    /// The corners of the box of the two cap disks, rounded to nearest
+    /// (not padded: [`Primitive::bounds`] pads it).
+    fn rounded_box(&self) -> (DVec3, DVec3) {
+        let u = self.unit_axis;
+        let extent = DVec3::new(
+            (1.0 - u.x * u.x).max(0.0).sqrt(),
+            (1.0 - u.y * u.y).max(0.0).sqrt(),
+            (1.0 - u.z * u.z).max(0.0).sqrt(),
+        ) * self.radius;
+        let top = self.base + self.axis;
+        (
+            (self.base - extent).min(top - extent),
+            (self.base + extent).max(top + extent),
+        )
     }
 
     /// `(along the axis, squared distance from the axis)` of `p`.
@@ -173,17 +219,7 @@ impl Primitive for Cylinder {
     }
 
     fn bounds(&self) -> Aabb {
-        let u = self.unit_axis;
-        let extent = DVec3::new(
-            (1.0 - u.x * u.x).max(0.0).sqrt(),
-            (1.0 - u.y * u.y).max(0.0).sqrt(),
-            (1.0 - u.z * u.z).max(0.0).sqrt(),
-        ) * self.radius;
-        let top = self.base + self.axis;
-        let (min, max) = (
-            (self.base - extent).min(top - extent),
-            (self.base + extent).max(top + extent),
-        );
+        let (min, max) = self.rounded_box();
         // Rounded outward by a bound on the rounding of the extents, so
         // that the box holds the solid.
         let pad = (min.abs().max(max.abs()) + DVec3::splat(self.radius)) * CELL_ROUNDING

@@ -55,4 +55,7 @@ pub use tessellate::{DEFAULT_TOLERANCE, MAX_SEGMENTS, TessellateError, segments_
 pub use trace::{FirstHit, MAX_ORIGIN_DISTANCE, Spans};
 pub use transform::{TransformError, Transformed};
 pub use tree::{Csg, CsgError, CsgExpr, Leaf, LeafId};
-pub use volume::{MAX_VOLUME_RAYS, VolumeError, VolumeEstimate};
+pub use volume::{
+    DEFAULT_VOLUME_CELLS, MAX_VOLUME_RAYS, MIN_CELLS_ACROSS_LEAF, Unresolved, VolumeError,
+    VolumeEstimate,
+};

@@ -5,7 +5,7 @@ use thiserror::Error;
 
 use super::cell_relation::{CELL_ROUNDING, CELL_UNDERFLOW};
 use super::{CellRelation, Containment, Crossing, Primitive, Stats, SurfaceId};
-use crate::geom::{Aabb, Ray};
+use crate::geom::{Aabb, Ray, Readable, ReadableVec};
 
 /// Why a sphere could not be made.
 #[derive(Clone, Debug, Error, PartialEq)]
@@ -13,6 +13,21 @@ pub enum SphereError {
     /// The radius must be positive and finite, the centre finite.
     #[error("sphere with centre {center:?} and radius {radius} is not a solid")]
     Invalid {
+        /// The centre given.
+        center: DVec3,
+        /// The radius given.
+        radius: f64,
+    },
+    /// The ball is below `f64`'s resolution where it sits: its centre
+    /// plus or minus its radius rounds back to the centre along some axis
+    /// (a unit sphere at 1e17, where neighbouring `f64` are 16 apart), so
+    /// no ray or point there could tell its inside from its outside.
+    #[error(
+        "sphere of radius {} at {} collapses below f64's resolution there (centre ± radius rounds to the centre)",
+        Readable(*.radius),
+        ReadableVec(*.center)
+    )]
+    Collapsed {
         /// The centre given.
         center: DVec3,
         /// The radius given.
@@ -40,13 +55,17 @@ impl Sphere {
     /// # Errors
     ///
     /// [`SphereError::Invalid`] for a radius that is not positive and finite
-    /// or a non-finite centre.
+    /// or a non-finite centre; [`SphereError::Collapsed`] for a ball below
+    /// `f64`'s resolution at its centre.
     pub fn try_new(center: DVec3, radius: f64) -> Result<Sphere, SphereError> {
-        if center.is_finite() && radius.is_finite() && radius > 0.0 {
-            Ok(Sphere { center, radius })
-        } else {
-            Err(SphereError::Invalid { center, radius })
+        if !(center.is_finite() && radius.is_finite() && radius > 0.0) {
+            return Err(SphereError::Invalid { center, radius });
         }
+        let r = DVec3::splat(radius);
+        if !((center - r).cmplt(center).all() && center.cmplt(center + r).all()) {
+            return Err(SphereError::Collapsed { center, radius });
+        }
+        Ok(Sphere { center, radius })
     }
 }
 

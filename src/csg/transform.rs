@@ -10,7 +10,7 @@ use super::{
     CellRelation, Containment, Crossing, CrossingPlane, LocalPlane, Polyhedron, Primitive, Stats,
     SurfaceId,
 };
-use crate::geom::{Aabb, Ray};
+use crate::geom::{Aabb, Ray, Readable};
 use crate::query::TileError;
 
 /// Why a transform could not be applied.
@@ -23,17 +23,37 @@ pub enum TransformError {
         /// The determinant of the linear part.
         determinant: f64,
     },
-    /// A polyhedral child moved into the world is no closed solid once its
-    /// vertices are rounded (a map that squeezes it below `f64`'s
-    /// resolution).
+    /// A polyhedral child moved into the world is no valid closed solid
+    /// once its vertices are rounded (a map that squeezes it below `f64`'s
+    /// resolution, such as a unit cube moved by 1e17, whose corners all
+    /// round to one point): the validator's verdict on the moved solid.
     #[error(
-        "the {kind} moved by the transform is not a solid after rounding its vertices: {reason}"
+        "the {kind} moved by the transform does not survive rounding its vertices to f64: {reason}"
     )]
     Moved {
         /// The kind of the child.
         kind: &'static str,
         /// What went wrong.
         reason: String,
+    },
+    /// A curved child whose image is flat along an axis once rounded: the
+    /// world coordinates cannot tell its sides apart (a unit sphere moved
+    /// by 1e17, where neighbouring `f64` are 16 apart).
+    #[error(
+        "the {kind} moved by the transform collapses below f64's resolution: its image spans [{}, {}] along {}",
+        Readable(*.low),
+        Readable(*.high),
+        ["x", "y", "z"][*.axis]
+    )]
+    Collapsed {
+        /// The kind of the child.
+        kind: &'static str,
+        /// The axis along which the image is flat (0, 1, 2 for x, y, z).
+        axis: usize,
+        /// The image's rounded lowest coordinate along that axis.
+        low: f64,
+        /// The image's rounded highest coordinate along that axis.
+        high: f64,
     },
 }
 
@@ -77,11 +97,18 @@ const BOUNDS_ROUNDING: f64 = 8.0 * f64::EPSILON;
 impl Transformed {
     /// `child` moved by `to_world` (child frame → world frame).
     ///
+    /// A leaf must survive its transform, the one rule every query and
+    /// command sees (the scene is refused at load, by name): a polyhedral
+    /// child's rounded image must pass the validator (the proof boundary
+    /// evaluation gives its results), and a curved child's rounded image
+    /// must not be flat along any axis.
+    ///
     /// # Errors
     ///
     /// [`TransformError::Singular`] when the map is not invertible or not
     /// finite; [`TransformError::Moved`] when a polyhedral child's rounded
-    /// image is no closed solid.
+    /// image is no valid closed solid; [`TransformError::Collapsed`] when a
+    /// curved child's rounded image is flat.
     pub fn try_new(
         child: Arc<dyn Primitive>,
         to_world: DAffine3,
@@ -95,6 +122,7 @@ impl Transformed {
         let world = if child.is_polyhedral() {
             Some(moved_polyhedron(child.as_ref(), to_world)?)
         } else {
+            check_not_flat(child.kind(), &to_world, child.bounds())?;
             None
         };
         let bounds = world.as_ref().map_or_else(
@@ -131,8 +159,82 @@ fn moved_polyhedron(
     let local = child
         .tessellate(DEFAULT_TOLERANCE, &Aabb::EMPTY)
         .map_err(|e| failed(e.to_string()))?;
+    let exact = maps_exactly(&local, &to_world);
     let solid = mapped(local, to_world).map_err(|e| failed(e.to_string()))?;
+    // The validator on the exact triangulation of the moved faces: a map
+    // that collapses corners onto each other, folds a face or makes faces
+    // meet is refused here rather than answered wrongly (a collapsed cube
+    // classified its centre outside, with volume 0). The exact image of a
+    // valid solid (no coordinate rounded: a translation by integers, a
+    // scale by a power of two) is valid, and needs no proof.
+    if !exact {
+        crate::boolean::prove(&solid).map_err(|e| failed(e.to_string()))?;
+    }
     Polyhedron::try_new(solid).map_err(|e| failed(e.to_string()))
+}
+
+/// Whether `map` sends every vertex of `solid` to its exact image in
+/// `f64`: a linear part without off-diagonal terms, and every product and
+/// sum `m x + t` exact (its rounding error, found by an exact
+/// multiply-add and a two-sum, zero).
+fn maps_exactly(solid: &crate::mesh::Solid, map: &DAffine3) -> bool {
+    let m = map.matrix3;
+    let diagonal = DVec3::new(m.x_axis.x, m.y_axis.y, m.z_axis.z);
+    let off_diagonal = [
+        m.x_axis.y, m.x_axis.z, m.y_axis.x, m.y_axis.z, m.z_axis.x, m.z_axis.y,
+    ];
+    if off_diagonal.iter().any(|&v| v != 0.0) {
+        return false;
+    }
+    solid.vertices().all(|(_, vertex)| {
+        (0..3).all(|k| {
+            let (a, x, t) = (diagonal[k], vertex.position[k], map.translation[k]);
+            let product = a * x;
+            let sum = product + t;
+            // Two-sum (Knuth): the exact error of the rounded sum.
+            let back = sum - product;
+            let error = (product - (sum - back)) + (t - back);
+            a.mul_add(x, -product) == 0.0 && error == 0.0 && sum.is_finite()
+        })
+    })
+}
+
+/// Refuses a curved child whose local box `local`, mapped by `to_world`
+/// and rounded (no padding), is flat along an axis.
+fn check_not_flat(
+    kind: &'static str,
+    to_world: &DAffine3,
+    local: Aabb,
+) -> Result<(), TransformError> {
+    if local.is_empty() {
+        return Ok(());
+    }
+    let rows = to_world.matrix3.transpose();
+    for axis in 0..3 {
+        let row = rows.col(axis);
+        let (mut low, mut high) = (0.0, 0.0);
+        for k in 0..3 {
+            let (a, b) = (row[k] * local.min[k], row[k] * local.max[k]);
+            // 0 · ∞ of an unbounded child along an axis the map drops.
+            if row[k] != 0.0 {
+                low += a.min(b);
+                high += a.max(b);
+            }
+        }
+        let (low, high) = (
+            to_world.translation[axis] + low,
+            to_world.translation[axis] + high,
+        );
+        if low.is_finite() && high.is_finite() && low >= high {
+            return Err(TransformError::Collapsed {
+                kind,
+                axis,
+                low,
+                high,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The world box of a local box under `m`, padded for rounding; infinite
@@ -305,6 +407,31 @@ mod tests {
         assert!(t.bounds().contains(DVec3::new(12., 1., 1.)));
     }
 
+    /// A curved child moved so far that its rounded image is flat is
+    /// refused by name; a small one near the origin is not.
+    #[test]
+    fn a_curved_child_that_collapses_is_refused() {
+        let s: Arc<dyn Primitive> = Arc::new(Sphere::try_new(DVec3::ZERO, 1.0).unwrap());
+        let far = DAffine3::from_translation(DVec3::new(0.0, 1e17, 0.0));
+        let e = Transformed::try_new(s.clone(), far).unwrap_err();
+        assert_eq!(
+            e,
+            TransformError::Collapsed {
+                kind: "sphere",
+                axis: 1,
+                low: 1e17,
+                high: 1e17
+            }
+        );
+        assert!(
+            e.to_string().contains("collapses below f64's resolution"),
+            "{e}"
+        );
+        assert!(e.to_string().contains("along y"), "{e}");
+        let tiny = DAffine3::from_scale(DVec3::splat(1e-100));
+        assert!(Transformed::try_new(s, tiny).is_ok());
+    }
+
     #[test]
     fn rotated_box_bounds_and_singular_maps() {
         let b: Arc<dyn Primitive> = Arc::new(AxisBox::try_new(DVec3::ZERO, DVec3::ONE).unwrap());
@@ -341,6 +468,20 @@ mod tests {
             moved.tessellate(1e-3, &Aabb::EMPTY).unwrap().vertex_count(),
             8
         );
+        // A cube moved by 1e17 rounds all its corners to one point (the
+        // neighbouring f64 there are 16 apart): refused by name, not a leaf
+        // that answers "outside" with volume 0.
+        let far = DAffine3::from_translation(DVec3::splat(1e17));
+        let e = Transformed::try_new(mesh.clone(), far).unwrap_err();
+        assert!(
+            matches!(e, TransformError::Moved { kind: "mesh", .. }),
+            "{e}"
+        );
+        assert!(e.to_string().contains("does not survive rounding"), "{e}");
+        // By 1e15 (neighbours 0.125 apart) it survives, exactly.
+        let near = DAffine3::from_translation(DVec3::splat(1e15));
+        let moved = Transformed::try_new(mesh.clone(), near).unwrap();
+        assert_eq!(moved.exact_volume(), Some(8.0));
         // A map under which a corner leaves the range of f64 (determinant 1,
         // but x = 2 is sent to 2e308) is refused by name.
         let squeeze = DAffine3::from_scale(DVec3::new(1e308, 1.0, 1e-308));

@@ -102,11 +102,14 @@ pub enum CsgError {
         /// How many it has.
         children: usize,
     },
-    /// A transform that cannot be inverted.
-    #[error("transform at {at}: {source}")]
+    /// A transform that cannot be inverted, or a leaf that does not
+    /// survive it ([`Transformed::try_new`]).
+    #[error("{leaf}: {source} (transform at {at})")]
     Transform {
         /// Where in the expression.
         at: String,
+        /// The label of the leaf moved (a scene's JSON path).
+        leaf: String,
         /// Why.
         source: TransformError,
     },
@@ -289,6 +292,7 @@ impl Csg {
                     Some(m) => Arc::new(Transformed::try_new(primitive, m).map_err(|source| {
                         CsgError::Transform {
                             at: at.to_string(),
+                            leaf: label.clone(),
                             source,
                         }
                     })?),

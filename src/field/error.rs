@@ -102,6 +102,26 @@ pub enum FieldError {
         /// The edge length of a cell.
         cell: f64,
     },
+    /// A grid cell too small for `f64` where the grid lies: vertices on
+    /// its edges could not be kept apart from its nodes once rounded (the
+    /// meshed surface would have degenerate faces), so the field is not
+    /// meshed there; a coarser resolution, or a field nearer the origin,
+    /// is.
+    #[error(
+        "a grid cell of {} is below f64's resolution at coordinate {} (neighbouring f64 are {} apart; a cell needs at least {} of them): use a coarser resolution",
+        Readable(*.cell),
+        Readable(*.coordinate),
+        Readable(*.spacing),
+        super::marching::MIN_CELL_ULPS
+    )]
+    CellBelowResolution {
+        /// The edge length of a cell.
+        cell: f64,
+        /// The grid's farthest coordinate (largest magnitude).
+        coordinate: f64,
+        /// The spacing of `f64` there.
+        spacing: f64,
+    },
     /// An edge margin outside `[0, ½]`.
     #[error("the edge margin {0} must lie in [0, 0.5]")]
     BadEdgeMargin(f64),

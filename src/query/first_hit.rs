@@ -45,11 +45,14 @@ impl Accel {
             self.consider_for_first_hit(ray, decide, i, &mut best, t_max)
         });
         best.map(|n| {
-            (
-                unscaled_t(self.accurate_t(ray, n.triangle, n.t, n.error), t_scale),
-                n.triangle,
-                n.sign,
-            )
+            // Along the caller's ray when the scaling rounded (the scaled
+            // line is another line).
+            let t = if exact {
+                unscaled_t(self.accurate_t(ray, n.triangle, n.t, n.error), t_scale)
+            } else {
+                self.t_of(decide, n.triangle)
+            };
+            (t, n.triangle, n.sign)
         })
     }
 

@@ -10,7 +10,7 @@ use crate::geom::{Ray, Sign};
 use super::accel::Accel;
 use super::accel::ray_stream::WalkScratch;
 use super::ray_answers::{Crossing, RayCrossings, TraversalStats};
-use super::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
+use super::ray_scaling::{checked_t, scales_exactly, unit_scaled, unscaled_t};
 use super::ray_triangle::TriHit;
 use super::{Containment, QueryError};
 
@@ -37,10 +37,19 @@ impl Accel {
     /// # Errors
     ///
     /// [`QueryError::InvalidRay`] for a non-finite or zero-direction ray,
-    /// [`QueryError::NotClosed`] for an open surface.
+    /// [`QueryError::NotClosed`] for an open surface,
+    /// [`QueryError::RayOutOfRange`] when a crossing's `t` overflows (a
+    /// direction too short) or underflows to zero (too long).
     pub fn ray_crossings(&self, ray: &Ray) -> Result<RayCrossings, QueryError> {
         self.check_ray(ray, 0)?;
         self.require_closed()?;
+        self.crossings_at(ray, 0)
+    }
+
+    /// [`Accel::ray_crossings`] of a checked ray of a closed solid, the
+    /// ray named by `index` in a refusal.
+    fn crossings_at(&self, ray: &Ray, index: usize) -> Result<RayCrossings, QueryError> {
+        let caller = ray;
         let (scaled, t_scale) = unit_scaled(ray);
         // Decided with the caller's ray when the scaling rounded.
         let exact = scales_exactly(ray, &scaled, t_scale);
@@ -52,7 +61,18 @@ impl Accel {
             match self.hit_triangle::<true>(decide, i) {
                 TriHit::Miss => {}
                 TriHit::Origin => on_boundary = true,
-                TriHit::Cross(s) => hits.push((self.t_of(ray, i), i, s)),
+                // In the caller's units; along the caller's ray when the
+                // scaling rounded (the scaled line is another line, whose
+                // `t` at a face nearly along it is meaningless).
+                TriHit::Cross(s) => hits.push((
+                    if exact {
+                        unscaled_t(self.t_of(ray, i), t_scale)
+                    } else {
+                        self.t_of(decide, i)
+                    },
+                    i,
+                    s,
+                )),
             }
             f64::INFINITY
         });
@@ -73,8 +93,8 @@ impl Accel {
         alternate(&mut hits, inside);
         let hits = hits
             .into_iter()
-            .map(|(t, i, s)| self.crossing(unscaled_t(t, t_scale), i, s))
-            .collect();
+            .map(|(t, i, s)| checked_t(t, index, caller).map(|()| self.crossing(t, i, s)))
+            .collect::<Result<_, _>>()?;
         Ok(RayCrossings { origin, hits })
     }
 
@@ -84,17 +104,20 @@ impl Accel {
     ///
     /// # Errors
     ///
-    /// [`QueryError::InvalidRay`] for a non-finite or zero-direction ray.
+    /// [`QueryError::InvalidRay`] for a non-finite or zero-direction ray,
+    /// [`QueryError::RayOutOfRange`] when the first crossing's `t`
+    /// overflows or underflows to zero (as [`Accel::ray_crossings`]).
     pub fn first_hit(&self, ray: &Ray) -> Result<Option<Crossing>, QueryError> {
         self.check_ray(ray, 0)?;
-        Ok(self.first_hit_unchecked(ray))
+        checked_hit(self.first_hit_unchecked(ray), 0, ray)
     }
 
     /// [`Accel::first_hit`] for every ray, in order, on all cores.
     ///
     /// # Errors
     ///
-    /// The first invalid ray, by index.
+    /// The first invalid ray, by index; else the first whose first
+    /// crossing's `t` overflows or underflows ([`QueryError::RayOutOfRange`]).
     pub fn first_hit_batch(&self, rays: &[Ray]) -> Result<Vec<Option<Crossing>>, QueryError> {
         // Cast in input order: grouping rays that pass close to one another
         // (a Morton order of origins and directions) costs more in sorting,
@@ -123,6 +146,9 @@ impl Accel {
         if first_invalid != usize::MAX {
             return Err(invalid_ray(&rays[first_invalid], first_invalid));
         }
+        for (index, (hit, ray)) in out.iter().zip(rays).enumerate() {
+            checked_hit(*hit, index, ray)?;
+        }
         Ok(out)
     }
 
@@ -130,28 +156,35 @@ impl Accel {
     ///
     /// # Errors
     ///
-    /// The first invalid ray by index, or [`QueryError::NotClosed`].
+    /// The first invalid ray by index, or [`QueryError::NotClosed`]; else
+    /// the first ray (by index) with a crossing whose `t` overflows or
+    /// underflows ([`QueryError::RayOutOfRange`]).
     pub fn ray_crossings_batch(&self, rays: &[Ray]) -> Result<Vec<RayCrossings>, QueryError> {
         check_rays(rays)?;
         self.require_closed()?;
-        rays.par_iter()
+        let answers: Vec<Result<RayCrossings, QueryError>> = rays
+            .par_iter()
+            .enumerate()
             .with_min_len(256)
-            .map(|r| self.ray_crossings(r))
-            .collect()
+            .map(|(index, r)| self.crossings_at(r, index))
+            .collect();
+        // In input order: the refusal named is the first ray's, whatever
+        // the threads did first.
+        answers.into_iter().collect()
     }
 
     /// [`Accel::first_hit`], with the work its traversal did.
     ///
     /// # Errors
     ///
-    /// [`QueryError::InvalidRay`] for a non-finite or zero-direction ray.
+    /// As [`Accel::first_hit`].
     pub fn first_hit_traced(
         &self,
         ray: &Ray,
     ) -> Result<(Option<Crossing>, TraversalStats), QueryError> {
         self.check_ray(ray, 0)?;
         let mut stats = TraversalStats::default();
-        let hit = self.first_hit_tallied(ray, &mut stats);
+        let hit = checked_hit(self.first_hit_tallied(ray, &mut stats), 0, ray)?;
         Ok((hit, stats))
     }
 
@@ -174,6 +207,18 @@ fn check_rays(rays: &[Ray]) -> Result<(), QueryError> {
     {
         Some((index, ray)) => Err(invalid_ray(ray, index)),
         None => Ok(()),
+    }
+}
+
+/// A first hit whose `t` [`checked_t`] accepts (or none).
+fn checked_hit(
+    hit: Option<Crossing>,
+    index: usize,
+    ray: &Ray,
+) -> Result<Option<Crossing>, QueryError> {
+    match hit {
+        Some(h) => checked_t(h.t, index, ray).map(|()| hit),
+        None => Ok(None),
     }
 }
 
@@ -313,7 +358,7 @@ pub(super) mod tests {
                 let (entry, mask) = lanes.enter(&rb, &node, rb.limit(f64::INFINITY));
                 assert_eq!(mask, 1, "case {case}: {ray:?} misses [{lo}, {hi}]");
                 // And with the limit at the exact entry, the box still counts.
-                let (_, mask) = lanes.enter(&rb, &node, rb.limit(t0 / factor));
+                let (_, mask) = lanes.enter(&rb, &node, rb.limit(factor.scaled_t(t0)));
                 let entry = entry[0];
                 assert_eq!(mask, 1, "case {case}: entry {entry} vs limit {t0}");
             });
@@ -540,6 +585,42 @@ pub(super) mod tests {
         let cube = Accel::new(&builders::cube());
         let hit = cube.first_hit(&down).unwrap().unwrap();
         assert_eq!(hit.t, 1.0 / f64::MAX);
+    }
+
+    /// A crossing whose `t` overflows (a direction of 5e-324) or
+    /// underflows to zero (a direction of f64::MAX from beside a face) is
+    /// refused by name, as the CSG trace refuses it, never answered with
+    /// `t = ∞` (an audit found `outside inf inf`).
+    #[test]
+    fn a_crossing_t_that_overflows_or_underflows_is_refused() {
+        let cube = Accel::new(&builders::cube());
+        let tiny = Ray::new(DVec3::new(-3.0, 0.1, 0.2), DVec3::new(5e-324, 0.0, 0.0));
+        let refused = |e: &QueryError, index: usize, overflow: bool| {
+            matches!(e, QueryError::RayOutOfRange { index: i, reason, .. }
+                if *i == index && reason.contains(if overflow { "overflows" } else { "underflows" }))
+        };
+        assert!(refused(&cube.ray_crossings(&tiny).unwrap_err(), 0, true));
+        assert!(refused(&cube.first_hit(&tiny).unwrap_err(), 0, true));
+        assert!(refused(&cube.first_hit_traced(&tiny).unwrap_err(), 0, true));
+        let fine = Ray::new(DVec3::new(-3.0, 0.1, 0.2), DVec3::X);
+        let batch = [fine, fine, tiny, tiny];
+        assert!(refused(
+            &cube.ray_crossings_batch(&batch).unwrap_err(),
+            2,
+            true
+        ));
+        assert!(refused(&cube.first_hit_batch(&batch).unwrap_err(), 2, true));
+        // The first crossing is 2⁻⁵² from the origin: along f64::MAX,
+        // t = 2⁻⁵² / f64::MAX underflows to zero.
+        let beside = Ray::new(
+            DVec3::new(-1.0 - 2f64.powi(-52), 0.1, 0.2),
+            DVec3::new(f64::MAX, 0.0, 0.0),
+        );
+        assert!(refused(&cube.ray_crossings(&beside).unwrap_err(), 0, false));
+        assert!(refused(&cube.first_hit(&beside).unwrap_err(), 0, false));
+        // A ray that misses has no t to overflow.
+        let away = Ray::new(DVec3::new(-3.0, 0.1, 0.2), DVec3::new(-5e-324, 0.0, 0.0));
+        assert_eq!(cube.first_hit(&away), Ok(None));
     }
 
     #[test]

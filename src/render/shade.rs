@@ -48,6 +48,9 @@ fn leaf_colour(leaf: LeafId) -> DVec3 {
     DVec3::from(PALETTE[leaf.0 as usize % PALETTE.len()])
 }
 
+/// About how many pixels one parallel task shades (whole rows of them).
+const ROWS_PER_BAND: usize = 4096;
+
 fn background(v: f64) -> DVec3 {
     DVec3::new(0.93, 0.94, 0.96).lerp(DVec3::new(0.72, 0.76, 0.82), v)
 }
@@ -80,31 +83,36 @@ pub fn render(
     let (width, height) = (options.width.max(1), options.height.max(1));
     let bias = options.shadow_bias * camera.distance;
     let done = std::sync::atomic::AtomicU32::new(0);
-    let rows: Vec<(Vec<[u8; 3]>, Stats)> = (0..height)
-        .into_par_iter()
-        .map(|y| {
+    // The pixels are written in place, a band of rows per task, and each
+    // band's counters summed (integers: any order gives the same total):
+    // memory is three bytes a pixel, whatever the image's shape.
+    let row_bytes = 3 * width as usize;
+    let band_rows = (ROWS_PER_BAND / width as usize).max(1);
+    let mut bytes = vec![0u8; row_bytes * height as usize];
+    let stats = bytes
+        .par_chunks_mut(row_bytes * band_rows)
+        .enumerate()
+        .map(|(band, rows)| {
             let mut stats = Stats::default();
-            let row = (0..width)
-                .map(|x| {
+            for (k, row) in rows.chunks_exact_mut(row_bytes).enumerate() {
+                let y = (band * band_rows + k) as u32;
+                for (x, pixel) in (0..width).zip(row.chunks_exact_mut(3)) {
                     let ray = camera.pixel_ray(x, y, width, height);
                     let colour = shade(scene, &ray, &light, bias, &mut stats)
                         .unwrap_or_else(|| background(f64::from(y) / f64::from(height)));
-                    to_srgb8(colour)
-                })
-                .collect();
-            let finished = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            progress(f64::from(finished) / f64::from(height));
-            (row, stats)
+                    pixel.copy_from_slice(&to_srgb8(colour));
+                }
+                let finished = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                progress(f64::from(finished) / f64::from(height));
+            }
+            stats
         })
-        .collect();
-    let mut stats = Stats::default();
-    let mut pixels = Vec::with_capacity(width as usize * height as usize);
-    for (row, s) in rows {
-        pixels.extend(row);
-        stats += s;
-    }
-    let image = Image::from_pixels(width, height, pixels)
-        .unwrap_or_else(|| unreachable!("every row has `width` pixels"));
+        .reduce(Stats::default, |mut a, b| {
+            a += b;
+            a
+        });
+    let image = Image::from_rgb_bytes(width, height, bytes)
+        .unwrap_or_else(|| unreachable!("three bytes for every pixel"));
     (image, stats)
 }
 

@@ -14,5 +14,7 @@ mod revolve;
 mod sweep;
 
 pub use loft::try_loft;
-pub use revolve::{RevolveAxis, Segments, try_revolve, try_revolve_curve};
+pub use revolve::{
+    MAX_TURN_SLIVERS, MAX_TURN_STEPS, RevolveAxis, Segments, try_revolve, try_revolve_curve,
+};
 pub use sweep::{Argument, MAX_VERTICES, SweepError, try_sweep, try_sweep_with_holes};

@@ -18,6 +18,20 @@ use crate::curve::{Curve, CurveError, MAX_SEGMENTS};
 use super::sweep::{Argument, SweepError, check_profile, check_size, push_quad};
 use crate::mesh::{PolygonSoup, Solid};
 
+/// The most steps around a revolve may take: a profile edge from the
+/// axis at constant height becomes one flat face of that many corners, and
+/// the validator refuses faces of more than
+/// [`DEFAULT_MAX_FACE_CORNERS`](crate::io::DEFAULT_MAX_FACE_CORNERS) (4,096).
+pub const MAX_TURN_STEPS: usize = 4096;
+
+/// The most sliver pieces a revolve may make: per profile edge, the steps
+/// around times how many of its quadrilaterals' widths (the chord at its
+/// outer radius) fit in its radial extent, at least one. The validator's
+/// self-intersection check pays about that many box overlaps: a profile
+/// `[[1,0],[2,0.5],[2,1]]` turned in 131,072 steps took 95 s before this
+/// limit (quadratic in the steps); at the limit it takes about 1 s.
+pub const MAX_TURN_SLIVERS: u64 = 1 << 21;
+
 /// An axis of revolution with the direction of angle 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RevolveAxis {
@@ -91,6 +105,7 @@ pub fn try_revolve(
         return Err(SweepError::PinchOnAxis { vertex });
     }
     let steps = step_count(&points, angle, full, segments)?;
+    check_turn_cost(&points, angle, steps)?;
 
     // Ring k of vertex j: angle `angle · k / steps`; a full turn wraps.
     let rings = if full { steps } else { steps + 1 };
@@ -218,6 +233,35 @@ fn axis_frame(axis: &RevolveAxis) -> Result<(DVec3, DVec3, DVec3, DVec3), SweepE
     Ok((axis.origin, d, u, d.cross(u)))
 }
 
+/// Refuses a turn of `steps` beyond [`MAX_TURN_STEPS`] or
+/// [`MAX_TURN_SLIVERS`] (see [`SweepError::TurnTooFine`]).
+fn check_turn_cost(points: &[DVec2], angle: f64, steps: usize) -> Result<(), SweepError> {
+    let step_angle = angle / steps as f64;
+    let n = points.len();
+    let slivers: u64 = (0..n)
+        .map(|j| {
+            let (a, b) = (points[j], points[(j + 1) % n]);
+            let outer = a.x.max(b.x);
+            let chord = outer * step_angle;
+            let pieces = if chord > 0.0 {
+                ((a.x - b.x).abs() / chord).ceil().clamp(1.0, 1e12) as u64
+            } else {
+                1
+            };
+            (steps as u64).saturating_mul(pieces)
+        })
+        .fold(0u64, u64::saturating_add);
+    if steps > MAX_TURN_STEPS || slivers > MAX_TURN_SLIVERS {
+        return Err(SweepError::TurnTooFine {
+            segments: steps,
+            slivers,
+            step_limit: MAX_TURN_STEPS,
+            sliver_limit: MAX_TURN_SLIVERS,
+        });
+    }
+    Ok(())
+}
+
 /// The number of steps for the turn.
 fn step_count(
     points: &[DVec2],
@@ -297,6 +341,33 @@ mod tests {
         assert_eq!(shells[0].genus(), Some(1));
         let polygon = n as f64 / 2.0 * (std::f64::consts::TAU / n as f64).sin();
         assert!((s.volume() - polygon * 3.0).abs() < 1e-12, "{}", s.volume());
+    }
+
+    /// An 80-byte scene's revolve in 131,072 steps took 95 s (the
+    /// validator's self-intersection check is quadratic in the steps for
+    /// long radial quadrilaterals): refused before anything is built, by
+    /// the estimate of that work; a fine turn of a short profile is not.
+    #[test]
+    fn a_turn_too_fine_to_check_is_refused_before_it_is_built() {
+        let profile = [
+            DVec2::new(1.0, 0.0),
+            DVec2::new(2.0, 0.5),
+            DVec2::new(2.0, 1.0),
+        ];
+        let full = std::f64::consts::TAU;
+        for steps in [131_072, 8192] {
+            let e = try_revolve(&profile, &RevolveAxis::Z, full, Segments::Count(steps))
+                .unwrap_err();
+            assert!(
+                matches!(e, SweepError::TurnTooFine { segments, .. } if segments == steps),
+                "{e}"
+            );
+        }
+        assert!(try_revolve(&profile, &RevolveAxis::Z, full, Segments::Count(512)).is_ok());
+        // A ring of short radial extent at the step limit: few slivers.
+        let thin = rectangle(100.0, 100.01, 1.0);
+        check_turn_cost(&thin, full, MAX_TURN_STEPS).unwrap();
+        assert!(check_turn_cost(&thin, full, MAX_TURN_STEPS + 1).is_err());
     }
 
     #[test]

@@ -197,8 +197,23 @@ fn check_ray(solid: &Fixed, ray: &Ray) {
         );
         return;
     }
-    let crossings = crossings.expect("a valid ray on a closed solid");
-    let first = first.expect("a valid ray");
+    // A crossing whose t overflows or underflows is refused by name; the
+    // first hit is refused only when its own t is.
+    let crossings = match crossings {
+        Err(QueryError::RayOutOfRange { index: 0, .. }) => {
+            assert!(
+                matches!(
+                    first,
+                    Ok(_) | Err(QueryError::RayOutOfRange { index: 0, .. })
+                ),
+                "{}: {ray:?} gave {first:?}",
+                solid.name
+            );
+            return;
+        }
+        other => other.expect("a valid ray on a closed solid"),
+    };
+    let first = first.expect("a valid ray whose crossings are in range");
     let at = accel.classify(ray.origin).expect("a finite origin");
     assert_eq!(
         crossings.origin, at,
@@ -295,8 +310,19 @@ fn check_batches(solid: &Fixed, points: &[DVec3], rays: &[Ray]) {
             }
         }
         None => {
-            let firsts = firsts.expect("valid rays");
-            let all = all.expect("valid rays on a closed solid");
+            // Out of range: refused as the single queries refuse it.
+            let (firsts, all) = match (firsts, all) {
+                (Ok(f), Ok(a)) => (f, a),
+                (firsts, all) => {
+                    for e in [firsts.err(), all.err()].into_iter().flatten() {
+                        let QueryError::RayOutOfRange { index, .. } = e else {
+                            panic!("{}: valid rays refused: {e}", solid.name)
+                        };
+                        assert!(accel.ray_crossings(&rays[index]).is_err());
+                    }
+                    return;
+                }
+            };
             for ((ray, first), crossings) in rays.iter().zip(firsts).zip(all) {
                 assert_eq!(
                     first,

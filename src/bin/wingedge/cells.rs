@@ -8,6 +8,7 @@ use std::time::Instant;
 
 use wingedge::cells::{Label, MAX_DENSE_DEPTH, Octree, write_npy};
 use wingedge::csg::Stats;
+use wingedge::geom::{Readable, ReadableVec};
 use wingedge::io::{read_obj, write_obj};
 use wingedge::mesh::Solid;
 use wingedge::scene::{Scene, is_scene_path};
@@ -36,14 +37,15 @@ pub fn run(target: &Path, depth: u32, npy: Option<&Path>, obj: Option<&Path>) ->
         mesh_volume = Some(solid.volume());
         (tree, start.elapsed().as_secs_f64(), None)
     };
+    // A certified interval or none: refused before anything is printed.
+    let (low, high) = tree.try_volume_bounds().map_err(|e| named(&e))?;
     let mut out = Out::new();
     let (origin, side) = tree.root();
     out.write(format_args!(
-        "{}: depth {depth}, root cube at ({}, {}, {}) of side {side}\n",
+        "{}: depth {depth}, root cube at {} of side {}\n",
         target.display(),
-        origin.x,
-        origin.y,
-        origin.z
+        ReadableVec(origin),
+        Readable(side)
     ))?;
     out.write("depth        in       out        on\n")?;
     for (d, c) in tree.counts().iter().enumerate() {
@@ -52,10 +54,11 @@ pub fn run(target: &Path, depth: u32, npy: Option<&Path>, obj: Option<&Path>) ->
             c.inside, c.outside, c.on
         ))?;
     }
-    let (low, high) = tree.volume_bounds();
+    let (low, high) = (Readable(low), Readable(high));
     match mesh_volume {
         Some(v) => out.write(format_args!(
-            "volume in [{low}, {high}] (certified; the mesh's rounded volume is {v})\n"
+            "volume in [{low}, {high}] (certified; the mesh's rounded volume is {})\n",
+            Readable(v)
         ))?,
         None => out.write(format_args!("volume in [{low}, {high}] (certified)\n"))?,
     };

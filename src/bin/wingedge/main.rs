@@ -82,7 +82,8 @@ enum Command {
         /// The scene (.json) or mesh file.
         target: PathBuf,
         /// Grid spacing of the parallel rays (default: the longest side of
-        /// the bounds / 400).
+        /// the bounds / 400, finer along x or y where a leaf that adds
+        /// volume is narrower than 4 cells).
         #[arg(long, value_name = "H")]
         spacing: Option<f64>,
         /// Integrate ray spans even for a single solid with a closed form.
@@ -144,7 +145,8 @@ enum Command {
     /// Mesh a field document (blobs and field CSG, JSON) by marching cubes
     /// into a validated closed solid and write it as OBJ. Exit code 0 for a
     /// valid solid, 1 for an empty field (nothing written), 2 for a
-    /// document or grid that is refused.
+    /// document or grid that is refused (a cell below f64's resolution far
+    /// from the origin among them; nothing written).
     Mesh {
         /// The field document (.json).
         field: PathBuf,

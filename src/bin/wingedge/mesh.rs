@@ -15,8 +15,9 @@ use crate::output::{Out, Outcome, measure};
 pub const DEFAULT_RESOLUTION: usize = 64;
 
 /// Meshes `field` and writes the solid to `output`. Exit 0 for a valid
-/// solid, 1 for an empty field (nothing written) or, never expected, a
-/// surface the validator rejects; 2 for a document or grid it refuses.
+/// solid, 1 for an empty field (nothing written); 2 for a document or grid
+/// it refuses, or (never expected) a surface the validator rejects:
+/// nothing is written then either, and an existing file stays as it was.
 pub fn run(
     field: &Path,
     output: &Path,
@@ -53,6 +54,18 @@ pub fn run(
     let solid = marching::solid_of(&meshed.soup).map_err(|e| format!("{name}: {e}"))?;
     let report = validate_soup(&meshed.soup, None, &Options::default())
         .map_err(|e| format!("{name}: {e}"))?;
+    // What is written is what was proven: a surface the validator rejects
+    // is refused, never written.
+    if report.validity != Validity::ValidSolid {
+        let first = report.violations.first().map_or_else(String::new, |v| {
+            format!("; first: {}: {}", v.rule.name(), v.message)
+        });
+        return Err(format!(
+            "{name}: the meshed surface is not a valid solid ({}{first}); {} not written",
+            report.validity.describe(),
+            output.display()
+        ));
+    }
     write_obj(&solid, output).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
     let [nx, ny, nz] = meshed.dims;
     let genus = report
@@ -92,9 +105,5 @@ pub fn run(
             meshed.march.surface_cells,
         );
     }
-    Ok(if report.validity == Validity::ValidSolid {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
+    Ok(ExitCode::SUCCESS)
 }

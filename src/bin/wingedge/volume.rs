@@ -3,21 +3,23 @@
 use std::path::Path;
 use std::process::ExitCode;
 
+use wingedge::geom::Readable;
 use wingedge::scene::Scene;
 
 use crate::output::{Out, Outcome};
 use crate::progress::Progress;
 
-/// Grid cells across the longest side of the bounds when no spacing is given.
-const DEFAULT_CELLS: f64 = 400.0;
-
 pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: bool) -> Outcome {
+    // A bad spacing is the argument's fault: named before the scene is read.
+    if let Some(h) = spacing
+        && !(h.is_finite() && h > 0.0)
+    {
+        return Err(format!(
+            "--spacing: {}",
+            wingedge::csg::VolumeError::BadSpacing { spacing: h }
+        ));
+    }
     let scene = Scene::from_path(target).map_err(|e| e.to_string())?;
-    let bounds = scene.csg.bounds();
-    let spacing = spacing.unwrap_or_else(|| {
-        let s = bounds.size();
-        s.x.max(s.y).max(s.z) / DEFAULT_CELLS
-    });
     // A lone polyhedron or analytic solid has a closed form: print it.
     let single = scene.csg.single_leaf();
     let exact = single.and_then(|l| l.primitive.exact_volume());
@@ -30,7 +32,15 @@ pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: boo
                 leaf.label
             ));
         }
-        out.write(format_args!("{v}\n"))?;
+        // Every leaf has a positive volume: 0 is one too small for f64.
+        if v == 0.0 {
+            return Err(format!(
+                "{}: the volume of {} underflows f64 (the solid is too small to measure)",
+                target.display(),
+                leaf.label
+            ));
+        }
+        out.write(format_args!("{}\n", Readable(v)))?;
         out.finish()?;
         eprintln!(
             "closed-form volume of the single {} (--integrate to cast rays)",
@@ -39,9 +49,14 @@ pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: boo
         return Ok(ExitCode::SUCCESS);
     }
     let progress = Progress::new("volume");
-    let estimate = scene
-        .csg
-        .try_volume_with_progress(spacing, |f| progress.update(f));
+    let estimate = match spacing {
+        Some(h) => scene
+            .csg
+            .try_volume_with_progress(h, |f| progress.update(f)),
+        None => scene
+            .csg
+            .try_default_volume_with_progress(|f| progress.update(f)),
+    };
     progress.finish();
     match estimate {
         Ok(v) => {
@@ -52,15 +67,28 @@ pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: boo
                     target.display()
                 ));
             }
-            out.write(format_args!("{volume}\n"))?;
+            out.write(format_args!("{}\n", Readable(volume)))?;
             out.finish()?;
             eprintln!(
                 "ray integration: {} with spacing {} ({} rays){}",
-                v.volume,
-                v.spacing,
+                Readable(v.volume),
+                Readable(v.spacing),
                 v.rays,
                 exact.map_or(String::new(), |e| format!("; closed form {e}"))
             );
+            if let Some(u) = v.unresolved {
+                let label = scene
+                    .csg
+                    .leaf(u.narrowest)
+                    .map_or("a leaf", |l| l.label.as_str());
+                eprintln!(
+                    "warning: {} leaf(s) narrower than a grid cell may be missed: {label} is {} wide along {} (cells of {}); give a smaller --spacing",
+                    u.count,
+                    Readable(u.width),
+                    ["x", "y"][u.axis],
+                    Readable(v.spacing)
+                );
+            }
             if show_stats {
                 eprintln!("{}", v.stats);
             }

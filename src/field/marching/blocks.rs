@@ -261,6 +261,9 @@ fn march_block(
         let local = [i, j, k].map(|v| (v + 1) as usize);
         values[((local[2] - lo[2]) * m[1] + (local[1] - lo[1])) * m[0] + (local[0] - lo[0])]
     };
+    // Checked when the frame was made.
+    let margin =
+        super::grid::resolution_margin(frame.origin, frame.cell, frame.dims).unwrap_or(0.5);
     out.vertices = crossed
         .into_iter()
         .map(|key| {
@@ -274,6 +277,7 @@ fn march_block(
                 frame.cell,
                 axis,
                 options,
+                margin,
             );
             (key, position)
         })

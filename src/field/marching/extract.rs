@@ -169,6 +169,7 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
         .collect();
     keys.par_sort_unstable();
     keys.dedup();
+    let margin = grid.vertex_margin();
     let positions: Vec<DVec3> = keys
         .par_iter()
         .map(|&key| {
@@ -177,7 +178,15 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
             step[axis] = 1;
             let a = grid.value(i, j, k);
             let b = grid.value(i + step[0], j + step[1], k + step[2]);
-            place_vertex(a, b, grid.position(i, j, k), grid.cell(), axis, options)
+            place_vertex(
+                a,
+                b,
+                grid.position(i, j, k),
+                grid.cell(),
+                axis,
+                options,
+                margin,
+            )
         })
         .collect();
     let triangles: Vec<[EdgeKey; 3]> = slabs.iter().flat_map(|(t, _)| t.iter().copied()).collect();
@@ -194,7 +203,8 @@ pub(crate) fn march(grid: &SampleGrid, options: &MarchingOptions) -> (PolygonSou
 
 /// The surface's vertex on the grid edge from `node` (sample `a`) along
 /// `axis` to the next node (sample `b`): interpolated linearly between the
-/// two samples (kept `edge_margin` away from the nodes) or at the midpoint.
+/// two samples (kept `edge_margin`, and at least the grid's `margin` for
+/// rounding, away from the nodes) or at the midpoint.
 pub(super) fn place_vertex(
     a: f64,
     b: f64,
@@ -202,13 +212,15 @@ pub(super) fn place_vertex(
     cell: f64,
     axis: usize,
     options: &MarchingOptions,
+    margin: f64,
 ) -> DVec3 {
     let t = match options.placement {
         Placement::Midpoint => 0.5,
         Placement::Interpolated => {
             // One sample is ≥ ½ and the other < ½, so b − a ≠ 0 and t ∈ [0, 1].
             let t = (THRESHOLD - a) / (b - a);
-            t.clamp(options.edge_margin, 1.0 - options.edge_margin)
+            let margin = options.edge_margin.max(margin).min(0.5);
+            t.clamp(margin, 1.0 - margin)
         }
     };
     let mut offset = DVec3::ZERO;

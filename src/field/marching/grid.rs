@@ -13,6 +13,50 @@ use super::super::stats::FieldStats;
 /// 320³.
 pub const MAX_SAMPLES: usize = 1 << 25;
 
+/// The smallest cell a grid may have, in units of the spacing of `f64`
+/// at the grid's farthest coordinate: below it, vertices kept
+/// [`VERTEX_ULPS`] from the nodes would crowd the cell, and nodes
+/// themselves would round onto each other.
+pub const MIN_CELL_ULPS: f64 = 32.0;
+
+/// How far a vertex stays from its edge's nodes, at least, in units of the
+/// spacing of `f64` at the grid's farthest coordinate: so that rounding
+/// its position never puts it on a node or on another vertex (a blob
+/// centred at 1e12 gave thousands of degenerate faces when the margin
+/// was only a fraction of a cell, below that spacing).
+pub const VERTEX_ULPS: f64 = 4.0;
+
+/// The margin, as a fraction of the cell, that keeps vertices
+/// [`VERTEX_ULPS`] spacings of `f64` away from the nodes of the grid of
+/// `dims` nodes from `origin` with `cell` (padding included).
+///
+/// # Errors
+///
+/// [`FieldError::CellBelowResolution`] for a cell smaller than
+/// [`MIN_CELL_ULPS`] such spacings.
+pub(crate) fn resolution_margin(
+    origin: DVec3,
+    cell: f64,
+    dims: [usize; 3],
+) -> Result<f64, FieldError> {
+    let far = origin + DVec3::new(dims[0] as f64, dims[1] as f64, dims[2] as f64) * cell;
+    let reach = (origin - DVec3::splat(cell))
+        .abs()
+        .max(far.abs())
+        .max_element();
+    // The spacing of f64 just above the farthest coordinate (the largest
+    // anywhere on the grid).
+    let spacing = (reach.next_up() - reach).max(f64::from_bits(1));
+    if cell.is_nan() || cell < MIN_CELL_ULPS * spacing {
+        return Err(FieldError::CellBelowResolution {
+            cell,
+            coordinate: reach,
+            spacing,
+        });
+    }
+    Ok(VERTEX_ULPS * spacing / cell)
+}
+
 /// Field values at the nodes `origin + cell · (i, j, k)` of a regular grid,
 /// `0 ≤ i < dims[0]` and so on.
 ///
@@ -38,8 +82,8 @@ impl SampleGrid {
     /// # Errors
     ///
     /// [`FieldError::BadGridFrame`], [`FieldError::GridTooLarge`],
-    /// [`FieldError::SampleCount`] or the first
-    /// [`FieldError::NonFiniteSample`].
+    /// [`FieldError::CellBelowResolution`], [`FieldError::SampleCount`] or
+    /// the first [`FieldError::NonFiniteSample`].
     pub fn try_new(
         origin: DVec3,
         cell: f64,
@@ -50,6 +94,7 @@ impl SampleGrid {
             return Err(FieldError::BadGridFrame { origin, cell });
         }
         let expected = check_size(dims)?;
+        resolution_margin(origin, cell, dims)?;
         if values.len() != expected {
             return Err(FieldError::SampleCount {
                 dims,
@@ -151,6 +196,13 @@ impl SampleGrid {
         }
     }
 
+    /// The margin that keeps vertices off this grid's nodes after
+    /// rounding ([`VERTEX_ULPS`]), as a fraction of the cell.
+    pub(crate) fn vertex_margin(&self) -> f64 {
+        // Checked when the grid was made.
+        resolution_margin(self.origin, self.cell, self.dims).unwrap_or(0.5)
+    }
+
     /// The position of a node of the padded grid.
     #[must_use]
     pub fn position(&self, i: isize, j: isize, k: isize) -> DVec3 {
@@ -178,7 +230,14 @@ impl GridFrame {
         let size = bounds.size();
         // `F < ½` outside the box and on its faces: a box flat along an axis
         // is all faces, so the solid is empty.
-        if bounds.is_empty() || size.min_element() <= 0.0 {
+        if bounds.is_empty() {
+            return Err(FieldError::Empty);
+        }
+        if size.min_element() <= 0.0 {
+            // Flat by rounding (a blob of radius 10 at 1e100, whose box
+            // rounds to a point) is below f64's resolution, not empty.
+            let cell = size.max_element() / resolution as f64;
+            resolution_margin(bounds.min, cell, [1; 3])?;
             return Err(FieldError::Empty);
         }
         let cell = size.max_element() / resolution as f64;
@@ -198,6 +257,7 @@ impl GridFrame {
             }
         });
         check_size(dims)?;
+        resolution_margin(bounds.min, cell, dims)?;
         Ok(GridFrame {
             origin: bounds.min,
             cell,

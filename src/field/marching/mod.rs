@@ -35,7 +35,7 @@ use super::stats::FieldStats;
 
 pub use extract::MarchStats;
 use grid::GridFrame;
-pub use grid::{MAX_SAMPLES, SampleGrid};
+pub use grid::{MAX_SAMPLES, MIN_CELL_ULPS, SampleGrid, VERTEX_ULPS};
 pub use options::{MarchingOptions, Placement};
 
 /// A meshed field: the welded triangles and the work done.

@@ -23,7 +23,7 @@ use super::Accel;
 use super::tri_packet::{PacketRay, TriPacket};
 use super::triangle_records::YzTri;
 use crate::query::ray_answers::{BestHit, Crossing, Nearest};
-use crate::query::ray_scaling::{scales_exactly, unit_scaled, unscaled_t};
+use crate::query::ray_scaling::{TScale, scales_exactly, unit_scaled, unscaled_t};
 
 /// Rays walked in turn on accels that stay in the caches...
 const LANES: usize = 8;
@@ -60,7 +60,7 @@ struct Walk {
     /// The ray with its direction scaled by a power of two
     /// ([`unit_scaled`]), and the factor back to the caller's `t`.
     scaled: Ray,
-    t_scale: f64,
+    t_scale: TScale,
     rays_box: RayBox,
     /// The ray as the leaves' miss filter sees it.
     packet_ray: PacketRay,
@@ -112,7 +112,7 @@ impl Walk {
         Walk {
             ray: 0,
             scaled: ray,
-            t_scale: 1.0,
+            t_scale: TScale::ONE,
             rays_box: RayBox::new(&ray, &frame),
             packet_ray: PacketRay::new(&ray, frame.scale),
             best: None,
@@ -167,7 +167,7 @@ impl Walk {
                 triangle,
                 sign,
             });
-        self.t_scale = 1.0;
+        self.t_scale = TScale::ONE;
         self.pending = (0, 0);
         self.top = 0;
     }

@@ -194,6 +194,27 @@ pub enum SweepError {
         /// The largest ([`MAX_SEGMENTS`](crate::curve::MAX_SEGMENTS)).
         limit: usize,
     },
+    /// A turn whose validation would cost more than the limit: many
+    /// steps around with profile edges that run far towards or away from
+    /// the axis make long, thin quadrilaterals, each of whose boxes
+    /// overlaps those of its neighbours across a wide angle, so checking
+    /// the solid for self-intersection grows with the square of the steps
+    /// ([`MAX_TURN_STEPS`](crate::shape::MAX_TURN_STEPS),
+    /// [`MAX_TURN_SLIVERS`](crate::shape::MAX_TURN_SLIVERS)).
+    #[error(
+        "{segments} steps around make {slivers} sliver pieces to check (limits: {step_limit} steps, {sliver_limit} pieces); use fewer segments or a larger tolerance"
+    )]
+    TurnTooFine {
+        /// The steps around.
+        segments: usize,
+        /// The estimated pieces: per profile edge, the steps times how many
+        /// of its quadrilaterals' widths fit in its radial extent.
+        slivers: u64,
+        /// [`MAX_TURN_STEPS`](crate::shape::MAX_TURN_STEPS).
+        step_limit: usize,
+        /// [`MAX_TURN_SLIVERS`](crate::shape::MAX_TURN_SLIVERS).
+        sliver_limit: u64,
+    },
     /// The solid would have more vertices than the stated limit.
     #[error("the solid would have {vertices} vertices, more than {limit}")]
     TooLarge {
