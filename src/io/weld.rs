@@ -53,10 +53,11 @@ pub enum WeldRefusal {
     },
     /// Merging would join separate fans of faces at one vertex.
     WouldPinch {
-        /// The vertex (1-based OBJ number of the first copy).
+        /// The vertex: the file's number of the first copy (1-based OBJ
+        /// number; the other formats count from 0, STL by corners).
         vertex: usize,
-        /// Its `v` line.
-        line: usize,
+        /// Its line, in the text formats.
+        line: Option<usize>,
     },
 }
 
@@ -68,9 +69,16 @@ impl std::fmt::Display for WeldRefusal {
                 "not welded: face {face}{} would visit a vertex twice",
                 line.map(|l| format!(" (line {l})")).unwrap_or_default()
             ),
-            WeldRefusal::WouldPinch { vertex, line } => write!(
+            WeldRefusal::WouldPinch {
+                vertex,
+                line: Some(line),
+            } => write!(
                 f,
                 "not welded: the copies of OBJ vertex #{vertex} (line {line}) would join separate fans of faces (a pinch)"
+            ),
+            WeldRefusal::WouldPinch { vertex, line: None } => write!(
+                f,
+                "not welded: the copies of vertex {vertex} would join separate fans of faces (a pinch)"
             ),
         }
     }
@@ -89,7 +97,8 @@ pub struct WeldReport {
 }
 
 /// Welds `soup` as `mode` says and compacts it: each merged class becomes its
-/// first copy. Returns the soup, the `v` line and OBJ number of each new
+/// first copy. Returns the soup, the `v` line (when `vertex_lines` has one
+/// per vertex; else nothing) and 1-based number in `soup` of each new
 /// vertex, and the report.
 pub(crate) fn weld(
     soup: PolygonSoup,
@@ -98,6 +107,11 @@ pub(crate) fn weld(
 ) -> (PolygonSoup, Vec<usize>, Vec<usize>, WeldReport) {
     let n = soup.positions.len();
     let numbers: Vec<usize> = (1..=n).collect();
+    let vertex_lines = if vertex_lines.len() == n {
+        vertex_lines
+    } else {
+        Vec::new()
+    };
     let Some(cluster) = clusters(&soup.positions, mode) else {
         let report = WeldReport {
             mode,
@@ -353,7 +367,7 @@ fn refuse_pinches(
         if count > 1 {
             refused.push(WeldRefusal::WouldPinch {
                 vertex: root + 1,
-                line: vertex_lines[root],
+                line: vertex_lines.get(root).copied(),
             });
             bad_roots.push(root);
         }
@@ -379,7 +393,9 @@ fn compact(
         if r == v {
             new_index[v] = positions.len();
             positions.push(soup.positions[v]);
-            lines.push(vertex_lines[v]);
+            if let Some(&line) = vertex_lines.get(v) {
+                lines.push(line);
+            }
             new_numbers.push(numbers[v]);
         } else {
             // Roots are the smallest member, so they were numbered first.
