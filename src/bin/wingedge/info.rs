@@ -3,14 +3,19 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use wingedge::io::{read_obj, write_obj};
+use wingedge::io::{Format, ImportOptions, import, write_obj};
 use wingedge::mesh::{Solid, builders};
 
 use wingedge::geom::ReadableVec;
 
 use crate::output::{Out, Outcome, measure};
 
-pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf>) -> Outcome {
+pub fn run(
+    file: Option<PathBuf>,
+    builtin: Option<String>,
+    write: Option<PathBuf>,
+    format: Option<Format>,
+) -> Outcome {
     let (name, solid) = match (file, builtin) {
         (_, Some(name)) => match builders::by_name(&name) {
             Some(solid) => (name, solid),
@@ -22,7 +27,11 @@ pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf
             }
         },
         (Some(path), None) => {
-            let soup = read_obj(&path).map_err(|e| e.to_string())?;
+            let options = ImportOptions {
+                format,
+                ..ImportOptions::default()
+            };
+            let soup = import(&path, &options).map_err(|e| e.to_string())?.soup;
             let solid =
                 Solid::try_from_soup(&soup).map_err(|e| format!("{}: {e}", path.display()))?;
             (path.display().to_string(), solid)

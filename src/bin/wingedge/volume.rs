@@ -3,6 +3,7 @@
 use std::path::Path;
 use std::process::ExitCode;
 
+use wingedge::io::ImportOptions;
 use wingedge::scene::Scene;
 
 use crate::output::{Out, Outcome};
@@ -11,8 +12,14 @@ use crate::progress::Progress;
 /// Grid cells across the longest side of the bounds when no spacing is given.
 const DEFAULT_CELLS: f64 = 400.0;
 
-pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: bool) -> Outcome {
-    let scene = Scene::from_path(target).map_err(|e| e.to_string())?;
+pub fn run(
+    target: &Path,
+    spacing: Option<f64>,
+    integrate: bool,
+    show_stats: bool,
+    options: &ImportOptions,
+) -> Outcome {
+    let scene = Scene::from_path_with(target, options).map_err(|e| e.to_string())?;
     let bounds = scene.csg.bounds();
     let spacing = spacing.unwrap_or_else(|| {
         let s = bounds.size();
