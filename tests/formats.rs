@@ -281,9 +281,7 @@ fn hostile_files_are_refused_with_their_place() {
     let e = message(&lying, Format::Ply);
     assert!(e.contains("the header's 1000000000 `face` records"), "{e}");
     let ascii = std::fs::read_to_string(fixtures().join("torus_ascii.ply")).unwrap();
-    let bad_index = ascii
-        .replacen("\n3 ", "\n3 96 ", 1)
-        .replacen("\n3 96 ", "\n3 96 ", 1);
+    let bad_index = ascii.replacen("\n3 ", "\n3 96 ", 1);
     let e = message(bad_index.as_bytes(), Format::Ply);
     assert!(
         e.contains("vertex index 96 is out of range: 96 vertices are defined"),

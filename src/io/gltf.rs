@@ -314,7 +314,7 @@ impl Reader<'_> {
             Ok(i as usize)
         };
         let triangles = match mode {
-            4 if corners % 3 != 0 => {
+            4 if !corners.is_multiple_of(3) => {
                 return Err(refuse(
                     path,
                     at,

@@ -54,12 +54,15 @@ impl<R: Read> Read for Guard<R> {
 
 type Archive<'a> = zip::ZipArchive<Cursor<&'a [u8]>>;
 
+/// A guarded zip entry of an archive in memory.
+type Entry<'a, 'b> = Guard<zip::read::ZipFile<'a, Cursor<&'b [u8]>>>;
+
 /// The guarded reader of entry `name`, and its limit.
 fn entry<'a, 'b>(
     path: &Path,
     archive: &'a mut Archive<'b>,
     name: &str,
-) -> Result<(Guard<zip::read::ZipFile<'a, Cursor<&'b [u8]>>>, u64), ImportError> {
+) -> Result<(Entry<'a, 'b>, u64), ImportError> {
     let at = || Location::Path(name.to_string());
     let file = archive.by_name(name).map_err(|e| {
         ImportError::malformed(path, at(), format!("cannot open the zip entry: {e}"))

@@ -22,11 +22,14 @@ pub fn is_scene_path(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("json"))
 }
 
+/// A mesh leaf's canonical path and the format it is read as.
+type LeafKey = (PathBuf, Option<Format>);
+
 /// The mesh leaves of one scene, by canonical path, so that a mesh named
 /// many times is read and validated once.
 #[derive(Default)]
 pub(super) struct MeshLeaves {
-    loaded: RefCell<HashMap<(PathBuf, Option<Format>), Arc<dyn Primitive>>>,
+    loaded: RefCell<HashMap<LeafKey, Arc<dyn Primitive>>>,
 }
 
 impl MeshLeaves {
