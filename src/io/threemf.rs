@@ -62,7 +62,7 @@ fn entry<'a, 'b>(
     path: &Path,
     archive: &'a mut Archive<'b>,
     name: &str,
-) -> Result<(Entry<'a, 'b>, u64), ImportError> {
+) -> Result<(Entry<'a, 'b>, Inflation), ImportError> {
     let at = || Location::Path(name.to_string());
     let file = archive.by_name(name).map_err(|e| {
         ImportError::malformed(path, at(), format!("cannot open the zip entry: {e}"))
@@ -70,8 +70,16 @@ fn entry<'a, 'b>(
     let limit = (file.compressed_size().saturating_mul(MAX_INFLATION))
         .saturating_add(1 << 20)
         .min(super::MAX_INPUT_BYTES as u64);
+    let inflation = Inflation {
+        compressed: file.compressed_size(),
+        limit,
+    };
     if file.size() > limit {
-        return Err(bomb(path, name, file.size(), file.compressed_size(), limit));
+        return Err(inflation.refuse(
+            path,
+            name,
+            &format!("declares {} bytes inflated", file.size()),
+        ));
     }
     Ok((
         Guard {
@@ -79,19 +87,38 @@ fn entry<'a, 'b>(
             left: limit,
             tripped: false,
         },
-        limit,
+        inflation,
     ))
 }
 
-fn bomb(path: &Path, name: &str, size: u64, compressed: u64, limit: u64) -> ImportError {
-    ImportError::TooLarge {
-        path: path.to_path_buf(),
-        at: Location::Path(name.to_string()),
-        what: format!(
-            "a zip entry of {compressed} compressed bytes that inflates to {}{size} bytes (a zip bomb?)",
-            if size > limit { "" } else { "more than " }
-        ),
-        limit,
+/// An entry's compressed size and the most it may inflate to.
+#[derive(Clone, Copy)]
+struct Inflation {
+    compressed: u64,
+    limit: u64,
+}
+
+impl Inflation {
+    /// The refusal of an entry that `does` (declares or inflates to) too
+    /// much.
+    fn refuse(self, path: &Path, name: &str, does: &str) -> ImportError {
+        ImportError::TooLarge {
+            path: path.to_path_buf(),
+            at: Location::Path(name.to_string()),
+            what: format!(
+                "a zip entry of {} compressed bytes that {does} (a zip bomb?)",
+                self.compressed
+            ),
+            limit: self.limit,
+        }
+    }
+
+    fn inflated_too_far(self, path: &Path, name: &str) -> ImportError {
+        self.refuse(
+            path,
+            name,
+            &format!("inflates to more than {} bytes", self.limit),
+        )
     }
 }
 
@@ -101,11 +128,11 @@ fn model_name(path: &Path, archive: &mut Archive<'_>) -> Result<String, ImportEr
     if archive.index_for_name(rels).is_none() {
         return Ok("3D/3dmodel.model".into());
     }
-    let (mut guard, limit) = entry(path, archive, rels)?;
+    let (mut guard, inflation) = entry(path, archive, rels)?;
     let mut text = Vec::new();
     if guard.read_to_end(&mut text).is_err() {
         return Err(if guard.tripped {
-            bomb(path, rels, limit + 1, 0, limit)
+            inflation.inflated_too_far(path, rels)
         } else {
             ImportError::malformed(
                 path,
@@ -170,11 +197,11 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Parsed, ImportError> {
         ));
     }
     let model = {
-        let (guard, limit) = entry(path, &mut archive, &name)?;
+        let (guard, inflation) = entry(path, &mut archive, &name)?;
         let mut reader = BufReader::with_capacity(1 << 16, guard);
         let model = parse(&mut reader);
         if reader.get_ref().tripped {
-            return Err(bomb(path, &name, limit + 1, 0, limit));
+            return Err(inflation.inflated_too_far(path, &name));
         }
         model.map_err(|e| {
             ImportError::malformed(path, Location::Path(format!("{name}: {}", e.at)), e.message)
