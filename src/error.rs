@@ -33,6 +33,12 @@ pub enum Error {
     /// An OBJ file cannot be read.
     #[error(transparent)]
     Obj(#[from] crate::io::ObjError),
+    /// A mesh file of another format cannot be read.
+    #[error(transparent)]
+    Import(#[from] crate::io::ImportError),
+    /// A mesh file cannot be written.
+    #[error(transparent)]
+    Export(#[from] crate::io::ExportError),
     /// A JSON document cannot be read.
     #[error(transparent)]
     Json(#[from] crate::io::JsonError),

@@ -67,6 +67,12 @@ fn build_soup_inputs_stay_fixed() {
     assert!(count > 0, "no pinned build_soup inputs");
 }
 
+#[test]
+fn mesh_formats_inputs_stay_fixed() {
+    let count = replay("mesh_formats", fuzz_checks::mesh_formats::run);
+    assert!(count > 0, "no pinned mesh_formats inputs");
+}
+
 proptest::proptest! {
     #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
 
@@ -76,6 +82,31 @@ proptest::proptest! {
     #[test]
     fn build_soup_holds_on_random_bytes(bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..160)) {
         fuzz_checks::build_soup::run(&bytes);
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+
+    /// The `mesh_formats` check on the format fixtures with bytes changed:
+    /// counts, offsets and indices that lie are refused, never a panic.
+    #[test]
+    fn mesh_formats_hold_on_damaged_fixtures(
+        pick in 0usize..8,
+        edits in proptest::collection::vec((proptest::prelude::any::<usize>(), proptest::prelude::any::<u8>()), 1..8),
+        cut in proptest::prelude::any::<usize>(),
+    ) {
+        let names = ["torus.stl", "torus.ply", "torus.3mf", "torus.glb", "torus.off", "torus.gltf", "two_boxes.3mf", "two_boxes.glb"];
+        let formats = [0u8, 1, 2, 3, 4, 5, 2, 3];
+        let mut bytes = std::fs::read(fixtures().join("formats").join(names[pick])).unwrap();
+        for (at, value) in edits {
+            let at = at % bytes.len();
+            bytes[at] = value;
+        }
+        bytes.truncate(bytes.len() - cut % 64);
+        let mut input = vec![formats[pick]];
+        input.extend_from_slice(&bytes);
+        fuzz_checks::mesh_formats::run(&input);
     }
 }
 

@@ -14,8 +14,15 @@ create_exception!(
 );
 create_exception!(
     wingedge,
-    ObjError,
+    FormatError,
     WingedgeError,
+    "A mesh file could not be read or written: the message names the file \
+     and the place in it (line, byte offset and element, XML or JSON path)."
+);
+create_exception!(
+    wingedge,
+    ObjError,
+    FormatError,
     "An OBJ file could not be read: the message names the file and line."
 );
 create_exception!(
@@ -47,6 +54,7 @@ create_exception!(
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("WingedgeError", py.get_type::<WingedgeError>())?;
+    m.add("FormatError", py.get_type::<FormatError>())?;
     m.add("ObjError", py.get_type::<ObjError>())?;
     m.add("ValidationError", py.get_type::<ValidationError>())?;
     m.add("QueryError", py.get_type::<QueryError>())?;
@@ -67,6 +75,14 @@ pub(crate) fn build(e: wingedge::mesh::BuildError) -> PyErr {
 /// A build error of the solid read from `path`, naming the file.
 pub(crate) fn build_in(path: &std::path::Path, e: wingedge::mesh::BuildError) -> PyErr {
     ValidationError::new_err(format!("{}: not a winged-edge solid: {e}", path.display()))
+}
+
+/// A mesh file's read error: `ObjError` for OBJ, `FormatError` otherwise.
+pub(crate) fn import(e: wingedge::io::ImportError) -> PyErr {
+    match e {
+        wingedge::io::ImportError::Obj(e) => ObjError::new_err(e.to_string()),
+        other => FormatError::new_err(other.to_string()),
+    }
 }
 
 /// A boolean's error as a Python exception, with the crate's message.

@@ -31,6 +31,7 @@ fn _wingedge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<report::PyViolation>()?;
     scene::register(m)?;
     m.add_function(wrap_pyfunction!(solid::load_obj, m)?)?;
+    m.add_function(wrap_pyfunction!(solid::load, m)?)?;
     m.add_function(wrap_pyfunction!(solid::builtin, m)?)?;
     m.add_function(wrap_pyfunction!(solid::cuboid, m)?)?;
     m.add_function(wrap_pyfunction!(solid::prism, m)?)?;

@@ -16,12 +16,12 @@ use pyo3::types::{PyList, PyType};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use wingedge::geom::Tolerance;
-use wingedge::io::{ObjOptions, WeldMode, WeldReport, import_obj};
+use wingedge::io::{ImportOptions, WeldMode, WeldReport, import};
 use wingedge::validate::{
     self, Options, Rule, ShellSummary, Validity, validate_import, validate_soup,
 };
 
-use crate::errors::{ObjError, ValidationError};
+use crate::errors::ValidationError;
 use crate::solid::{PySolid, weld_mode};
 
 /// A measure as the JSON report has it: `None` when it does not fit in `f64`.
@@ -388,26 +388,30 @@ fn options(planarity: Option<f64>) -> PyResult<Options> {
     })
 }
 
-/// Validates an OBJ file: the report `validate --json` prints for it.
+/// Validates a mesh file of any format: the report `validate --json`
+/// prints for it.
 #[pyfunction]
-#[pyo3(signature = (path, weld=None, planarity=None))]
+#[pyo3(signature = (path, weld=None, planarity=None, format=None))]
 pub(crate) fn validate_path(
     py: Python<'_>,
     path: PathBuf,
     weld: Option<&Bound<'_, PyAny>>,
     planarity: Option<f64>,
+    format: Option<&str>,
 ) -> PyResult<PyReport> {
     let weld = weld_mode(weld)?;
+    let format = format.map(crate::solid::parse_format).transpose()?;
     let options = options(planarity)?;
     let (report, weld) = py.detach(|| {
-        let import = import_obj(
+        let import = import(
             &path,
-            &ObjOptions {
+            &ImportOptions {
                 weld,
-                ..ObjOptions::default()
+                format,
+                ..ImportOptions::default()
             },
         )
-        .map_err(|e| ObjError::new_err(e.to_string()))?;
+        .map_err(crate::errors::import)?;
         let report = validate_import(&import, &options)
             .map_err(|e| ValidationError::new_err(format!("{}: {e}", path.display())))?;
         Ok::<_, PyErr>((report, import.weld))

@@ -26,7 +26,7 @@ use pyo3::prelude::*;
 use wingedge::geom::triangulate::triangulate_3d;
 use wingedge::geom::{Ray, Tolerance};
 use wingedge::glam::DVec3;
-use wingedge::io::{ObjOptions, WeldMode, import_obj};
+use wingedge::io::{Format, ImportOptions, ObjOptions, WeldMode, export, import, import_obj};
 use wingedge::mesh::{PolygonSoup, Solid, builders};
 use wingedge::query::{Accel, Containment, Method, Transition};
 
@@ -442,6 +442,32 @@ impl PySolid {
         ))
     }
 
+    /// Writes the solid to `path` (atomically) in `format` (default: by the
+    /// extension); returns how many coordinates rounding to `f32` changed
+    /// (STL and glTF; 0 for the formats that keep `f64`).
+    #[pyo3(signature = (path, format=None))]
+    fn _save(
+        &self,
+        py: Python<'_>,
+        path: PathBuf,
+        format: Option<&str>,
+    ) -> PyResult<(usize, usize)> {
+        let format = match format {
+            Some(name) => parse_format(name)?,
+            None => Format::from_path(&path).ok_or_else(|| {
+                PyValueError::new_err(format!(
+                    "{}: cannot tell the format from the extension; pass format=\"obj\", \"stl\", \"ply\", \"off\", \"3mf\", \"gltf\" or \"glb\"",
+                    path.display()
+                ))
+            })?,
+        };
+        let solid = &self.inner.solid;
+        let report = py
+            .detach(|| export(solid, &path, format))
+            .map_err(|e| errors::FormatError::new_err(e.to_string()))?;
+        Ok((report.rounded, report.coordinates))
+    }
+
     fn __repr__(&self) -> String {
         let s = &self.inner.solid;
         format!(
@@ -485,6 +511,41 @@ pub(crate) fn load_obj(
     Ok(PySolid {
         inner: Arc::new(inner),
     })
+}
+
+/// Reads a mesh file of any format into a solid.
+#[pyfunction]
+#[pyo3(signature = (path, weld=None, max_face_corners=None, format=None))]
+pub(crate) fn load(
+    py: Python<'_>,
+    path: PathBuf,
+    weld: Option<&Bound<'_, PyAny>>,
+    max_face_corners: Option<usize>,
+    format: Option<&str>,
+) -> PyResult<PySolid> {
+    let mut options = ImportOptions {
+        weld: weld_mode(weld)?,
+        format: format.map(parse_format).transpose()?,
+        ..ImportOptions::default()
+    };
+    if let Some(n) = max_face_corners {
+        options.max_face_corners = n;
+    }
+    let inner = py.detach(|| -> PyResult<Inner> {
+        let import = import(&path, &options).map_err(errors::import)?;
+        let solid = Solid::try_from_soup(&import.soup).map_err(|e| errors::build_in(&path, e))?;
+        let lines = (!import.vertex_lines.is_empty()).then_some(import.vertex_lines);
+        Ok(Inner::new(solid, import.soup, lines, Some(path.clone())))
+    })?;
+    Ok(PySolid {
+        inner: Arc::new(inner),
+    })
+}
+
+/// A format by its name (`stl`, `.ply`, any case).
+pub(crate) fn parse_format(name: &str) -> PyResult<Format> {
+    name.parse::<Format>()
+        .map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
 /// `None` / `"exact"`: bit-identical positions merged where that closes

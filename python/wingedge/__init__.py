@@ -17,7 +17,7 @@ checks they share). Import from ``wingedge`` itself.
 """
 
 from . import _wingedge
-from ._io import load_obj
+from ._io import load, load_obj
 from ._report import Report, Violation, validate
 from ._scene import Scene
 from ._solid import (
@@ -37,6 +37,7 @@ from ._solid import (
 )
 from ._wingedge import (
     BooleanError,
+    FormatError,
     ObjError,
     QueryError,
     SceneError,
@@ -52,6 +53,7 @@ __all__ = [
     "Scene",
     "Report",
     "Violation",
+    "load",
     "load_obj",
     "validate",
     "combine",
@@ -65,6 +67,7 @@ __all__ = [
     "prism",
     "sphere",
     "WingedgeError",
+    "FormatError",
     "ObjError",
     "ValidationError",
     "QueryError",

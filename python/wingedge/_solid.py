@@ -3,7 +3,8 @@
 
 from __future__ import annotations
 
-from typing import Sequence
+import warnings
+from typing import Optional, Sequence
 
 import numpy as np
 
@@ -41,6 +42,25 @@ class Solid:
         v = _coords(vertices, "vertices")
         sizes, indices = _faces_flat(faces)
         return cls(_wingedge.NativeSolid._from_flat(v, sizes, indices))
+
+    def save(self, path, format: Optional[str] = None) -> int:
+        """Writes the solid to ``path`` (atomically: a failed write leaves
+        the old file) in ``format`` (default: by the extension): ``"obj"``,
+        ``"ply"`` (binary ``double``), ``"off"`` and ``"3mf"`` keep every
+        ``f64`` bit; ``"stl"`` (binary), ``"gltf"`` and ``"glb"`` hold 32-bit
+        floats, and a ``UserWarning`` says how many coordinates rounding
+        changed. Returns that number (0 for the exact formats). Raises
+        ``FormatError`` for a file that cannot be written or a coordinate
+        beyond the range of f32."""
+        rounded, coordinates = self._native._save(str(path), format)
+        if rounded:
+            warnings.warn(
+                f"{path}: {rounded} of {coordinates} coordinates changed when rounded "
+                "to f32 (obj, ply, off and 3mf keep every f64 bit)",
+                UserWarning,
+                stacklevel=2,
+            )
+        return rounded
 
     def to_arrays(self):
         """``(vertices, faces)``: vertices ``(n, 3)`` float64; faces an

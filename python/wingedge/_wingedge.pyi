@@ -20,7 +20,10 @@ _I8 = npt.NDArray[np.int8]
 class WingedgeError(ValueError):
     """Base class of every wingedge error."""
 
-class ObjError(WingedgeError):
+class FormatError(WingedgeError):
+    """A mesh file could not be read or written: the file and the place in it."""
+
+class ObjError(FormatError):
     """An OBJ file could not be read: the message names the file and line."""
 
 class ValidationError(WingedgeError):
@@ -51,6 +54,8 @@ class NativeSolid:
     @staticmethod
     def _empty(origins: bool) -> NativeSolid:
         """The empty solid (with an empty origins array when ``origins``)."""
+    def _save(self, path: _Path, format: Optional[str] = None) -> Tuple[int, int]:
+        """Writes the solid; returns (coordinates rounded to f32, coordinates)."""
     def _to_flat(self) -> Tuple[_F64, _I64, _I64]:
         """The soup the solid was built from: vertices, face sizes, indices."""
     def _triangles(self) -> Tuple[_F64, _I64]:
@@ -217,6 +222,13 @@ class Report:
 
 def load_obj(path: _Path, weld: Optional[object] = None, max_face_corners: Optional[int] = None) -> NativeSolid:
     """Reads an OBJ file into a solid; ``ObjError`` names the file and line."""
+def load(
+    path: _Path,
+    weld: Optional[object] = None,
+    max_face_corners: Optional[int] = None,
+    format: Optional[str] = None,
+) -> NativeSolid:
+    """Reads a mesh file of any format into a solid."""
 def builtin(name: str) -> NativeSolid:
     """A built-in solid by name."""
 def cuboid(min: _Vec3, max: _Vec3) -> NativeSolid:
@@ -229,7 +241,12 @@ def boolean(a: NativeSolid, b: NativeSolid, operation: str) -> NativeSolid:
     """``a op b`` for ``"union"``, ``"intersection"`` or ``"difference"``."""
 def combine(solids: Sequence[NativeSolid], expression: object) -> NativeSolid:
     """A set expression of nested tuples over indices into ``solids``."""
-def validate_path(path: _Path, weld: Optional[object] = None, planarity: Optional[float] = None) -> Report:
+def validate_path(
+    path: _Path,
+    weld: Optional[object] = None,
+    planarity: Optional[float] = None,
+    format: Optional[str] = None,
+) -> Report:
     """The report ``validate --json`` prints for a file."""
 def validate_solid(solid: NativeSolid, planarity: Optional[float] = None) -> Report:
     """The report for a solid's source soup."""

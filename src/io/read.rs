@@ -25,6 +25,34 @@ pub fn read_input(path: &Path) -> io::Result<Vec<u8>> {
     read_bounded(File::open(path)?, MAX_INPUT_BYTES)
 }
 
+/// The bytes of the file at `path`, NUL bytes included (for the binary
+/// mesh formats), refusing input beyond [`MAX_INPUT_BYTES`].
+///
+/// # Errors
+///
+/// As [`read_input`].
+pub fn read_binary_input(path: &Path) -> io::Result<Vec<u8>> {
+    let file = File::open(path)?;
+    let hint = file.metadata().map_or(0, |m| m.len());
+    if hint > MAX_INPUT_BYTES as u64 {
+        return Err(too_large(MAX_INPUT_BYTES));
+    }
+    let mut bytes = Vec::with_capacity(hint as usize);
+    file.take(MAX_INPUT_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() > MAX_INPUT_BYTES {
+        return Err(too_large(MAX_INPUT_BYTES));
+    }
+    Ok(bytes)
+}
+
+fn too_large(limit: usize) -> io::Error {
+    io::Error::new(
+        io::ErrorKind::InvalidData,
+        format!("the input is larger than the limit of {limit} bytes"),
+    )
+}
+
 /// [`read_input`] on any reader (standard input, say).
 ///
 /// # Errors
@@ -58,10 +86,7 @@ fn read_bounded(mut reader: impl Read, limit: usize) -> io::Result<Vec<u8>> {
             return Ok(bytes);
         }
         if bytes.len() + n > limit {
-            return Err(io::Error::new(
-                io::ErrorKind::InvalidData,
-                format!("the input is larger than the limit of {limit} bytes"),
-            ));
+            return Err(too_large(limit));
         }
         bytes.extend_from_slice(&chunk[..n]);
     }

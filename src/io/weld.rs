@@ -53,10 +53,11 @@ pub enum WeldRefusal {
     },
     /// Merging would join separate fans of faces at one vertex.
     WouldPinch {
-        /// The vertex (1-based OBJ number of the first copy).
+        /// The vertex: the file's number of the first copy (1-based OBJ
+        /// number; the other formats count from 0, STL by corners).
         vertex: usize,
-        /// Its `v` line.
-        line: usize,
+        /// Its line, in the text formats.
+        line: Option<usize>,
     },
 }
 
@@ -68,9 +69,16 @@ impl std::fmt::Display for WeldRefusal {
                 "not welded: face {face}{} would visit a vertex twice",
                 line.map(|l| format!(" (line {l})")).unwrap_or_default()
             ),
-            WeldRefusal::WouldPinch { vertex, line } => write!(
+            WeldRefusal::WouldPinch {
+                vertex,
+                line: Some(line),
+            } => write!(
                 f,
                 "not welded: the copies of OBJ vertex #{vertex} (line {line}) would join separate fans of faces (a pinch)"
+            ),
+            WeldRefusal::WouldPinch { vertex, line: None } => write!(
+                f,
+                "not welded: the copies of vertex {vertex} would join separate fans of faces (a pinch)"
             ),
         }
     }
@@ -89,7 +97,8 @@ pub struct WeldReport {
 }
 
 /// Welds `soup` as `mode` says and compacts it: each merged class becomes its
-/// first copy. Returns the soup, the `v` line and OBJ number of each new
+/// first copy. Returns the soup, the `v` line (when `vertex_lines` has one
+/// per vertex; else nothing) and 1-based number in `soup` of each new
 /// vertex, and the report.
 pub(crate) fn weld(
     soup: PolygonSoup,
@@ -98,6 +107,11 @@ pub(crate) fn weld(
 ) -> (PolygonSoup, Vec<usize>, Vec<usize>, WeldReport) {
     let n = soup.positions.len();
     let numbers: Vec<usize> = (1..=n).collect();
+    let vertex_lines = if vertex_lines.len() == n {
+        vertex_lines
+    } else {
+        Vec::new()
+    };
     let Some(cluster) = clusters(&soup.positions, mode) else {
         let report = WeldReport {
             mode,
@@ -188,14 +202,18 @@ fn clusters(positions: &[DVec3], mode: WeldMode) -> Option<Vec<usize>> {
             Some((0..positions.len()).map(|i| uf.find(i)).collect())
         }
         WeldMode::Exact => {
-            let mut order: Vec<usize> = (0..positions.len()).collect();
-            order.par_sort_unstable_by_key(|&i| (canonical(positions[i]), i));
+            // Keys computed once, sorted in parallel; the index breaks ties,
+            // so the first of a group is its smallest member.
+            let mut keys: Vec<([u64; 3], usize)> = positions
+                .par_iter()
+                .enumerate()
+                .map(|(i, &p)| (canonical(p), i))
+                .collect();
+            keys.par_sort_unstable();
             let mut cluster = vec![0; positions.len()];
-            for group in order.chunk_by(|&a, &b| canonical(positions[a]) == canonical(positions[b]))
-            {
-                // Sorted by index within the group: the first is the smallest.
-                for &i in group {
-                    cluster[i] = group[0];
+            for group in keys.chunk_by(|a, b| a.0 == b.0) {
+                for &(_, i) in group {
+                    cluster[i] = group[0].1;
                 }
             }
             Some(cluster)
@@ -220,7 +238,7 @@ fn glue_candidates(soup: &PolygonSoup, cluster: &[usize], shared: &[bool]) -> Ve
             }
         }
     }
-    uses.sort_unstable();
+    uses.par_sort_unstable();
     let mut out = Vec::new();
     for group in uses.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
         if let [(_, _, a1, b1), (_, _, a2, b2)] = *group {
@@ -309,51 +327,85 @@ fn refuse_pinches(
     refused: &mut Vec<WeldRefusal>,
 ) {
     let n = blocked.len();
-    let mut members: HashMap<usize, Vec<usize>> = HashMap::new();
-    for v in 0..n {
-        let r = uf.find(v);
+    let roots: Vec<usize> = (0..n).map(|v| uf.find(v)).collect();
+    // The members of each class of two or more, grouped by root (a
+    // counting sort: roots in increasing order, members in order).
+    let mut offsets = vec![0usize; n + 1];
+    for (v, &r) in roots.iter().enumerate() {
         if r != v {
-            members.entry(r).or_insert_with(|| vec![r]).push(v);
+            offsets[r + 1] += 1;
         }
     }
-    let mut roots: Vec<usize> = members.keys().copied().collect();
-    roots.sort_unstable();
+    for r in 0..n {
+        if offsets[r + 1] > 0 {
+            offsets[r + 1] += 1; // the root itself
+        }
+    }
+    for r in 0..n {
+        offsets[r + 1] += offsets[r];
+    }
+    let mut fill = offsets.clone();
+    let mut members = vec![0usize; offsets[n]];
+    for (v, &r) in roots.iter().enumerate() {
+        if offsets[r + 1] > offsets[r] {
+            members[fill[r]] = v;
+            fill[r] += 1;
+        }
+    }
     let mut bad_roots = Vec::new();
-    for root in roots {
-        let mut polygons: Vec<usize> = members[&root]
-            .iter()
-            .flat_map(|&m| incident.1[incident.0[m]..incident.0[m + 1]].iter().copied())
-            .collect();
+    // Buffers reused for every class.
+    let mut polygons: Vec<usize> = Vec::new();
+    let mut by_neighbour: Vec<(usize, usize)> = Vec::new();
+    let mut fans: Vec<usize> = Vec::new();
+    for root in 0..n {
+        let class = &members[offsets[root]..offsets[root + 1]];
+        if class.is_empty() {
+            continue;
+        }
+        polygons.clear();
+        for &m in class {
+            polygons.extend_from_slice(&incident.1[incident.0[m]..incident.0[m + 1]]);
+        }
         polygons.sort_unstable();
         polygons.dedup();
         // Each polygon touches the vertex through its two edges there; two
         // polygons sharing such an edge belong to one fan.
-        let mut by_neighbour: HashMap<usize, Vec<usize>> = HashMap::new();
+        by_neighbour.clear();
         for (slot, &index) in polygons.iter().enumerate() {
             let p = &soup.polygons[index];
             let k = p.vertices.len();
             for i in 0..k {
-                if uf.find(p.vertices[i]) == root {
+                if roots[p.vertices[i]] == root {
                     for j in [(i + 1) % k, (i + k - 1) % k] {
-                        let other = uf.find(p.vertices[j]);
+                        let other = roots[p.vertices[j]];
                         if other != root {
-                            by_neighbour.entry(other).or_default().push(slot);
+                            by_neighbour.push((other, slot));
                         }
                     }
                 }
             }
         }
-        let mut fans = DisjointSets::new(polygons.len());
-        for slots in by_neighbour.values() {
-            for w in slots.windows(2) {
-                fans.union(w[0], w[1]);
+        by_neighbour.sort_unstable();
+        fans.clear();
+        fans.extend(0..polygons.len());
+        let find = |fans: &mut Vec<usize>, mut x: usize| {
+            while fans[x] != x {
+                fans[x] = fans[fans[x]];
+                x = fans[x];
+            }
+            x
+        };
+        for group in by_neighbour.chunk_by(|a, b| a.0 == b.0) {
+            for w in group.windows(2) {
+                let (a, b) = (find(&mut fans, w[0].1), find(&mut fans, w[1].1));
+                fans[a.max(b)] = a.min(b);
             }
         }
-        let count = (0..polygons.len()).filter(|&i| fans.find(i) == i).count();
+        let count = (0..polygons.len()).filter(|&i| fans[i] == i).count();
         if count > 1 {
             refused.push(WeldRefusal::WouldPinch {
                 vertex: root + 1,
-                line: vertex_lines[root],
+                line: vertex_lines.get(root).copied(),
             });
             bad_roots.push(root);
         }
@@ -379,7 +431,9 @@ fn compact(
         if r == v {
             new_index[v] = positions.len();
             positions.push(soup.positions[v]);
-            lines.push(vertex_lines[v]);
+            if let Some(&line) = vertex_lines.get(v) {
+                lines.push(line);
+            }
             new_numbers.push(numbers[v]);
         } else {
             // Roots are the smallest member, so they were numbered first.

@@ -65,7 +65,7 @@ impl Scene {
         Scene::assemble(top, root)
     }
 
-    /// A scene file (`.json`, see [`is_scene_path`]), or an OBJ mesh as the
+    /// A scene file (`.json`, see [`is_scene_path`]), or a mesh file as the
     /// scene `{"root": {"mesh": PATH}}`: imported, validated and refused
     /// unless it is a valid closed solid, as a scene's mesh leaf is.
     ///
@@ -75,10 +75,23 @@ impl Scene {
     /// [`SceneError::MeshFile`] naming the mesh file (not a scene the user
     /// never wrote).
     pub fn from_path(path: &Path) -> Result<Scene, SceneError> {
-        if is_scene_path(path) {
+        Scene::from_path_with(path, &crate::io::ImportOptions::default())
+    }
+
+    /// [`Scene::from_path`], a mesh read as `options` say (its format
+    /// given, say); with a format given, a `.json` path is read as a mesh.
+    ///
+    /// # Errors
+    ///
+    /// As [`Scene::from_path`].
+    pub fn from_path_with(
+        path: &Path,
+        options: &crate::io::ImportOptions,
+    ) -> Result<Scene, SceneError> {
+        if is_scene_path(path) && options.format.is_none() {
             return Scene::from_file(path);
         }
-        let primitive = load_mesh(path).map_err(|message| SceneError::MeshFile {
+        let primitive = load_mesh(path, options).map_err(|message| SceneError::MeshFile {
             file: path.to_path_buf(),
             message,
         })?;

@@ -1,6 +1,6 @@
-//! Mesh leaves: an OBJ file imported, validated and, only when it is a
-//! valid closed solid, made a [`Polyhedron`] leaf; each file read once per
-//! scene.
+//! Mesh leaves: a mesh file (any format [`crate::io::import`] reads)
+//! imported, validated and, only when it is a valid closed solid, made a
+//! [`Polyhedron`] leaf; each file read once per scene.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -8,60 +8,78 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crate::csg::{Polyhedron, Primitive};
-use crate::io::{ObjOptions, import_obj};
+use crate::io::{Format, ImportOptions, import};
 use crate::validate::{Options, validate_and_build};
 
 /// How many violations a refused mesh's message lists.
 const VIOLATIONS_SHOWN: usize = 5;
 
 /// Whether `path` names a scene file (extension `.json`, any case) rather
-/// than an OBJ mesh.
+/// than a mesh file.
 #[must_use]
 pub fn is_scene_path(path: &Path) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"))
 }
 
+/// A mesh leaf's canonical path and the format it is read as.
+type LeafKey = (PathBuf, Option<Format>);
+
 /// The mesh leaves of one scene, by canonical path, so that a mesh named
 /// many times is read and validated once.
 #[derive(Default)]
 pub(super) struct MeshLeaves {
-    loaded: RefCell<HashMap<PathBuf, Arc<dyn Primitive>>>,
+    loaded: RefCell<HashMap<LeafKey, Arc<dyn Primitive>>>,
 }
 
 impl MeshLeaves {
-    /// The leaf of `file`, loaded on first use.
+    /// The leaf of `file`, read as `format` (`None`: by its extension),
+    /// loaded on first use.
     ///
     /// # Errors
     ///
     /// A message saying why the file is not a usable mesh (a scene file,
     /// unreadable, or not a valid closed solid).
-    pub(super) fn get(&self, file: &Path) -> Result<Arc<dyn Primitive>, String> {
-        if is_scene_path(file) {
+    pub(super) fn get(
+        &self,
+        file: &Path,
+        format: Option<Format>,
+    ) -> Result<Arc<dyn Primitive>, String> {
+        if is_scene_path(file) && format.is_none() {
             return Err(
                 "is a scene file (JSON), not an OBJ mesh; include it with {\"scene\": PATH}".into(),
             );
         }
-        let key = std::fs::canonicalize(file).unwrap_or_else(|_| file.to_path_buf());
+        let key = (
+            std::fs::canonicalize(file).unwrap_or_else(|_| file.to_path_buf()),
+            format,
+        );
         if let Some(p) = self.loaded.borrow().get(&key) {
             return Ok(Arc::clone(p));
         }
-        let primitive = load_mesh(file)?;
+        let options = ImportOptions {
+            format,
+            ..ImportOptions::default()
+        };
+        let primitive = load_mesh(file, &options)?;
         self.loaded.borrow_mut().insert(key, Arc::clone(&primitive));
         Ok(primitive)
     }
 }
 
-/// Loads a mesh leaf: imports the OBJ file, validates it (the default
+/// Loads a mesh leaf: imports the mesh file, validates it (the default
 /// options of the validation layer) and refuses it with the validator's
 /// verdict and first violations unless it is a valid closed solid.
 ///
 /// # Errors
 ///
-/// The reader's message (naming the file and line) or the validator's
-/// verdict.
-pub(super) fn load_mesh(file: &Path) -> Result<Arc<dyn Primitive>, String> {
-    let import = import_obj(file, &ObjOptions::default()).map_err(|e| e.to_string())?;
+/// The reader's message (naming the file and the place in it) or the
+/// validator's verdict.
+pub(super) fn load_mesh(
+    file: &Path,
+    options: &ImportOptions,
+) -> Result<Arc<dyn Primitive>, String> {
+    let import = import(file, options).map_err(|e| e.to_string())?;
     let (report, solid) =
         validate_and_build(&import, &Options::default()).map_err(|e| e.to_string())?;
     match solid {

@@ -69,14 +69,12 @@ impl Reader<'_> {
             "revolve" => solid_leaf::revolve(body, &here).map(leaf),
             "loft" => solid_leaf::loft(body, &here).map(leaf),
             "mesh" => {
-                let Value::String(relative) = body else {
-                    return Err(bad(&here, "a file path (string)", body));
-                };
+                let (relative, format) = mesh_reference(body, &here)?;
                 let file = self.base.join(relative);
                 let primitive =
                     self.state
                         .meshes
-                        .get(&file)
+                        .get(&file, format)
                         .map_err(|message| SceneError::Mesh {
                             at: here.clone(),
                             file,
@@ -207,4 +205,55 @@ fn transform(value: &Value, at: &str) -> Result<DAffine3, SceneError> {
     Ok(DAffine3::from_scale_rotation_translation(
         scale, rotation, translate,
     ))
+}
+
+/// A mesh leaf's file and format: `"PATH"` (the format by the extension),
+/// or `{"path": PATH, "format": NAME}`.
+fn mesh_reference<'a>(
+    body: &'a Value,
+    here: &str,
+) -> Result<(&'a str, Option<crate::io::Format>), SceneError> {
+    let expected = "a file path (string), or {\"path\": PATH, \"format\": NAME}";
+    match body {
+        Value::String(relative) => Ok((relative, None)),
+        Value::Object(map) => {
+            if let Some(key) = map
+                .keys()
+                .find(|k| !matches!(k.as_str(), "path" | "format"))
+            {
+                return Err(SceneError::Json(JsonError::UnknownKey {
+                    at: here.to_string(),
+                    key: key.clone(),
+                    expected: "path, format",
+                }));
+            }
+            let Some(Value::String(relative)) = map.get("path") else {
+                return Err(bad(
+                    &format!("{here}.path"),
+                    "a file path (string)",
+                    map.get("path").unwrap_or(&Value::Null),
+                ));
+            };
+            let format = match map.get("format") {
+                None => None,
+                Some(Value::String(name)) => {
+                    Some(name.parse().map_err(|e: crate::io::UnknownFormat| {
+                        SceneError::Json(JsonError::Value {
+                            at: format!("{here}.format"),
+                            message: e.to_string(),
+                        })
+                    })?)
+                }
+                Some(other) => {
+                    return Err(bad(
+                        &format!("{here}.format"),
+                        "a format name (string)",
+                        other,
+                    ));
+                }
+            };
+            Ok((relative, format))
+        }
+        other => Err(bad(here, expected, other)),
+    }
 }

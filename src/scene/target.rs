@@ -12,7 +12,7 @@ use super::mesh_leaf::is_scene_path;
 use super::{Scene, SceneError};
 use crate::csg::{Containment, Spans, Stats};
 use crate::geom::{Ray, Readable};
-use crate::io::{ObjError, read_obj};
+use crate::io::{ImportError, ImportOptions, ObjError, import};
 use crate::mesh::{BuildError, PolygonSoup, RepeatedVertices, Solid, check_polygons};
 use crate::query::{Accel, Method, QueryError, RayCrossings, SoupWinding};
 
@@ -22,7 +22,11 @@ pub enum TargetError {
     /// The OBJ file could not be read (the message names it and the line).
     #[error(transparent)]
     Obj(#[from] ObjError),
-    /// The OBJ file's polygons do not make a winged-edge solid.
+    /// A mesh file of another format could not be read (the message names
+    /// it and the place in it).
+    #[error(transparent)]
+    Import(ImportError),
+    /// The mesh file's polygons do not make a winged-edge solid.
     #[error("{}: {source}", .file.display())]
     Build {
         /// The OBJ file.
@@ -129,10 +133,24 @@ impl Target {
     /// polygon of fewer than three corners, an index out of range, a NaN
     /// coordinate), the build error.
     pub fn try_load(path: &Path) -> Result<Target, TargetError> {
-        let kind = if is_scene_path(path) {
+        Target::try_load_with(path, &ImportOptions::default())
+    }
+
+    /// [`Target::try_load`], a mesh read as `options` say (its format
+    /// given, say); with a format given, a `.json` path is read as a mesh.
+    ///
+    /// # Errors
+    ///
+    /// As [`Target::try_load`].
+    pub fn try_load_with(path: &Path, options: &ImportOptions) -> Result<Target, TargetError> {
+        let kind = if is_scene_path(path) && options.format.is_none() {
             Kind::Scene(Scene::from_file(path)?)
         } else {
-            let soup = read_obj(path)?;
+            let soup = match import(path, options) {
+                Ok(import) => import.soup,
+                Err(ImportError::Obj(e)) => return Err(TargetError::Obj(e)),
+                Err(e) => return Err(TargetError::Import(e)),
+            };
             match Solid::try_from_soup(&soup) {
                 Ok(solid) => Kind::Mesh(Box::new(Accel::new(&solid))),
                 // Numbers that make triangles: the winding number answers.

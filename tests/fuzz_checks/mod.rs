@@ -9,6 +9,7 @@
 #![allow(dead_code)]
 
 pub mod build_soup;
+pub mod mesh_formats;
 pub mod obj_validate;
 pub mod queries;
 pub mod scene_load;

@@ -9,13 +9,19 @@ use std::time::Instant;
 use wingedge::cells::{Label, MAX_DENSE_DEPTH, Octree, write_npy};
 use wingedge::csg::Stats;
 use wingedge::geom::{Readable, ReadableVec};
-use wingedge::io::{read_obj, write_obj};
+use wingedge::io::{ImportOptions, import, write_obj};
 use wingedge::mesh::Solid;
 use wingedge::scene::{Scene, is_scene_path};
 
 use crate::output::{Out, Outcome};
 
-pub fn run(target: &Path, depth: u32, npy: Option<&Path>, obj: Option<&Path>) -> Outcome {
+pub fn run(
+    target: &Path,
+    depth: u32,
+    npy: Option<&Path>,
+    obj: Option<&Path>,
+    options: &ImportOptions,
+) -> Outcome {
     if npy.is_some() && depth > MAX_DENSE_DEPTH {
         return Err(format!(
             "--npy: depth {depth} is beyond the limit of {MAX_DENSE_DEPTH} for a dense array"
@@ -23,14 +29,14 @@ pub fn run(target: &Path, depth: u32, npy: Option<&Path>, obj: Option<&Path>) ->
     }
     let named = |e: &dyn std::fmt::Display| format!("{}: {e}", target.display());
     let mut mesh_volume = None;
-    let (tree, seconds, scene_stats) = if is_scene_path(target) {
+    let (tree, seconds, scene_stats) = if is_scene_path(target) && options.format.is_none() {
         let scene = Scene::from_file(target).map_err(|e| e.to_string())?;
         let start = Instant::now();
         let mut stats = Stats::default();
         let tree = Octree::classify_csg(&scene.csg, depth, &mut stats).map_err(|e| named(&e))?;
         (tree, start.elapsed().as_secs_f64(), Some(stats))
     } else {
-        let soup = read_obj(target).map_err(|e| e.to_string())?;
+        let soup = import(target, options).map_err(|e| e.to_string())?.soup;
         let solid = Solid::try_from_soup(&soup).map_err(|e| named(&e))?;
         let start = Instant::now();
         let tree = Octree::classify(&solid, depth).map_err(|e| named(&e))?;

@@ -3,14 +3,19 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use wingedge::io::{read_obj, write_obj};
+use wingedge::io::{Format, ImportOptions, import, write_obj};
 use wingedge::mesh::{Solid, builders};
 
 use wingedge::geom::ReadableVec;
 
 use crate::output::{Out, Outcome, measure};
 
-pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf>) -> Outcome {
+pub fn run(
+    file: Option<PathBuf>,
+    builtin: Option<String>,
+    write: Option<PathBuf>,
+    format: Option<Format>,
+) -> Outcome {
     let (name, solid) = match (file, builtin) {
         (_, Some(name)) => match builders::by_name(&name) {
             Some(solid) => (name, solid),
@@ -22,20 +27,26 @@ pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf
             }
         },
         (Some(path), None) => {
-            let soup = read_obj(&path).map_err(|e| e.to_string())?;
+            let options = ImportOptions {
+                format,
+                ..ImportOptions::default()
+            };
+            let soup = import(&path, &options).map_err(|e| e.to_string())?.soup;
             let solid =
                 Solid::try_from_soup(&soup).map_err(|e| format!("{}: {e}", path.display()))?;
             (path.display().to_string(), solid)
         }
         (None, None) => return Err("give an OBJ file or --builtin NAME".into()),
     };
+    // Each measure once: a million-face solid takes a while for each.
+    let (volume, area) = (solid.volume(), solid.surface_area());
     let mut out = Out::new();
-    out.write(describe(&name, &solid))?;
+    out.write(describe(&name, &solid, volume, area))?;
     out.finish()?;
     if let Some(path) = write {
         write_obj(&solid, &path).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
     }
-    if !(solid.volume().is_finite() && solid.surface_area().is_finite()) {
+    if !(volume.is_finite() && area.is_finite()) {
         eprintln!(
             "warning: {name}: the volume or area overflows f64 (the coordinates are too large to multiply)"
         );
@@ -44,7 +55,7 @@ pub fn run(file: Option<PathBuf>, builtin: Option<String>, write: Option<PathBuf
     Ok(ExitCode::SUCCESS)
 }
 
-fn describe(name: &str, solid: &Solid) -> String {
+fn describe(name: &str, solid: &Solid, volume: f64, area: f64) -> String {
     let bounds = solid.bounding_box();
     let shells = solid.shells();
     let mut out = format!(
@@ -85,8 +96,8 @@ fn describe(name: &str, solid: &Solid) -> String {
     );
     out += &format!(
         "  volume {}  surface area {}\n  centroid {centroid}\n  bounding box {} .. {}\n",
-        measure(solid.volume(), 10),
-        measure(solid.surface_area(), 10),
+        measure(volume, 10),
+        measure(area, 10),
         ReadableVec(bounds.min),
         ReadableVec(bounds.max),
     );

@@ -4,8 +4,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use wingedge::io::{Format, ImportOptions};
 
 mod cells;
+mod convert;
 mod csg;
 mod info;
 mod input;
@@ -27,10 +29,10 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Print counts and measures of a solid read from an OBJ file or built in
+    /// Print counts and measures of a solid read from a mesh file or built in
     /// (exit code 1, with a warning, when a measure overflows f64).
     Info {
-        /// The OBJ file to read.
+        /// The mesh file to read (obj, stl, ply, off, 3mf, gltf, glb).
         #[arg(required_unless_present = "builtin", conflicts_with = "builtin")]
         file: Option<PathBuf>,
         /// A built-in solid: tetrahedron, cube, octahedron, dodecahedron,
@@ -40,12 +42,16 @@ enum Command {
         /// Also write the solid as OBJ to this path.
         #[arg(long, value_name = "OUT.obj")]
         write: Option<PathBuf>,
+        /// The mesh's format (obj, stl, ply, off, 3mf, gltf, glb); default:
+        /// by the extension, OBJ for any other.
+        #[arg(long, value_name = "FORMAT")]
+        format: Option<Format>,
     },
     /// Classify points against a closed solid or a CSG scene: prints
     /// `inside`, `outside` or `boundary`, one per input point, in input
     /// order. Exact for polyhedra and half-spaces.
     Classify {
-        /// The OBJ file of the solid, or a CSG scene (`.json`).
+        /// The mesh file of the solid (any format), or a CSG scene (`.json`).
         mesh: PathBuf,
         /// A text file with one `x y z` per line (`-` for standard input);
         /// blank lines and `#` comments are skipped.
@@ -60,6 +66,10 @@ enum Command {
         /// Scenes: print the CSG work counters to standard error.
         #[arg(long)]
         stats: bool,
+        /// The mesh's format (obj, stl, ply, off, 3mf, gltf, glb); default:
+        /// by the extension, OBJ for any other.
+        #[arg(long, value_name = "FORMAT")]
+        format: Option<Format>,
     },
     /// Cast rays at a closed solid: prints, per ray, `inside`, `outside` or
     /// `boundary` for its origin, then the ascending parameters t > 0 of its
@@ -67,7 +77,7 @@ enum Command {
     /// `inside` or `outside` (just after the origin), then its spans inside
     /// the solid as `[t0, t1]`.
     Raycast {
-        /// The OBJ file of the solid, or a CSG scene (`.json`).
+        /// The mesh file of the solid (any format), or a CSG scene (`.json`).
         mesh: PathBuf,
         /// A text file with one `ox oy oz dx dy dz` per line (`-` for standard
         /// input); blank lines and `#` comments are skipped.
@@ -75,6 +85,10 @@ enum Command {
         /// Scenes: print the CSG work counters to standard error.
         #[arg(long)]
         stats: bool,
+        /// The mesh's format (obj, stl, ply, off, 3mf, gltf, glb); default:
+        /// by the extension, OBJ for any other.
+        #[arg(long, value_name = "FORMAT")]
+        format: Option<Format>,
     },
     /// Print the volume of a mesh or a scene: closed form for a single
     /// solid, otherwise by integrating ray spans over a grid.
@@ -92,13 +106,18 @@ enum Command {
         /// Print the work counters to standard error.
         #[arg(long)]
         stats: bool,
+        /// The mesh's format (obj, stl, ply, off, 3mf, gltf, glb); default:
+        /// by the extension, OBJ for any other.
+        #[arg(long, value_name = "FORMAT")]
+        format: Option<Format>,
     },
-    /// Validate OBJ files: a graded verdict per file and every defect with
-    /// its OBJ line. Exit code 0 when every file is a valid closed solid, 1
+    /// Validate mesh files (obj, stl, ply, off, 3mf, gltf, glb): a graded
+    /// verdict per file and every defect with its line (text formats) or
+    /// face number. Exit code 0 when every file is a valid closed solid, 1
     /// when any has defects (or a volume or area that overflows f64), 2 when
     /// any cannot be read.
     Validate {
-        /// The OBJ files.
+        /// The mesh files.
         #[arg(required = true)]
         files: Vec<PathBuf>,
         /// Print one JSON array (one object per file) instead of text.
@@ -122,13 +141,51 @@ enum Command {
         /// time quadratic in its corners).
         #[arg(long, value_name = "N", default_value_t = wingedge::io::DEFAULT_MAX_FACE_CORNERS)]
         max_face_corners: usize,
+        /// The mesh's format (obj, stl, ply, off, 3mf, gltf, glb); default:
+        /// by the extension, OBJ for any other.
+        #[arg(long, value_name = "FORMAT")]
+        format: Option<Format>,
+    },
+    /// Convert a mesh between formats (obj, stl, ply, off, 3mf, gltf, glb),
+    /// validating it on the way: exit code 0 when written, 1 with the
+    /// report when the input (or its rounding to f32 for stl and gltf) is
+    /// not a valid closed solid (nothing written), 2 when it cannot be
+    /// read or written. A warning says how many coordinates rounding to
+    /// f32 changed.
+    Convert {
+        /// The mesh to read.
+        input: PathBuf,
+        /// The file to write; its format by the extension (or --to).
+        output: PathBuf,
+        /// The input's format (default: by the extension, OBJ for any other).
+        #[arg(long, value_name = "FORMAT")]
+        format: Option<Format>,
+        /// The output's format (default: by the extension).
+        #[arg(long, value_name = "FORMAT")]
+        to: Option<Format>,
+        /// Weld vertices closer than TOL × the bounding-box diagonal (only
+        /// where that closes open edges). Default: bit-identical positions.
+        #[arg(long, value_name = "TOL", conflicts_with = "no_weld")]
+        weld: Option<f64>,
+        /// Merge no vertices at all.
+        #[arg(long)]
+        no_weld: bool,
+        /// Write the mesh even when it is not a valid closed solid.
+        #[arg(long)]
+        allow_invalid: bool,
+        /// How many instances of each broken rule to print.
+        #[arg(long, default_value_t = 3)]
+        show: usize,
+        /// Refuse a face with more corners than this.
+        #[arg(long, value_name = "N", default_value_t = wingedge::io::DEFAULT_MAX_FACE_CORNERS)]
+        max_face_corners: usize,
     },
     /// The octree cells of a solid or a CSG scene, each In, Out or On its
     /// boundary (exact for flat surfaces, conservative for spheres and
     /// cylinders), with the certified volume interval [V_in, V_in + V_on];
     /// only cells the boundary may meet are refined.
     Cells {
-        /// The solid (.obj) or scene (.json).
+        /// The solid (a mesh file) or scene (.json).
         target: PathBuf,
         /// The finest depth (2^depth cells along each side of the root cube).
         #[arg(long, default_value_t = 6)]
@@ -141,6 +198,10 @@ enum Command {
         /// volume exactly V_in.
         #[arg(long, value_name = "OUT.obj")]
         obj: Option<PathBuf>,
+        /// The mesh's format (obj, stl, ply, off, 3mf, gltf, glb); default:
+        /// by the extension, OBJ for any other.
+        #[arg(long, value_name = "FORMAT")]
+        format: Option<Format>,
     },
     /// Mesh a field document (blobs and field CSG, JSON) by marching cubes
     /// into a validated closed solid and write it as OBJ. Exit code 0 for a
@@ -221,6 +282,14 @@ impl From<MethodArg> for wingedge::query::Method {
     }
 }
 
+/// Import options with only the format set.
+fn options(format: Option<Format>) -> ImportOptions {
+    ImportOptions {
+        format,
+        ..ImportOptions::default()
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     output::exit(match cli.command {
@@ -228,26 +297,62 @@ fn main() -> ExitCode {
             file,
             builtin,
             write,
-        } => info::run(file, builtin, write),
+            format,
+        } => info::run(file, builtin, write, format),
         Command::Classify {
             mesh,
             points,
             method,
             stats,
-        } => query::classify(&mesh, &points, method.into(), stats),
-        Command::Raycast { mesh, rays, stats } => query::raycast(&mesh, &rays, stats),
+            format,
+        } => query::classify(&mesh, &points, method.into(), stats, &options(format)),
+        Command::Raycast {
+            mesh,
+            rays,
+            stats,
+            format,
+        } => query::raycast(&mesh, &rays, stats, &options(format)),
         Command::Volume {
             target,
             spacing,
             integrate,
             stats,
-        } => volume::run(&target, spacing, integrate, stats),
+            format,
+        } => volume::run(&target, spacing, integrate, stats, &options(format)),
         Command::Cells {
             target,
             depth,
             npy,
             obj,
-        } => cells::run(&target, depth, npy.as_deref(), obj.as_deref()),
+            format,
+        } => cells::run(
+            &target,
+            depth,
+            npy.as_deref(),
+            obj.as_deref(),
+            &options(format),
+        ),
+        Command::Convert {
+            input,
+            output,
+            format,
+            to,
+            weld,
+            no_weld,
+            allow_invalid,
+            show,
+            max_face_corners,
+        } => convert::run(convert::Args {
+            input,
+            output,
+            format,
+            to,
+            weld,
+            no_weld,
+            allow_invalid,
+            show,
+            max_face_corners,
+        }),
         Command::Mesh {
             field,
             output,
@@ -275,6 +380,7 @@ fn main() -> ExitCode {
             planarity,
             show,
             max_face_corners,
+            format,
         } => validate::run(validate::Args {
             files,
             json,
@@ -283,6 +389,7 @@ fn main() -> ExitCode {
             planarity,
             show,
             max_face_corners,
+            format,
         }),
     })
 }

@@ -7,6 +7,7 @@ use std::path::Path;
 use glam::DVec3;
 use wingedge::csg::Stats;
 use wingedge::geom::Ray;
+use wingedge::io::ImportOptions;
 use wingedge::query::Method;
 use wingedge::scene::Target;
 
@@ -15,13 +16,19 @@ use crate::output::{Out, Outcome};
 
 /// Prints `inside`, `outside` or `boundary` per point of `source`, in
 /// order.
-pub fn classify(target: &Path, source: &str, method: Method, show_stats: bool) -> Outcome {
+pub fn classify(
+    target: &Path,
+    source: &str,
+    method: Method,
+    show_stats: bool,
+    options: &ImportOptions,
+) -> Outcome {
     let text = read_source(source)?;
     let points: Vec<DVec3> = parse_lines::<3>(source, &text)?
         .iter()
         .map(|(_, p)| DVec3::from_array(*p))
         .collect();
-    let target = Target::try_load(target).map_err(|e| e.to_string())?;
+    let target = Target::try_load_with(target, options).map_err(|e| e.to_string())?;
     let mut stats = Stats::default();
     let classes =
         target
@@ -51,7 +58,7 @@ pub fn classify(target: &Path, source: &str, method: Method, show_stats: bool) -
 }
 
 /// Prints one line per ray of `source` (see [`wingedge::scene::RayAnswer`]).
-pub fn raycast(target: &Path, source: &str, show_stats: bool) -> Outcome {
+pub fn raycast(target: &Path, source: &str, show_stats: bool, options: &ImportOptions) -> Outcome {
     let text = read_source(source)?;
     let mut rays = Vec::new();
     for (line, v) in parse_lines::<6>(source, &text)? {
@@ -61,7 +68,7 @@ pub fn raycast(target: &Path, source: &str, show_stats: bool) -> Outcome {
         }
         rays.push(ray);
     }
-    let target = Target::try_load(target).map_err(|e| e.to_string())?;
+    let target = Target::try_load_with(target, options).map_err(|e| e.to_string())?;
     let mut stats = Stats::default();
     let answers = target.rays(&rays, &mut stats).map_err(|e| e.to_string())?;
     let mut out = Out::new();

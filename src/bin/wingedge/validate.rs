@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use serde_json::{Value, json};
 use wingedge::geom::Tolerance;
-use wingedge::io::{ObjOptions, WeldMode, import_obj};
+use wingedge::io::{Format, ImportOptions, WeldMode, import};
 use wingedge::validate::{Options, Report, Rule, report_json, validate_import};
 
 use crate::output::{Out, Outcome, measure};
@@ -19,10 +19,17 @@ pub struct Args {
     pub planarity: Option<f64>,
     pub show: usize,
     pub max_face_corners: usize,
+    pub format: Option<Format>,
 }
 
-pub fn run(args: Args) -> Outcome {
-    for (flag, value) in [("--weld", args.weld), ("--planarity", args.planarity)] {
+/// The weld mode and tolerances of `--weld`, `--no-weld` and
+/// `--planarity`, or the message refusing a bad tolerance.
+pub fn weld_mode(
+    weld: Option<f64>,
+    no_weld: bool,
+    planarity: Option<f64>,
+) -> Result<(WeldMode, Tolerance), String> {
+    for (flag, value) in [("--weld", weld), ("--planarity", planarity)] {
         if let Some(v) = value.filter(|v| !(v.is_finite() && *v >= 0.0)) {
             return Err(format!(
                 "{flag} {v}: a tolerance is a finite fraction of the bounding-box diagonal, at least 0"
@@ -30,10 +37,10 @@ pub fn run(args: Args) -> Outcome {
         }
     }
     let mut tolerance = Tolerance::default();
-    if let Some(p) = args.planarity {
+    if let Some(p) = planarity {
         tolerance.planarity = p;
     }
-    let weld = match (args.no_weld, args.weld) {
+    let mode = match (no_weld, weld) {
         (true, _) => WeldMode::None,
         (false, Some(t)) => WeldMode::Within(Tolerance {
             weld: t,
@@ -41,6 +48,11 @@ pub fn run(args: Args) -> Outcome {
         }),
         (false, None) => WeldMode::Exact,
     };
+    Ok((mode, tolerance))
+}
+
+pub fn run(args: Args) -> Outcome {
+    let (weld, tolerance) = weld_mode(args.weld, args.no_weld, args.planarity)?;
     let options = Options {
         tolerance,
         ..Options::default()
@@ -50,9 +62,10 @@ pub fn run(args: Args) -> Outcome {
     let mut json_out = Vec::new();
     let mut out = Out::new();
     for path in &args.files {
-        let outcome = import_obj(
+        let outcome = import(
             path,
-            &ObjOptions {
+            &ImportOptions {
+                format: args.format,
                 weld,
                 max_face_corners: args.max_face_corners,
             },
@@ -89,7 +102,7 @@ pub fn run(args: Args) -> Outcome {
                 if args.json {
                     json_out.push(report_json(&report, Some(path), Some(&import.weld)));
                 } else {
-                    out.write(describe(path, &import.weld, &report, args.show))?;
+                    out.write(describe(path, &import, &report, args.show))?;
                 }
             }
         }
@@ -109,12 +122,14 @@ pub fn run(args: Args) -> Outcome {
     })
 }
 
-fn describe(
+/// The text report of one file, as `validate` prints it.
+pub fn describe(
     path: &std::path::Path,
-    weld: &wingedge::io::WeldReport,
+    import: &wingedge::io::Import,
     report: &Report,
     show: usize,
 ) -> String {
+    let weld = &import.weld;
     let number = |x: Option<f64>| x.map_or_else(|| "-".to_string(), |v| measure(v, 6));
     let mut out = format!(
         "{}: {}\n  vertices {}  edges {}  faces {}  shells {}  holes {}  genus {}  volume {}  area {}\n",
@@ -138,8 +153,17 @@ fn describe(
             overflowing.join(", ")
         );
     }
+    for note in &import.notes {
+        out += &format!("  note: {note}\n");
+    }
     if weld.merged > 0 || !weld.refused.is_empty() {
-        out += &format!("  weld: merged {} vertices\n", weld.merged);
+        // STL repeats every corner: the weld merges corners.
+        let what = if import.format == Format::Stl {
+            "corners"
+        } else {
+            "vertices"
+        };
+        out += &format!("  weld: merged {} {what}\n", weld.merged);
         for r in &weld.refused {
             out += &format!("    {r}\n");
         }

@@ -4,12 +4,19 @@ use std::path::Path;
 use std::process::ExitCode;
 
 use wingedge::geom::Readable;
+use wingedge::io::ImportOptions;
 use wingedge::scene::Scene;
 
 use crate::output::{Out, Outcome};
 use crate::progress::Progress;
 
-pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: bool) -> Outcome {
+pub fn run(
+    target: &Path,
+    spacing: Option<f64>,
+    integrate: bool,
+    show_stats: bool,
+    options: &ImportOptions,
+) -> Outcome {
     // A bad spacing is the argument's fault: named before the scene is read.
     if let Some(h) = spacing
         && !(h.is_finite() && h > 0.0)
@@ -19,7 +26,7 @@ pub fn run(target: &Path, spacing: Option<f64>, integrate: bool, show_stats: boo
             wingedge::csg::VolumeError::BadSpacing { spacing: h }
         ));
     }
-    let scene = Scene::from_path(target).map_err(|e| e.to_string())?;
+    let scene = Scene::from_path_with(target, options).map_err(|e| e.to_string())?;
     // A lone polyhedron or analytic solid has a closed form: print it.
     let single = scene.csg.single_leaf();
     let exact = single.and_then(|l| l.primitive.exact_volume());

@@ -2,14 +2,14 @@
 //! the checks, the line pass and tobj in turn, aligns their results and
 //! welds.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use super::align::align_positions;
 use super::error::ObjError;
 use super::precheck::precheck;
 use super::run_tobj::run_tobj;
 use super::scan::scan;
-use crate::io::weld::{WeldMode, WeldReport, weld};
+use crate::io::weld::{WeldMode, weld};
 use crate::mesh::{FaceAttributes, Polygon, PolygonSoup};
 
 /// The default of [`ObjOptions::max_face_corners`].
@@ -40,30 +40,10 @@ impl Default for ObjOptions {
     }
 }
 
-/// An imported OBJ file: the soup and where each part of it came from.
-///
-/// # Invariants
-///
-/// `vertex_lines` and `vertex_numbers` have one entry per soup position. Every
-/// polygon's attributes carry its 1-based OBJ `line`, its `source_index`
-/// (the 0-based number of the face in the file) and the group and material
-/// in force on that line. Every position is finite and every index in range.
-#[derive(Clone, Debug)]
-pub struct ObjImport {
-    /// The file it was read from.
-    pub path: PathBuf,
-    /// Positions (after welding) and polygons (faces, in file order).
-    pub soup: PolygonSoup,
-    /// The `v` line of each soup vertex (of the first of its welded copies).
-    pub vertex_lines: Vec<usize>,
-    /// The OBJ number (1-based) of each soup vertex (of the first of its
-    /// welded copies).
-    pub vertex_numbers: Vec<usize>,
-    /// What welding did.
-    pub weld: WeldReport,
-    /// Wall-clock seconds of each import stage, for benchmarks.
-    pub stage_seconds: Vec<(&'static str, f64)>,
-}
+/// An imported OBJ file: the soup and where each part of it came from
+/// (every polygon and vertex has its line). The import of any format is
+/// the same type, [`Import`](crate::io::Import).
+pub type ObjImport = crate::io::Import;
 
 /// Reads every object and group of an OBJ file into one soup, with the
 /// default weld (bit-identical positions, only where that closes open edges).
@@ -122,14 +102,17 @@ pub fn import_obj_bytes(
         // as `to_obj_string` writes it.
         return Ok(ObjImport {
             path: path.to_path_buf(),
+            format: crate::io::Format::Obj,
             soup: PolygonSoup::default(),
             vertex_lines: Vec::new(),
             vertex_numbers: Vec::new(),
-            weld: WeldReport {
+            weld: crate::io::WeldReport {
                 mode: options.weld,
                 merged: 0,
                 refused: Vec::new(),
             },
+            sources: crate::io::Sources::lines(),
+            notes: Vec::new(),
             stage_seconds: vec![(
                 "parse (line pass, then tobj)",
                 start.elapsed().as_secs_f64(),
@@ -162,10 +145,13 @@ pub fn import_obj_bytes(
     let welded = start.elapsed().as_secs_f64();
     Ok(ObjImport {
         path: path.to_path_buf(),
+        format: crate::io::Format::Obj,
         soup,
         vertex_lines,
         vertex_numbers,
         weld: report,
+        sources: crate::io::Sources::lines(),
+        notes: Vec::new(),
         stage_seconds: vec![
             ("parse (line pass, then tobj)", parsed),
             ("align and assemble soup", assembled - parsed),
