@@ -2,7 +2,7 @@
 //! accel build, point classification (parity, batch) and first-hit rays.
 //!
 //! The comparison with the peers (same meshes, points and rays, one run)
-//! is `benches/peers/run.py`, which drives `examples/peers_wingedge.rs`.
+//! is `benches/peers/run.py`, which drives `benches/drivers/src/bin/peers_wingedge.rs`.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;

@@ -1,6 +1,6 @@
 //! Benchmarks of the validate layer: every check (self-intersection
 //! included) on a closed triangulated sphere, and the OBJ import of the same
-//! sphere. `examples/peers_wingedge.rs validate` times a whole file end to
+//! sphere. `benches/drivers/src/bin/peers_wingedge.rs validate` times a whole file end to
 //! end and `benches/peers/run.py` compares it with trimesh + manifold3d and
 //! parry.
 

@@ -3,7 +3,7 @@
 //! volume integration needs to reach 1e-3 relative accuracy on the bundled
 //! drilled cube (known volume).
 //!
-//! `cargo run --release --example csg_bench` (about 20 s on two cores).
+//! `cargo run --release -p wingedge-bench --bin csg_bench` (about 20 s on two cores).
 
 use std::time::Instant;
 
@@ -14,7 +14,7 @@ use wingedge::geom::Ray;
 use wingedge::mesh::{Solid, builders};
 use wingedge::scene::Scene;
 
-#[path = "../src/test_rng.rs"]
+#[path = "../../../../src/test_rng.rs"]
 mod test_rng;
 
 /// The shared seeded generator, so every run casts the same rays.
@@ -212,7 +212,7 @@ fn main() {
     // Volume: halve the cell area until the estimate is within 1e-3.
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/fixtures/scenes/drilled_cube.json"
+        "/../../fixtures/scenes/drilled_cube.json"
     );
     let scene = Scene::from_file(std::path::Path::new(path)).expect("bundled scene");
     let r: f64 = 0.5;

@@ -1,7 +1,7 @@
 //! The hard cases of booleans, printed as a table of volume, shells,
 //! genus and verdict, to set beside manifold3d's answers
 //! (`benches/peers/boolean_hard_cases.py`):
-//! `cargo run --release --example hard_cases`.
+//! `cargo run --release -p wingedge-bench --bin hard_cases`.
 
 use glam::{DAffine3, DVec3};
 use wingedge::SetOp;

@@ -6,7 +6,7 @@
 //! edge.
 //!
 //! ```text
-//! cargo run --release --example high_valence_bench
+//! cargo run --release -p wingedge-bench --bin high_valence_bench
 //! ```
 //!
 //! Each measurement runs in a fresh child process (this program, started
@@ -26,7 +26,7 @@ use wingedge::query::Accel;
 use wingedge::validate::{Options, validate_and_build};
 
 // Shared with the peer programs; this one uses only the memory reading.
-#[path = "common/peers_io.rs"]
+#[path = "../peers_io.rs"]
 #[allow(dead_code)]
 mod peers_io;
 

@@ -1,8 +1,8 @@
 //! wingedge's side of the peer comparison (`benches/peers/run.py` runs it).
 //!
 //! ```text
-//! cargo run --release --example peers_wingedge -- queries DIR NAME[@SET]...
-//! cargo run --release --example peers_wingedge -- validate FILE.obj [REPEATS]
+//! cargo run --release -p wingedge-bench --bin peers_wingedge -- queries DIR NAME[@SET]...
+//! cargo run --release -p wingedge-bench --bin peers_wingedge -- validate FILE.obj [REPEATS]
 //! ```
 //!
 //! **queries**: for each `NAME`, reads `DIR/NAME.obj` and builds the
@@ -55,7 +55,7 @@ use wingedge::mesh::{FaceId, Solid};
 use wingedge::query::{Accel, Containment, Method, Transition};
 use wingedge::validate::{Options, validate_and_build};
 
-#[path = "common/peers_io.rs"]
+#[path = "../peers_io.rs"]
 mod peers_io;
 
 use peers_io::{Result, peak_rss_mib, read_f64s, write_answers};

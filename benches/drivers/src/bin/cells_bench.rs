@@ -5,7 +5,7 @@
 //! the counts and the peak resident memory of this process.
 //!
 //! ```text
-//! cargo run --release --example cells_bench -- MODEL.obj DEPTH [REPEATS]
+//! cargo run --release -p wingedge-bench --bin cells_bench -- MODEL.obj DEPTH [REPEATS]
 //! ```
 //!
 //! The best of `REPEATS` (default 3) runs is printed.
@@ -17,7 +17,7 @@ use wingedge::cells::{Label, Octree};
 use wingedge::io::read_obj;
 use wingedge::mesh::Solid;
 
-#[path = "common/peers_io.rs"]
+#[path = "../peers_io.rs"]
 #[allow(dead_code)]
 mod peers_io;
 

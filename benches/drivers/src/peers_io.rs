@@ -1,11 +1,11 @@
-//! What the peer programs (`examples/peers_wingedge.rs`,
-//! `examples/boolean_bench.rs`, `benches/peers/parry/`) share: the raw input
+//! What the peer programs (`benches/drivers/src/bin/peers_wingedge.rs`,
+//! `benches/drivers/src/bin/boolean_bench.rs`, `benches/peers/parry/`) share: the raw input
 //! files of `benches/peers/`, answer files and peak memory.
 
 use std::error::Error;
 use std::path::Path;
 
-/// The examples' error type: a message naming the file.
+/// The drivers' error type: a message naming the file.
 pub type Result<T> = std::result::Result<T, Box<dyn Error>>;
 
 /// Reads a raw little-endian `f64` file whose length is a multiple of

@@ -1,5 +1,5 @@
 //! Times one boolean of two offset UV spheres, stage by stage:
-//! `cargo run --release --example boolean_probe -- RINGS`.
+//! `cargo run --release -p wingedge-bench --bin boolean_probe -- RINGS`.
 
 use glam::DVec3;
 use wingedge::SetOp;

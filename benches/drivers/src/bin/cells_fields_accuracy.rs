@@ -2,8 +2,8 @@
 //! exact volumes.
 //!
 //! ```text
-//! cargo run --release --example cells_fields_accuracy
-//! cargo run --release --example cells_fields_accuracy -- --mesh MODEL.obj --mesh-volume V --csv OUT.csv
+//! cargo run --release -p wingedge-bench --bin cells_fields_accuracy
+//! cargo run --release -p wingedge-bench --bin cells_fields_accuracy -- --mesh MODEL.obj --mesh-volume V --csv OUT.csv
 //! ```
 //!
 //! - **Cells** (`Octree::classify_csg`, `Octree::classify`): per depth, the
@@ -40,7 +40,7 @@ use wingedge::io::read_obj;
 use wingedge::mesh::{PolygonSoup, Solid};
 use wingedge::scene::Scene;
 
-#[path = "common/peers_io.rs"]
+#[path = "../peers_io.rs"]
 #[allow(dead_code)]
 mod peers_io;
 

@@ -2,7 +2,7 @@
 //! walks in `query/ray_stream.rs`):
 //!
 //! ```sh
-//! cargo run --release --example ray_probe -- DIR NAME [REPS]
+//! cargo run --release -p wingedge-bench --bin ray_probe -- DIR NAME [REPS]
 //! ```
 //!
 //! reads `DIR/NAME.obj` and `DIR/NAME.rays.f64` (the peer harness's inputs,
@@ -13,9 +13,9 @@
 //! Compare two builds by alternating their runs: this machine's speed
 //! drifts within minutes, so only runs close in time compare.
 
-// Shared with the peer examples; this one reads inputs only.
+// Shared with the peer drivers; this one reads inputs only.
 #[allow(dead_code)]
-#[path = "common/peers_io.rs"]
+#[path = "../peers_io.rs"]
 mod peers_io;
 
 use std::time::Instant;

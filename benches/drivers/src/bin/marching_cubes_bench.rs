@@ -7,7 +7,7 @@
 //! 160 and 320 (the march's volume error is second order in the cell size:
 //! `V_ref = V₃₂₀ + (V₃₂₀ − V₁₆₀) / 3`).
 //!
-//! `cargo run --release --example marching_cubes_bench` (about a minute on
+//! `cargo run --release -p wingedge-bench --bin marching_cubes_bench` (about a minute on
 //! two cores; `RAYON_NUM_THREADS=1` for one).
 //!
 //! With `--goal [RESOLUTION] [--whole]` it prints one JSON line instead,
@@ -24,7 +24,7 @@ use wingedge::field::marching::{march_grid, solid_of};
 use wingedge::field::{Field, MarchingOptions, SampleGrid, load_json, try_mesh};
 use wingedge::validate::{Options, validate_soup};
 
-#[path = "common/peers_io.rs"]
+#[path = "../peers_io.rs"]
 #[allow(dead_code)]
 mod peers_io;
 

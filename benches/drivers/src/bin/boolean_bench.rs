@@ -2,7 +2,7 @@
 //! runs it, one process per measurement, and reads its peak memory).
 //!
 //! ```text
-//! cargo run --release --example boolean_bench -- A.obj B.obj [REPEATS] [OUT.obj]
+//! cargo run --release -p wingedge-bench --bin boolean_bench -- A.obj B.obj [REPEATS] [OUT.obj]
 //! ```
 //!
 //! Reads both OBJ files (default weld) and builds their winged-edge solids,
@@ -28,7 +28,7 @@ use wingedge::boolean::{BooleanOptions, boolean, prove};
 use wingedge::io::{read_obj, write_obj};
 use wingedge::mesh::Solid;
 
-#[path = "common/peers_io.rs"]
+#[path = "../peers_io.rs"]
 #[allow(dead_code)]
 mod peers_io;
 

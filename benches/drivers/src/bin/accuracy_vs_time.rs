@@ -2,8 +2,8 @@
 //! crossings at four accuracy levels, on generic and on hard inputs.
 //!
 //! ```text
-//! cargo run --release --example accuracy_vs_time            # table + docs/accuracy_vs_time.svg
-//! cargo run --release --example accuracy_vs_time -- OUT.svg
+//! cargo run --release -p wingedge-bench --bin accuracy_vs_time            # table + docs/accuracy_vs_time.svg
+//! cargo run --release -p wingedge-bench --bin accuracy_vs_time -- OUT.svg
 //! ```
 //!
 //! Levels (1–3 are written here, not in the library):
@@ -28,7 +28,7 @@
 //! arithmetic only. Level 4 uses the library's own accel (the same kinds of
 //! structure, tuned: `x` culling in the grid, an SAH BVH with `f32` boxes),
 //! so its time is not an arithmetic-only comparison. Every query runs on
-//! one thread, best of `REPEATS`. The example also prints, per scene and
+//! one thread, best of `REPEATS`. The driver also prints, per scene and
 //! set, how many exact-arithmetic fallbacks the library's predicates took
 //! per query at levels 3 and 4.
 //!
@@ -60,9 +60,9 @@ use wingedge::geom::{
 use wingedge::mesh::{PolygonSoup, Solid};
 use wingedge::query::{Accel, Containment};
 
-#[path = "../tests/common/rational_parity.rs"]
+#[path = "../../../../tests/common/rational_parity.rs"]
 mod rational_parity;
-#[path = "../src/test_rng.rs"]
+#[path = "../../../../src/test_rng.rs"]
 mod test_rng;
 
 use rational_parity::{Class, Degenerate};
