@@ -1,0 +1,6 @@
+//! Exact booleans of solids and of whole set expressions.
+
+mod basics;
+mod hard;
+mod random;
+mod tree;
