@@ -11,7 +11,7 @@ use wingedge::geom::Ray;
 use wingedge::mesh::builders;
 use wingedge::query::{Accel, Method};
 
-#[path = "../src/test_rng.rs"]
+#[path = "../../../src/test_rng.rs"]
 mod test_rng;
 use test_rng::uniform;
 
