@@ -1,8 +1,10 @@
-//! The seeded generator of the tests, examples and benchmarks: xorshift64
-//! (Marsaglia, "Xorshift RNGs", 2003), as raw 64-bit words or uniform in
-//! `[0, 1)`. Reproducible from the seed alone; no statistical quality is
-//! claimed. Unit tests reach it as `crate::test_rng`; integration tests,
-//! examples and benchmarks include this file by path:
+//! The seeded generator of the tests, benchmarks and benchmark drivers:
+//! xorshift64 (Marsaglia, "Xorshift RNGs", 2003), as raw 64-bit words or
+//! uniform in `[0, 1)`. Reproducible from the seed alone; no statistical
+//! quality is claimed. Unit tests reach it as `crate::test_rng`; the
+//! integration tests as `crate::common::test_rng` (`tests/common/mod.rs`
+//! includes this file once per test crate); benchmarks (`benches/`) and the
+//! drivers of `benches/drivers/` include this file by path:
 //!
 //! ```ignore
 //! #[path = "../src/test_rng.rs"]

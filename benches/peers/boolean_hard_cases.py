@@ -1,6 +1,6 @@
 """manifold3d on the hard cases of booleans, for the table beside
-wingedge's (`cargo run --release --example hard_cases`), and the Menger
-sponge of depth 3 by differences (tests/boolean_hard.rs):
+wingedge's (`cargo run --release -p wingedge-bench --bin hard_cases`), and the Menger
+sponge of depth 3 by differences (tests/it/boolean/hard.rs):
 `python3 benches/peers/boolean_hard_cases.py`."""
 import manifold3d as m3d, numpy as np
 M=m3d.Manifold

@@ -2,7 +2,7 @@
 through wingedge, manifold3d, MeshLib and CGAL's corefinement.
 
     python3 -m venv /tmp/bb && /tmp/bb/bin/pip install manifold3d meshlib cgal numpy
-    cargo build --release --example boolean_bench --bin wingedge
+    cargo build --release -p wingedge -p wingedge-bench --bin wingedge --bin boolean_bench
     /tmp/bb/bin/python benches/peers/booleans.py [--rounds 3] [--cases spheres,models]
 
 Operands (written once to --workdir, default /tmp/wingedge-booleans):
@@ -33,7 +33,7 @@ largest peak. Each result file is then checked with `wingedge validate`
 cannot be imported, refuses an operand, crashes or times out gets a row
 that says so.
 
-wingedge runs `examples/boolean_bench.rs` with RAYON_NUM_THREADS=2; the
+wingedge runs `benches/drivers/src/bin/boolean_bench.rs` with RAYON_NUM_THREADS=2; the
 peers' thread pools are capped at 2 where they read an environment
 variable (the benchmark machine has 2 cores).
 """
@@ -271,7 +271,7 @@ def measure(args, tool, case, round_index):
     out = os.path.join(args.workdir, f"{case['name']}.{tool}.r{round_index}.obj")
     env = dict(os.environ, RAYON_NUM_THREADS=THREADS, OMP_NUM_THREADS=THREADS, TBB_NUM_THREADS=THREADS)
     if tool == "wingedge":
-        cmd = [args.example, a_obj, b_obj, "1", out]
+        cmd = [args.driver, a_obj, b_obj, "1", out]
     else:
         cmd = [sys.executable, os.path.abspath(__file__), "--child", tool, a_obj, a_off, b_obj, b_off, out]
     with open(os.path.join(args.workdir, "child.err"), "w+") as err:
@@ -404,7 +404,7 @@ def main():
     ap.add_argument("--models", default=os.path.join(os.path.dirname(REPO), "shared", "models"))
     ap.add_argument("--workdir", default="/tmp/wingedge-booleans")
     ap.add_argument("--wingedge", default=os.path.join(REPO, "target", "release", "wingedge"))
-    ap.add_argument("--example", default=os.path.join(REPO, "target", "release", "examples", "boolean_bench"))
+    ap.add_argument("--driver", default=os.path.join(REPO, "target", "release", "boolean_bench"))
     ap.add_argument("--timeout", type=float, default=900)
     ap.add_argument("--json", help="also write the rows to this file")
     args = ap.parse_args()

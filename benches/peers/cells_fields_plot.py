@@ -2,12 +2,12 @@
 (docs/cells_fields_accuracy.png) and its table.
 
     python3 -m pip install matplotlib manifold3d numpy
-    cargo build --release --example cells_fields_accuracy
+    cargo build --release -p wingedge-bench --bin cells_fields_accuracy
     python3 benches/peers/cells_fields_plot.py [MODEL.obj]
 
 MODEL (default: the team's shared spot.obj next to the repository, else
 the genus-1 torus fixture) is a closed mesh whose reference volume comes
-from manifold3d; the example (examples/cells_fields_accuracy.rs) prints
+from manifold3d; the driver (benches/drivers/src/bin/cells_fields_accuracy.rs) prints
 the tables and writes the CSV this script plots: the certified interval's
 relative width against time per depth for each cells target, and the
 marching-cubes volume error against time per resolution.
@@ -52,8 +52,8 @@ def main():
     model = sys.argv[1] if len(sys.argv) > 1 else (SPOT if os.path.exists(SPOT) else TORUS)
     volume = manifold_volume(model)
     print(f"{model}: manifold3d volume {volume!r}")
-    example = os.path.join(ROOT, "target", "release", "examples", "cells_fields_accuracy")
-    subprocess.run([example, "--mesh", model, "--mesh-volume", repr(volume), "--csv", OUT_CSV],
+    driver = os.path.join(ROOT, "target", "release", "cells_fields_accuracy")
+    subprocess.run([driver, "--mesh", model, "--mesh-volume", repr(volume), "--csv", OUT_CSV],
                    check=True, cwd=ROOT)
     rows = list(csv.DictReader(open(OUT_CSV)))
 

@@ -3,14 +3,14 @@ trimesh's voxelization, in one run, each in a process of its own so that
 its peak memory is its own.
 
     python3 -m pip install trimesh numpy scipy
-    cargo build --release --example cells_bench
+    cargo build --release -p wingedge-bench --bin cells_bench
     python3 benches/peers/cells_peer.py [MODEL.obj] [--depth 8]
 
 MODEL defaults to spot subdivided twice (93,696 triangles), made by
 closed_model.py from the team's shared models folder next to the
 repository into /tmp/wingedge-cells/ (not a fixture: 5 MB).
 
-wingedge: `Octree::classify(solid, depth)` (examples/cells_bench.rs,
+wingedge: `Octree::classify(solid, depth)` (benches/drivers/src/bin/cells_bench.rs,
 2 threads available): exact On cells, In/Out by region, the certified
 volume interval; reading the OBJ is not timed. trimesh:
 `mesh.voxelized(pitch)` (the surface voxels) then `.fill()` (the inside),
@@ -78,9 +78,9 @@ def main():
         os.makedirs(os.path.dirname(DEFAULT), exist_ok=True)
         subprocess.run([sys.executable, os.path.join(ROOT, "benches/peers/closed_model.py"),
                         os.path.join(SHARED, "spot.obj"), DEFAULT], check=True)
-    example = os.path.join(ROOT, "target/release/examples/cells_bench")
-    we = run_json([example, args.model, str(args.depth)])
-    finer = run_json([example, args.model, str(args.depth + 1)])
+    driver = os.path.join(ROOT, "target/release/cells_bench")
+    we = run_json([driver, args.model, str(args.depth)])
+    finer = run_json([driver, args.model, str(args.depth + 1)])
     import trimesh
 
     extent = float(trimesh.load(args.model, force="mesh", process=False).extents.max())

@@ -7,7 +7,7 @@ sampled by numpy on the grid wingedge uses at the same resolution: the
 bounds are the union of the sources' influence boxes, the cell is the
 longest side / resolution, and the grid is padded by a layer of zeros.
 Then `skimage.measure.marching_cubes` (Lewiner's method, one thread)
-extracts the level 0.5. wingedge runs `examples/marching_cubes_bench.rs
+extracts the level 0.5. wingedge runs `benches/drivers/src/bin/marching_cubes_bench.rs
 --goal` (`try_mesh`: the field bounded over blocks of the grid, only the
 blocks that may hold the surface sampled and marched; and, for reference,
 the whole grid sampled and marched). Each side in a process of its own
@@ -15,7 +15,7 @@ the whole grid sampled and marched). Each side in a process of its own
 the times, memory, triangles, volumes and the ratio.
 
     python3 -m pip install scikit-image numpy
-    cargo build --release --example marching_cubes_bench
+    cargo build --release -p wingedge-bench --bin marching_cubes_bench
     python3 benches/peers/marching_cubes_peer.py [RESOLUTION]     (default 256)
 """
 import json
@@ -97,9 +97,9 @@ def main():
         peer(int(sys.argv[2]))
         return
     resolution = int(sys.argv[1]) if len(sys.argv) > 1 else 256
-    example = str(ROOT / "target/release/examples/marching_cubes_bench")
-    blocks = run_json([example, "--goal", str(resolution)])
-    whole = run_json([example, "--goal", str(resolution), "--whole"])
+    driver = str(ROOT / "target/release/marching_cubes_bench")
+    blocks = run_json([driver, "--goal", str(resolution)])
+    whole = run_json([driver, "--goal", str(resolution), "--whole"])
     sk = run_json([sys.executable, os.path.abspath(__file__), "--peer", str(resolution)])
     both = sk["sample_seconds"] + sk["march_seconds"]
     grid = "×".join(map(str, blocks["grid"]))

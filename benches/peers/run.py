@@ -3,7 +3,8 @@
 
     python3 benches/peers/run.py --out /tmp/peers
 
-builds the examples and the parry harness (`cargo build --release --examples`,
+builds the command line, the benchmark drivers and the parry harness
+(`cargo build --release -p wingedge -p wingedge-bench --bins`,
 `cargo build --release -p wingedge-peers-parry`), makes the inputs
 (seeded; see inputs.py) under OUT/inputs — the meshes sphere_80k, torus_knot
 and sphere_1m, and the real models fandisk and spot and their exact
@@ -17,7 +18,7 @@ folder is next to the repository — then for each mesh:
       surface, rays from inside the box, rays aimed at vertices, rays
       grazing along faces — wingedge and open3d only,
 
-by wingedge (examples/peers_wingedge.rs), parry3d and parry3d-f64
+by wingedge (benches/drivers/src/bin/peers_wingedge.rs), parry3d and parry3d-f64
 (benches/peers/parry/, a crate of its own in the workspace), trimesh with
 Embree, libigl's fast winding number, open3d's RaycastingScene and
 manifold3d (python_peers.py). Everyone gets 2 threads (RAYON_NUM_THREADS,
@@ -68,10 +69,11 @@ import python_peers  # noqa: E402
 import report  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-EXAMPLES = os.path.join(ROOT, "target", "release", "examples")
-# The parry harness is a workspace member: its binary sits in target/release.
+# The drivers (benches/drivers/) and the parry harness are workspace members:
+# their binaries sit in target/release.
+BINARIES = os.path.join(ROOT, "target", "release")
 PEERS_PARRY = os.path.join(ROOT, "target", "release", "peers_parry")
-BUILD_COMMANDS = [["cargo", "build", "--release", "--examples", "--bins"],
+BUILD_COMMANDS = [["cargo", "build", "--release", "-p", "wingedge", "-p", "wingedge-bench", "--bins"],
                   ["cargo", "build", "--release", "-p", "wingedge-peers-parry"]]
 # The three shared meshes, then the team's real models that fit in
 # the caches (a CAD part and a remeshed scan) when their folder is there.
@@ -195,7 +197,7 @@ def queries_for_mesh(name, directory, args, rng):
     ours_lines, open3d_runs = [], []
     for round_ in range(args.rounds):
         log(name, "wingedge, round %d of %d" % (round_ + 1, args.rounds))
-        ours_lines.append(run_json_lines([os.path.join(EXAMPLES, "peers_wingedge"), "queries", directory, name])[0])
+        ours_lines.append(run_json_lines([os.path.join(BINARIES, "peers_wingedge"), "queries", directory, name])[0])
         log(name, "open3d, round %d of %d" % (round_ + 1, args.rounds))
         open3d_runs.append(python_peers.open3d_scene(vertices, triangles, points, rays))
     ours_line = dict(ours_lines[0], **{key: min(line[key] for line in ours_lines)
@@ -245,7 +247,7 @@ def set_for_mesh(name, query_set, directory, args, rng):
     ours_lines, open3d_runs = [], []
     for round_ in range(args.rounds):
         log(stem, "wingedge, round %d of %d" % (round_ + 1, args.rounds))
-        ours_lines.append(run_json_lines([os.path.join(EXAMPLES, "peers_wingedge"), "queries", directory,
+        ours_lines.append(run_json_lines([os.path.join(BINARIES, "peers_wingedge"), "queries", directory,
                                           "%s@%s" % (name, query_set)])[0])
         log(stem, "open3d, round %d of %d" % (round_ + 1, args.rounds))
         open3d_runs.append(python_peers.open3d_scene(
@@ -298,7 +300,7 @@ def validate_python_peers(path):
 def validation_for_mesh(name, directory):
     path = os.path.join(directory, name + ".obj")
     commands = {
-        "wingedge": [os.path.join(EXAMPLES, "peers_wingedge"), "validate", path],
+        "wingedge": [os.path.join(BINARIES, "peers_wingedge"), "validate", path],
         "trimesh.load + manifold3d Manifold": [sys.executable, os.path.abspath(__file__), "--validate-with-python-peers", path],
         "tobj + parry3d-f64 TriMesh topology": [PEERS_PARRY, "validate", path],
     }
@@ -372,7 +374,7 @@ def main():
     ap.add_argument("--sets", default=",".join(inputs.SETS),
                     help="the harder query sets run by wingedge and open3d on every mesh, comma-separated "
                     "(default: all of %(default)s; none to skip; not with --inputs)")
-    ap.add_argument("--no-build", action="store_true", help="skip cargo build (examples and parry harness already built)")
+    ap.add_argument("--no-build", action="store_true", help="skip cargo build (drivers and parry harness already built)")
     ap.add_argument("--booleans", default="spheres",
                     help="boolean cases after the query table: none, or a comma list of spheres, models")
     args = ap.parse_args()

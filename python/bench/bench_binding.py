@@ -9,8 +9,8 @@ Needs the installed package (``pip install ./python``) and the peers of
 Points are uniform in the model's box, rays start on a sphere around it and
 aim at random points of the box (seeded). Every library gets 2 threads
 (trimesh's Embree queries run on one). The Rust-only rate comes from
-``examples/peers_wingedge.rs`` (built with ``cargo build --release
---examples``) on the same files, so the overhead row compares the same
+``benches/drivers/src/bin/peers_wingedge.rs`` (built with ``cargo build --release
+-p wingedge-bench --bin peers_wingedge``) on the same files, so the overhead row compares the same
 work with and without Python around it. Prints a Markdown table.
 """
 
@@ -50,14 +50,14 @@ def queries(solid, n, seed=1):
 
 
 def rust_only(model, points, rays, out):
-    """The Rust call's own best-of-3 times, from the peers example."""
+    """The Rust call's own best-of-3 times, from the peers driver."""
     name = "model"
     (out / f"{name}.obj").write_bytes(pathlib.Path(model).read_bytes())
     points.astype("<f8").tofile(out / f"{name}.points.f64")
     rays.astype("<f8").tofile(out / f"{name}.rays.f64")
-    exe = ROOT / "target" / "release" / "examples" / "peers_wingedge"
+    exe = ROOT / "target" / "release" / "peers_wingedge"
     if not exe.exists():
-        subprocess.run(["cargo", "build", "--release", "--example", "peers_wingedge"], cwd=ROOT, check=True)
+        subprocess.run(["cargo", "build", "--release", "-p", "wingedge-bench", "--bin", "peers_wingedge"], cwd=ROOT, check=True)
     line = subprocess.run(
         [str(exe), "queries", str(out), name], check=True, capture_output=True, text=True
     ).stdout.strip().splitlines()[-1]

@@ -13,7 +13,7 @@ from conftest import ROOT
 import wingedge
 from wingedge import _wingedge
 
-# A valid tetrahedron whose volume and area overflow f64 (tests/cli_info.rs).
+# A valid tetrahedron whose volume and area overflow f64 (tests/cli/info.rs).
 HUGE_TETRAHEDRON = "v 0 0 0\nv 1e308 0 0\nv 0 1e308 0\nv 0 0 1e308\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
 # A quad with corners 1 and 2 a hair apart and two triangles that would glue
 # them together: a weld within 1e-6 refuses (src/io/weld.rs).

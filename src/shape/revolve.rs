@@ -105,11 +105,11 @@ pub fn try_revolve(
         return Err(SweepError::PinchOnAxis { vertex });
     }
     let steps = step_count(&points, angle, full, segments)?;
-    check_turn_cost(&points, angle, steps)?;
 
     // Ring k of vertex j: angle `angle · k / steps`; a full turn wraps.
     let rings = if full { steps } else { steps + 1 };
     check_size(n.saturating_mul(rings))?;
+    check_turn_cost(&points, angle, steps)?;
     let position = |j: usize, k: usize| {
         let p = points[j];
         let theta = angle * (k as f64) / (steps as f64);
@@ -356,8 +356,8 @@ mod tests {
         ];
         let full = std::f64::consts::TAU;
         for steps in [131_072, 8192] {
-            let e = try_revolve(&profile, &RevolveAxis::Z, full, Segments::Count(steps))
-                .unwrap_err();
+            let e =
+                try_revolve(&profile, &RevolveAxis::Z, full, Segments::Count(steps)).unwrap_err();
             assert!(
                 matches!(e, SweepError::TurnTooFine { segments, .. } if segments == steps),
                 "{e}"

@@ -1,12 +1,8 @@
-//! Running the `wingedge` binary from tests (built with the `cli`
-//! feature only), and scratch folders that remove themselves.
-
-#![cfg_attr(not(feature = "cli"), allow(unused_imports))]
+//! Running the `wingedge` binary from tests (compiled with the `cli`
+//! feature only, which builds the binary).
 
 use std::io::{Read, Write};
-use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 /// How long a command may run before the test calls it hung. Not a speed
@@ -34,7 +30,6 @@ impl Outcome {
 
 /// Runs `wingedge ARGS` in the crate root with empty standard input;
 /// returns the exit code, standard output and standard error.
-#[cfg(feature = "cli")]
 pub fn wingedge(args: &[&str]) -> (i32, String, String) {
     let o = run(args, "", &[]);
     let out = o.out();
@@ -42,7 +37,6 @@ pub fn wingedge(args: &[&str]) -> (i32, String, String) {
 }
 
 /// Runs `wingedge ARGS` in the crate root with `stdin` as standard input.
-#[cfg(feature = "cli")]
 pub fn wingedge_stdin(args: &[&str], stdin: &str) -> (i32, String, String) {
     let o = run(args, stdin, &[]);
     let out = o.out();
@@ -52,7 +46,6 @@ pub fn wingedge_stdin(args: &[&str], stdin: &str) -> (i32, String, String) {
 /// Runs `wingedge ARGS` in the crate root with `stdin` as standard input
 /// and `env` added to the environment. Panics if it runs longer than
 /// [`HUNG_AFTER`] (after killing it).
-#[cfg(feature = "cli")]
 pub fn run(args: &[&str], stdin: &str, env: &[(&str, &str)]) -> Outcome {
     let mut child = Command::new(env!("CARGO_BIN_EXE_wingedge"))
         .args(args)
@@ -97,7 +90,6 @@ pub fn run(args: &[&str], stdin: &str, env: &[(&str, &str)]) -> Outcome {
 
 /// Waits for `child` (running `wingedge ARGS`); kills it and panics if it
 /// runs longer than [`HUNG_AFTER`].
-#[cfg(feature = "cli")]
 fn wait_or_kill(child: &mut std::process::Child, args: &[&str]) -> std::process::ExitStatus {
     let started = Instant::now();
     loop {
@@ -110,51 +102,6 @@ fn wait_or_kill(child: &mut std::process::Child, args: &[&str]) -> std::process:
             panic!("wingedge {args:?} still running after {HUNG_AFTER:?}: killed");
         }
         std::thread::sleep(Duration::from_millis(5));
-    }
-}
-
-/// A scratch folder under the system's temporary folder, unique to this
-/// process and call, removed with everything in it when dropped (also when
-/// the test fails).
-pub struct TempDir {
-    path: PathBuf,
-}
-
-impl TempDir {
-    /// A new empty folder named after `label`.
-    pub fn new(label: &str) -> TempDir {
-        static NEXT: AtomicUsize = AtomicUsize::new(0);
-        let path = std::env::temp_dir().join(format!(
-            "wingedge-test-{label}-{}-{}",
-            std::process::id(),
-            NEXT.fetch_add(1, Ordering::Relaxed)
-        ));
-        let _ = std::fs::remove_dir_all(&path);
-        std::fs::create_dir_all(&path).expect("a scratch folder");
-        TempDir { path }
-    }
-
-    /// The folder.
-    pub fn path(&self) -> &Path {
-        &self.path
-    }
-
-    /// Writes `bytes` to `name` in the folder; returns its path.
-    pub fn write(&self, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
-        let path = self.path.join(name);
-        std::fs::write(&path, bytes).expect("a scratch file");
-        path
-    }
-
-    /// The path of `name` in the folder, as text for a command line.
-    pub fn arg(&self, name: &str) -> String {
-        self.path.join(name).to_string_lossy().into_owned()
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.path);
     }
 }
 
@@ -181,7 +128,6 @@ pub fn peak_child_rss_bytes() -> Option<u64> {
 /// Runs `wingedge ARGS` in the crate root, reads its standard output up to
 /// the end of the first line, then closes it, as `wingedge ARGS | head -1`
 /// does. Returns the exit code, the first line and standard error.
-#[cfg(feature = "cli")]
 pub fn run_first_line_only(args: &[&str]) -> Outcome {
     use std::io::BufRead;
     let mut child = Command::new(env!("CARGO_BIN_EXE_wingedge"))

@@ -1,16 +1,42 @@
-//! Shared test helpers: fixtures for the query tests, generated in code,
-//! and ([`cli`]) a runner for the command line with self-cleaning scratch
-//! folders.
+//! The helpers both test crates share: `tests/it/` (the library's
+//! integration tests) and `tests/cli/` (the command line's) each include
+//! this folder once, as `crate::common`.
+//!
+//! - [`test_rng`]: the seeded generator, `src/test_rng.rs` (the library's
+//!   unit tests use the same file as `crate::test_rng`);
+//! - [`mapped_soup`] and [`mapped_solid`]: a soup under any map of points, a
+//!   solid under an affine map;
+//! - [`oracle`]: the python3 manifold3d oracle of `tests/oracle/`;
+//! - [`regressions_beside_source`]: proptest's failing seeds kept and
+//!   replayed beside each test file;
+//! - [`boolean_cases`]: near-degenerate boolean cases (the stress test's
+//!   and the `boolean_stress` driver's);
+//! - [`fixtures`]: closed solids with hard features for the query tests;
+//! - [`rational_parity`]: an exact point-in-polyhedron reference that
+//!   shares no code with the crate;
+//! - [`temp_dir`]: scratch folders that remove themselves;
+//! - [`cli`] (with the `cli` feature, which builds the binary): running
+//!   `wingedge`.
 
+// Each crate uses only some of the helpers.
 #![allow(dead_code)]
 
+pub mod boolean_cases;
+#[cfg(feature = "cli")]
 pub mod cli;
+pub mod fixtures;
+pub mod oracle;
+pub mod rational_parity;
+pub mod temp_dir;
+#[path = "../../src/test_rng.rs"]
+pub mod test_rng;
 
-use glam::DVec3;
-use wingedge::mesh::{PolygonSoup, Solid, builders};
+use glam::{DAffine3, DVec3};
+use proptest::test_runner::{Config as ProptestConfig, FileFailurePersistence};
+use wingedge::mesh::{PolygonSoup, Solid};
 
-/// A soup with every position mapped by `f`.
-pub fn mapped(soup: &PolygonSoup, f: impl Fn(DVec3) -> DVec3) -> PolygonSoup {
+/// `soup` with every position mapped by `f`.
+pub fn mapped_soup(soup: &PolygonSoup, f: impl Fn(DVec3) -> DVec3) -> PolygonSoup {
     let mut s = soup.clone();
     for p in &mut s.positions {
         *p = f(*p);
@@ -18,99 +44,27 @@ pub fn mapped(soup: &PolygonSoup, f: impl Fn(DVec3) -> DVec3) -> PolygonSoup {
     s
 }
 
-/// Builds a solid from a soup (fixtures are valid by construction).
-pub fn build(soup: &PolygonSoup) -> Solid {
-    Solid::try_from_soup(soup).expect("valid fixture")
+/// `solid` under the affine map `map`, built again from its mapped soup.
+///
+/// # Panics
+///
+/// If the mapped soup is not a solid.
+pub fn mapped_solid(solid: &Solid, map: DAffine3) -> Solid {
+    let soup = mapped_soup(&solid.to_soup(), |p| map.transform_point3(p));
+    Solid::try_from_soup(&soup).expect("a solid")
 }
 
-/// A box `[-2, 2]³` with a box-shaped cavity `[-1, 1]³` (two shells; the
-/// inner one faces inward).
-pub fn hollow_box() -> Solid {
-    let outer = builders::cuboid(DVec3::splat(-2.0), DVec3::splat(2.0))
-        .expect("box")
-        .to_soup();
-    let inner = builders::cube().to_soup();
-    let mut positions = outer.positions.clone();
-    let base = positions.len();
-    positions.extend(&inner.positions);
-    let mut polygons: Vec<Vec<usize>> =
-        outer.polygons.iter().map(|p| p.vertices.to_vec()).collect();
-    for p in &inner.polygons {
-        polygons.push(p.vertices.iter().rev().map(|&i| i + base).collect());
+/// `config` with failing seeds persisted beside the test's source file, as
+/// `<file stem>.proptest-regressions`, and every seed there replayed first.
+///
+/// proptest's default (`SourceParallel`) looks upwards for a `main.rs` and
+/// would use `tests/proptest-regressions/<module path>.txt`, away from the
+/// module the seeds belong to.
+pub fn regressions_beside_source(config: ProptestConfig) -> ProptestConfig {
+    ProptestConfig {
+        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource(
+            "proptest-regressions",
+        ))),
+        ..config
     }
-    build(&PolygonSoup::new(positions, polygons))
-}
-
-/// A tetrahedron with one sliver face: its base is a triangle whose third
-/// corner is `1e-9` off the line of the other two.
-pub fn sliver_tetrahedron() -> Solid {
-    let positions = vec![
-        DVec3::new(0.0, 0.0, 0.0),
-        DVec3::new(1.0, 0.0, 0.0),
-        DVec3::new(0.5, 1e-9, 0.0),
-        DVec3::new(0.5, 0.25, 1.0),
-    ];
-    // Base seen from below (normal −z): 0, 2, 1.
-    build(&PolygonSoup::new(
-        positions,
-        [vec![0, 2, 1], vec![0, 1, 3], vec![1, 2, 3], vec![2, 0, 3]],
-    ))
-}
-
-/// A square pyramid so flat that its four side faces are nearly coplanar
-/// with each other (apex `1e-12` above the base centre... lifted to keep it
-/// valid): dihedral angles within about `1e-12` of flat.
-pub fn nearly_flat_pyramid() -> Solid {
-    let base = [
-        DVec3::new(-1.0, -1.0, 0.0),
-        DVec3::new(1.0, -1.0, 0.0),
-        DVec3::new(1.0, 1.0, 0.0),
-        DVec3::new(-1.0, 1.0, 0.0),
-    ];
-    builders::pyramid(&base, DVec3::new(0.0, 0.0, 1e-12)).expect("flat pyramid")
-}
-
-/// A triangular prism whose top is tilted by a tiny amount, so that two
-/// adjacent quads are nearly coplanar.
-pub fn nearly_coplanar_pair() -> Solid {
-    // A box whose top face is split along a ridge raised by 2^-40.
-    let h = 2f64.powi(-40);
-    let positions = vec![
-        DVec3::new(0.0, 0.0, 0.0),
-        DVec3::new(2.0, 0.0, 0.0),
-        DVec3::new(2.0, 1.0, 0.0),
-        DVec3::new(0.0, 1.0, 0.0),
-        DVec3::new(0.0, 0.0, 1.0),
-        DVec3::new(2.0, 0.0, 1.0),
-        DVec3::new(2.0, 1.0, 1.0),
-        DVec3::new(0.0, 1.0, 1.0),
-        DVec3::new(1.0, 0.0, 1.0 + h),
-        DVec3::new(1.0, 1.0, 1.0 + h),
-    ];
-    let polygons = vec![
-        vec![0, 3, 2, 1],
-        vec![0, 1, 5, 8, 4],
-        vec![1, 2, 6, 5],
-        vec![2, 3, 7, 9, 6],
-        vec![3, 0, 4, 7],
-        vec![4, 8, 9, 7],
-        vec![8, 5, 6, 9],
-    ];
-    build(&PolygonSoup::new(positions, polygons))
-}
-
-/// Every valid closed fixture with a name.
-pub fn closed_fixtures() -> Vec<(&'static str, Solid)> {
-    vec![
-        ("tetrahedron", builders::tetrahedron()),
-        ("cube", builders::cube()),
-        ("octahedron", builders::octahedron()),
-        ("dodecahedron", builders::dodecahedron()),
-        ("icosahedron", builders::icosahedron()),
-        ("l_prism", builders::l_prism()),
-        ("hollow_box", hollow_box()),
-        ("sliver_tetrahedron", sliver_tetrahedron()),
-        ("nearly_flat_pyramid", nearly_flat_pyramid()),
-        ("nearly_coplanar_pair", nearly_coplanar_pair()),
-    ]
 }

@@ -10,8 +10,8 @@
 //! tried. A point on a triangle is on the boundary. Triangles are culled by
 //! a floating-point slab test on boxes widened by a few ulps (it may keep a
 //! triangle the ray misses, never drop one it meets); only the survivors
-//! get the big-integer test. A file that includes this one includes
-//! `src/test_rng.rs` as `crate::test_rng` too.
+//! get the big-integer test. The module that holds this one holds
+//! `src/test_rng.rs` as `test_rng` too (`super::test_rng`).
 
 use num_bigint::BigInt;
 use wingedge::glam::DVec3;
@@ -235,7 +235,7 @@ pub fn classify(triangles: &[[DVec3; 3]], point: DVec3) -> Class {
         DVec3::Z,
         DVec3::NEG_Z,
     ];
-    let mut bits = crate::test_rng::bits(0x9E37_79B9_7F4A_7C15);
+    let mut bits = super::test_rng::bits(0x9E37_79B9_7F4A_7C15);
     let mut component = move || (bits() % 2001) as f64 - 1000.0;
     let others = std::iter::repeat_with(|| DVec3::new(component(), component(), component()))
         .filter(|d| *d != DVec3::ZERO)

@@ -1,5 +1,5 @@
 //! What each fuzz target checks, shared by the fuzz targets (`fuzz/`, which
-//! include these files by path) and by `tests/fuzz_regressions.rs`, which
+//! include these files by path) and by `tests/it/validate/fuzz_regressions.rs`, which
 //! replays every input the fuzzers found under `fixtures/fuzz/<target>/` on
 //! stable Rust, without a fuzzer.
 //!

@@ -13,7 +13,7 @@ Writes, into OUT_DIR, meshes made by manifold3d's own primitives and booleans
 
 Usage: manifold_oracle.py OUT_DIR [--rays N] [--csg-cases N]
 
-The Rust test tests/manifold_oracle.rs runs this script and compares.
+The Rust test tests/it/oracles/manifold.rs runs this script and compares.
 """
 import argparse
 import json

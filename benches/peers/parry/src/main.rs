@@ -35,8 +35,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 use serde_json::json;
 
-// The reading and writing it shares with `examples/peers_wingedge.rs`.
-#[path = "../../../../examples/common/peers_io.rs"]
+// The reading and writing it shares with `benches/drivers/` (peers_wingedge).
+#[path = "../../../drivers/src/peers_io.rs"]
 mod peers_io;
 
 use peers_io::{Result, peak_rss_mib, read_f64s, write_answers};

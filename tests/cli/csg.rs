@@ -1,0 +1,175 @@
+//! The CSG commands on the bundled scenes.
+
+use crate::common::cli::wingedge_stdin as wingedge;
+use crate::common::temp_dir::TempDir;
+
+const DRILLED: &str = "fixtures/scenes/drilled_cube.json";
+
+#[test]
+fn classify_prints_one_word_per_point() {
+    let points = "0 0 0\n0.9 0.9 0.9\n# a comment\n1 0.8 0.8\n3 3 3\n0 0.75 0.75\n";
+    let (code, out, err) = wingedge(&["classify", DRILLED, "-"], points);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out, "outside\ninside\nboundary\noutside\ninside\n");
+}
+
+#[test]
+fn classify_names_a_bad_line() {
+    let (code, _, err) = wingedge(&["classify", DRILLED, "-"], "0 0 0\n1 2\n");
+    assert_eq!(code, 2);
+    assert!(err.contains("-:2:"), "{err}");
+    // Non-finite points and zero directions are refused, not answered.
+    let (code, out, err) = wingedge(&["classify", DRILLED, "-"], "0 0 0\nNaN 0 0\n");
+    assert_eq!((code, out.as_str()), (2, ""), "{err}");
+    assert!(err.contains("-:2:"), "{err}");
+    let (code, _, err) = wingedge(&["raycast", DRILLED, "-"], "0 0 0 1 0 0\n5 5 5 0 0 0\n");
+    assert_eq!(code, 2);
+    assert!(err.contains("-:2:"), "{err}");
+}
+
+#[test]
+fn raycast_prints_spans() {
+    // Along the x axis: the x-drill removes everything; at y = z = 0.75 the
+    // ray runs through the solid wall from x = −1 to 1.
+    let rays = "-3 0 0 1 0 0\n-3 0.75 0.75 1 0 0\n0.9 0.9 0.9 1 0 0\n";
+    let (code, out, err) = wingedge(&["raycast", DRILLED, "-", "--stats"], rays);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines[0], "outside");
+    assert_eq!(lines[1], "outside [2, 4]");
+    assert!(lines[2].starts_with("inside [0, 0.09999"), "{out}");
+    assert!(err.contains("primitive ray tests"), "{err}");
+}
+
+#[test]
+fn volume_of_a_scene_and_of_a_mesh() {
+    let (code, out, err) = wingedge(&["volume", DRILLED, "--spacing", "0.01"], "");
+    assert_eq!(code, 0, "{err}");
+    let v: f64 = out.trim().parse().expect("a number");
+    let r: f64 = 0.5;
+    let exact = 8.0
+        - (3.0 * std::f64::consts::PI * r * r * 2.0 - 16.0 * r.powi(3)
+            + 8.0 * (2.0 - 2f64.sqrt()) * r.powi(3));
+    assert!(((v - exact) / exact).abs() < 1e-3, "{v} vs {exact}");
+    let (code, out, _) = wingedge(&["volume", "fixtures/scenes/many_leaves.json"], "");
+    assert_eq!(code, 0);
+    assert!(out.trim().parse::<f64>().is_ok(), "{out}");
+}
+
+#[test]
+fn render_writes_a_png_of_the_asked_size() {
+    let dir = TempDir::new("render");
+    let png = dir.path().join("drilled.png");
+    let png_arg = png.to_str().unwrap();
+    let (code, _, err) = wingedge(
+        &[
+            "render", DRILLED, "-o", png_arg, "--size", "64x48", "--stats",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+    // IHDR: width and height, big-endian, at bytes 16..24.
+    assert_eq!(u32::from_be_bytes(bytes[16..20].try_into().unwrap()), 64);
+    assert_eq!(u32::from_be_bytes(bytes[20..24].try_into().unwrap()), 48);
+    // No progress bar when standard error is not a terminal.
+    assert!(!err.contains('#'), "{err}");
+    // The drilled cube scene asks for shadows: shadow rays were cast.
+    assert!(!err.contains("shadow rays 0"), "{err}");
+    let (code, _, err) = wingedge(&["render", DRILLED, "-o", png_arg, "--size", "64by48"], "");
+    assert_eq!(code, 2, "{err}");
+}
+
+#[test]
+fn scene_errors_name_the_json_path() {
+    let dir = TempDir::new("scene");
+    let scene = dir.write(
+        "bad.json",
+        r#"{"root": {"difference": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, {"sphere": {"center": [0,0,0], "radius": 0}}]}}"#,
+    );
+    let (code, _, err) = wingedge(&["volume", scene.to_str().unwrap()], "");
+    assert_eq!(code, 2);
+    assert!(err.contains("root.difference[1].sphere.radius"), "{err}");
+}
+
+/// `wingedge csg` evaluates the drilled cube into a solid that `validate`
+/// accepts, whose volume is the ray-integrated volume within the error of
+/// inscribing the cylinders (the result holds the true solid and loses at
+/// most the ring between each cylinder and its inscribed prism).
+#[test]
+fn csg_writes_a_valid_solid_of_the_right_volume() {
+    let dir = TempDir::new("csg-drilled");
+    let out = dir.arg("drilled.obj");
+    let (code, text, err) = wingedge(&["csg", DRILLED, "-o", &out, "--json"], "");
+    assert_eq!(code, 0, "{err}");
+    let report: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    assert_eq!(report["validity"], "valid_solid");
+    assert_eq!(report["genus"], 5);
+    assert_eq!(report["booleans"], 3);
+    let (code, text, err) = wingedge(&["validate", &out], "");
+    assert_eq!(code, 0, "{text}{err}");
+    let (code, text, err) = wingedge(&["volume", &out], "");
+    assert_eq!(code, 0, "{err}");
+    let evaluated: f64 = text.split_whitespace().next().unwrap().parse().unwrap();
+    let (_, text, _) = wingedge(&["volume", DRILLED], "");
+    let integrated: f64 = text.split_whitespace().next().unwrap().parse().unwrap();
+    // Three cylinders of volume π/2 each, radius error 1e-3: at most
+    // 2e-3 of their volume comes back, plus the integration's own error.
+    assert!(
+        evaluated >= integrated - 1e-3 && evaluated <= integrated + 2e-3 * 3.0 * 1.6 + 1e-3,
+        "evaluated {evaluated}, integrated {integrated}"
+    );
+    // A coarser tolerance gives fewer faces and is said in the text.
+    let (code, text, err) = wingedge(&["csg", DRILLED, "-o", &out, "--tolerance", "0.05"], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(text.contains("chord tolerance 0.05"), "{text}");
+}
+
+/// Bad input is refused with exit 2 and a located message.
+#[test]
+fn csg_refuses_what_it_cannot_evaluate() {
+    let dir = TempDir::new("csg-bad");
+    let out = dir.arg("out.obj");
+    let (code, _, err) = wingedge(&["csg", "fixtures/scenes/nope.json", "-o", &out], "");
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = wingedge(&["csg", DRILLED, "-o", &out, "--tolerance", "0"], "");
+    assert_eq!(code, 2);
+    assert!(err.contains("tolerance"), "{err}");
+}
+
+/// Balls resting on a slab touch it at one point each: the union is valid,
+/// one shell for the slab and its boxes and one per ball. Boxes sharing an
+/// edge touch along it.
+#[test]
+fn csg_evaluates_solids_touching_at_points() {
+    let dir = TempDir::new("csg-touch");
+    let out = dir.arg("out.obj");
+    let (code, text, err) = wingedge(&["csg", "fixtures/scenes/many_leaves.json", "-o", &out], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(text.contains("shells 51"), "{text}");
+    let (code, text, err) = wingedge(&["validate", &out], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(text.contains("valid closed solid"), "{text}");
+    // Two boxes sharing an edge: the union touches itself along it, each
+    // box a shell with its own edge there; the written OBJ keeps the two
+    // edges (vertices at one position) and validates.
+    let scene = dir.arg("edge.json");
+    std::fs::write(
+        &scene,
+        r#"{"root": {"union": [
+            {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}},
+            {"box": {"min": [1, 1, 0], "max": [2, 2, 1]}}]}}"#,
+    )
+    .unwrap();
+    let (code, text, err) = wingedge(&["csg", &scene, "-o", &out], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(text.contains("shells 2"), "{text}");
+    let (code, text, err) = wingedge(&["validate", &out], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(text.contains("valid closed solid"), "{text}");
+    assert!(
+        text.contains("2 shells") || text.contains("shells 2"),
+        "{text}"
+    );
+}

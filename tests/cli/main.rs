@@ -1,0 +1,20 @@
+//! The command line's tests: everything that runs the `wingedge` binary,
+//! one crate with a module per command (`validate`, `info`, `query` for
+//! `classify` and `raycast`, `csg` for the scene commands, `mesh`, `cells`)
+//! and for the promises every command keeps (`determinism`,
+//! `error_catalogue`, `hostile_input`). Built with the `cli` feature only.
+//! Run one module with a filter: `cargo test --test cli hostile_input::`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod cells;
+mod csg;
+mod determinism;
+mod error_catalogue;
+mod formats;
+mod hostile_input;
+mod info;
+mod mesh;
+mod query;
+mod validate;
