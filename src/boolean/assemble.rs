@@ -189,6 +189,18 @@ impl Fixes {
         true
     }
 
+    /// What the fixes so far amount to, after `rounds` rounds.
+    pub(crate) fn work(&self, rounds: usize) -> super::OutputWork {
+        super::OutputWork {
+            rounds,
+            collapsed_points: (0..self.onto.len()).filter(|&s| self.onto[s] != s).count(),
+            split_edges: self.splits.len(),
+            unmerged_pieces: self.blocked.len(),
+            joined_pairs: self.joined.len(),
+            dropped_pieces: self.dropped.len(),
+        }
+    }
+
     /// Whether `slot` (collapsed) is a point a fix made.
     pub(crate) fn is_made(&self, slot: usize) -> bool {
         self.collapsed(slot) >= self.rounded

@@ -38,6 +38,7 @@ mod output;
 mod points;
 mod select;
 mod split;
+mod stats;
 
 use crate::SetOp;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -52,90 +53,13 @@ use crate::validate::Report;
 pub use error::BooleanError;
 pub use expression::Expression;
 pub use operand::FaceOrigin;
+pub use stats::{BooleanStats, OutputWork};
 
 use classify::{Partner, Piece};
 use crossings::{Line, Segment};
 use intersect::{Carrier, Contact, PointRef, Tri};
 use operand::Prepared;
 use points::PointTable;
-
-/// Where a boolean spent its time, in seconds, and how much work it found.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct BooleanStats {
-    /// Checking both operands with the validator.
-    pub check_seconds: f64,
-    /// Triangulating the operands and building their BVHs and classifiers.
-    pub prepare_seconds: f64,
-    /// The pair walk and the exact contact of each candidate pair.
-    pub intersect_seconds: f64,
-    /// Merging equal points.
-    pub points_seconds: f64,
-    /// Cutting triangles along their segments.
-    pub split_seconds: f64,
-    /// Patches and membership.
-    pub classify_seconds: f64,
-    /// Rounding, snapping, building the result and merging its faces.
-    pub output_seconds: f64,
-    /// Proving the result valid with the validator.
-    pub proof_seconds: f64,
-    /// Pairs of triangles that meet.
-    pub contacts: usize,
-    /// Points made by the intersection (before merging equal ones).
-    pub new_points: usize,
-    /// Triangles that were cut.
-    pub cut_triangles: usize,
-    /// Points where the segments of two different operands cross inside a
-    /// triangle of a third (only with three or more operands; each counted
-    /// once per triangle it lies in).
-    pub segment_crossings: usize,
-}
-
-impl BooleanStats {
-    /// The time of each stage, in pipeline order, named as in reports
-    /// (`check`, `prepare`, `intersect`, `points`, `split`, `classify`,
-    /// `output`, `proof`).
-    #[must_use]
-    pub fn stages(&self) -> [(&'static str, f64); 8] {
-        [
-            ("check", self.check_seconds),
-            ("prepare", self.prepare_seconds),
-            ("intersect", self.intersect_seconds),
-            ("points", self.points_seconds),
-            ("split", self.split_seconds),
-            ("classify", self.classify_seconds),
-            ("output", self.output_seconds),
-            ("proof", self.proof_seconds),
-        ]
-    }
-
-    /// The stages' times as `name 0.123, …`, in pipeline order.
-    #[must_use]
-    pub fn stages_text(&self) -> String {
-        self.stages()
-            .iter()
-            .map(|(name, seconds)| format!("{name} {seconds:.3}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    }
-}
-
-impl std::ops::AddAssign<&BooleanStats> for BooleanStats {
-    /// Sums the time and work of several booleans (a tree's).
-    fn add_assign(&mut self, one: &BooleanStats) {
-        self.check_seconds += one.check_seconds;
-        self.prepare_seconds += one.prepare_seconds;
-        self.intersect_seconds += one.intersect_seconds;
-        self.points_seconds += one.points_seconds;
-        self.split_seconds += one.split_seconds;
-        self.classify_seconds += one.classify_seconds;
-        self.output_seconds += one.output_seconds;
-        self.proof_seconds += one.proof_seconds;
-        self.contacts += one.contacts;
-        self.new_points += one.new_points;
-        self.cut_triangles += one.cut_triangles;
-        self.segment_crossings += one.segment_crossings;
-    }
-}
 
 /// The result of a boolean: a valid solid, where each face came from, and
 /// the validator's report on it.
@@ -423,9 +347,10 @@ pub fn combine(
             .collect();
         kept.extend(of_operand);
     }
-    let (solid, origins, report, proof_seconds) =
+    let (solid, origins, report, proof_seconds, work) =
         output::build_and_prove(&table, &kept, &prepared)?;
     stats.proof_seconds = proof_seconds;
+    stats.output = work;
     stats.output_seconds = clock.elapsed().as_secs_f64() - proof_seconds;
     Ok(Boolean {
         solid,

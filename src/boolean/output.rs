@@ -35,18 +35,18 @@ use crate::io::written_soup;
 use crate::mesh::{FaceId, PolygonSoup, Solid};
 use crate::validate::{Options, Report, Rule, validate_soup, validate_soup_near_changed};
 
-use super::BooleanError;
 use super::assemble::{Fixes, KeptPiece, Rounded, soup_of, summary};
 use super::merge::{PieceSource, merge_faces};
 use super::operand::{FaceOrigin, Prepared};
 use super::points::PointTable;
+use super::{BooleanError, OutputWork};
 
 /// How many times the output may be changed and proven again.
 const MAX_ROUNDS: usize = 24;
 
 /// A built result: the solid, its faces' origins, the validator's report
 /// on what is written, and the seconds the proofs took.
-pub(crate) type Built = (Solid, Vec<FaceOrigin>, Report, f64);
+pub(crate) type Built = (Solid, Vec<FaceOrigin>, Report, f64, OutputWork);
 
 /// Builds, merges and proves the kept pieces, in rounds (see the module
 /// documentation). Returns the solid (faces' `source_index` into the
@@ -61,12 +61,12 @@ pub(crate) fn build_and_prove(
     let mut fixes = Fixes::new(&rounded);
     let mut proof_seconds = 0.0;
     let mut failure = None;
-    for _ in 0..MAX_ROUNDS {
+    for round in 1..=MAX_ROUNDS {
         let (soup, sources, slots) = soup_of(&rounded, &fixes, pieces, operands);
         if soup.polygons.is_empty() {
             let solid = Solid::default();
             let report = prove(&solid)?;
-            return Ok((solid, Vec::new(), report, proof_seconds));
+            return Ok((solid, Vec::new(), report, proof_seconds, fixes.work(round)));
         }
         let at = Round {
             rounded: &rounded,
@@ -120,7 +120,7 @@ pub(crate) fn build_and_prove(
                 attributes.source_index = Some(index);
                 solid.set_face_attributes(f, attributes);
             }
-            return Ok((solid, origins, report, proof_seconds));
+            return Ok((solid, origins, report, proof_seconds, fixes.work(round)));
         }
         failure = Some(invalid(&report, &written));
         let proven = Proven {

@@ -173,3 +173,59 @@ fn csg_evaluates_solids_touching_at_points() {
         "{text}"
     );
 }
+
+/// The hard cases of the robust-booleans issue through the command line: a
+/// prism whose edge lies on the cube's top face and ends inside it (a
+/// slit), two cubes turned 1e-14 rad apart, and an empty result. Each exits
+/// 0, says what the writing had to fix, and writes a file that `validate`
+/// accepts with the volume the command printed.
+#[test]
+fn csg_writes_slits_turned_copies_and_empty_results_valid() {
+    let dir = TempDir::new("csg-hard");
+    dir.write(
+        "prism.obj",
+        "v 1 1 2\nv 3 1 2\nv 1 0.5 1\nv 3 0.5 1\nv 1 1.5 1\nv 3 1.5 1\n\
+         f 1 5 3\nf 2 4 6\nf 1 3 4 2\nf 1 2 6 5\nf 3 5 6 4\n",
+    );
+    let scenes = [
+        (
+            "slit.json",
+            r#"{"root": {"difference": [{"box": {"min": [0,0,0], "max": [2,2,2]}}, {"mesh": "prism.obj"}]}}"#,
+            7.5,
+            "valid_solid",
+        ),
+        (
+            "turned.json",
+            r#"{"root": {"union": [{"box": {"min": [-1,-1,-1], "max": [1,1,1]}},
+               {"transform": {"rotate_deg": [0, 0, 5.729577951308232e-13]}, "child": {"box": {"min": [-1,-1,-1], "max": [1,1,1]}}}]}}"#,
+            8.0,
+            "valid_solid",
+        ),
+        (
+            "empty.json",
+            r#"{"root": {"intersection": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, {"box": {"min": [2,0,0], "max": [3,1,1]}}]}}"#,
+            0.0,
+            "empty",
+        ),
+    ];
+    for (name, scene, volume, validity) in scenes {
+        let scene_path = dir.write(name, scene);
+        let out = dir.arg(&format!("{name}.obj"));
+        let scene_arg = scene_path.to_string_lossy().into_owned();
+        let (code, text, err) = wingedge(&["csg", &scene_arg, "-o", &out, "--json"], "");
+        assert_eq!(code, 0, "{name}: {err}");
+        let report: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+        assert_eq!(report["validity"], validity, "{name}: {text}");
+        let written = report["volume"].as_f64().unwrap();
+        assert!((written - volume).abs() <= 1e-9 * volume.max(1.0), "{name}: {written}");
+        assert!(report["output_work"]["rounds"].as_u64().unwrap() >= 1, "{text}");
+        let (code, text, err) = wingedge(&["validate", "--json", &out], "");
+        assert_eq!(code, 0, "{name}: {text}{err}");
+        let files: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+        assert_eq!(files[0]["validity"], validity, "{name}: {text}");
+        // The text form says what the writing had to do.
+        let (code, text, err) = wingedge(&["csg", &scene_arg, "-o", &out], "");
+        assert_eq!(code, 0, "{err}");
+        assert!(text.contains("writing: "), "{text}");
+    }
+}

@@ -60,6 +60,12 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
             "empty": solid.face_count() == 0,
             "validity": report.validity,
             "seconds": seconds_by_stage,
+            "output_work": s
+                .output
+                .counts()
+                .into_iter()
+                .map(|(name, n)| (name.to_string(), serde_json::json!(n)))
+                .collect::<serde_json::Map<_, _>>(),
         });
         out.write(format!("{value:#}\n"))?;
     } else {
@@ -67,11 +73,13 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
             .genus
             .map_or_else(|| "-".to_string(), |g| g.to_string());
         out.write(format!(
-            "{name}: {} booleans (chord tolerance {})\n  \
+            "{name}: {} boolean{} (chord tolerance {})\n  \
              faces {}  rings {}  vertices {}  edges {}  shells {}  genus {genus}  volume {}\n  \
              {} (checked by the validator)\n  \
+             writing: {}\n  \
              {seconds:.3} s: tessellate {:.3}, {}\n  wrote {}\n",
             evaluated.booleans,
+            if evaluated.booleans == 1 { "" } else { "s" },
             options.tolerance,
             solid.face_count(),
             solid.ring_count(),
@@ -80,6 +88,7 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
             report.shells,
             measure(solid.volume(), 6),
             report.validity.describe(),
+            s.output.describe(),
             evaluated.tessellate_seconds,
             s.stages_text(),
             output.display(),
