@@ -217,8 +217,14 @@ fn csg_writes_slits_turned_copies_and_empty_results_valid() {
         let report: serde_json::Value = serde_json::from_str(&text).expect("JSON");
         assert_eq!(report["validity"], validity, "{name}: {text}");
         let written = report["volume"].as_f64().unwrap();
-        assert!((written - volume).abs() <= 1e-9 * volume.max(1.0), "{name}: {written}");
-        assert!(report["output_work"]["rounds"].as_u64().unwrap() >= 1, "{text}");
+        assert!(
+            (written - volume).abs() <= 1e-9 * volume.max(1.0),
+            "{name}: {written}"
+        );
+        assert!(
+            report["output_work"]["rounds"].as_u64().unwrap() >= 1,
+            "{text}"
+        );
         let (code, text, err) = wingedge(&["validate", "--json", &out], "");
         assert_eq!(code, 0, "{name}: {text}{err}");
         let files: serde_json::Value = serde_json::from_str(&text).expect("JSON");

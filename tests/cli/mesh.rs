@@ -192,3 +192,60 @@ fn binary_data_in_a_field_document_is_refused() {
     assert!(o.stderr.contains("binary data"), "{}", o.stderr);
     assert!(!out.exists());
 }
+
+/// A CSG scene meshes over its exact classification: the drilled cube (a
+/// cube minus three cylinders) at two resolutions is a valid solid of genus
+/// 5 whose volume is within half a cell times the surface area of the
+/// exact boolean's, and closer at the finer grid; `validate` accepts the
+/// file written.
+#[test]
+fn a_csg_scene_meshes_over_its_exact_classification() {
+    let dir = TempDir::new("mesh_scene");
+    let exact_out = dir.arg("exact.obj");
+    let (code, _, err) = wingedge(&["csg", "fixtures/scenes/drilled_cube.json", "-o", &exact_out]);
+    assert_eq!(code, 0, "{err}");
+    let exact = read_obj(std::path::Path::new(&exact_out)).unwrap();
+    let exact_solid = wingedge::mesh::Solid::try_from_soup(&exact).unwrap();
+    let (volume, area) = (exact_solid.volume(), exact_solid.surface_area());
+    let mut errors = Vec::new();
+    for (resolution, cell) in [("24", 2.04 / 24.0), ("48", 2.04 / 48.0)] {
+        let out = dir.arg(&format!("drilled_{resolution}.obj"));
+        let (code, text, err) = wingedge(&[
+            "mesh",
+            "fixtures/scenes/drilled_cube.json",
+            "-o",
+            &out,
+            "--resolution",
+            resolution,
+        ]);
+        assert_eq!(code, 0, "{text}{err}");
+        assert!(text.contains("nodes classified exactly"), "{text}");
+        let (code, text, _) = wingedge(&["validate", &out]);
+        assert_eq!(code, 0, "{text}");
+        assert!(text.contains("genus 5"), "{text}");
+        let meshed = read_obj(std::path::Path::new(&out)).unwrap();
+        let report = validate_soup(&meshed, None, &Options::default()).unwrap();
+        assert!(report.is_valid());
+        let solid = wingedge::mesh::Solid::try_from_soup(&meshed).unwrap();
+        let error = (solid.volume() - volume).abs();
+        assert!(
+            error <= 0.5 * cell * area,
+            "{resolution}: {error} vs cell {cell}, area {area}"
+        );
+        errors.push(error);
+    }
+    assert!(errors[1] < errors[0], "{errors:?}");
+}
+
+/// A field document's error names the file, as every other message does.
+#[test]
+fn field_document_errors_name_the_file() {
+    let dir = TempDir::new("mesh_named");
+    let doc = dir.write("bad.json", r#"{"camera": 1}"#);
+    let out = dir.arg("out.obj");
+    let doc = doc.to_string_lossy().into_owned();
+    let (code, _, err) = wingedge(&["mesh", &doc, "-o", &out]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains(&format!("{doc}: ")), "{err}");
+    assert!(err.contains("unknown key \"camera\""), "{err}");
+}

@@ -12,6 +12,7 @@ mod csg;
 mod info;
 mod input;
 mod mesh;
+mod mesh_scene;
 mod output;
 mod progress;
 mod query;
@@ -203,13 +204,15 @@ enum Command {
         #[arg(long, value_name = "FORMAT")]
         format: Option<Format>,
     },
-    /// Mesh a field document (blobs and field CSG, JSON) by marching cubes
-    /// into a validated closed solid and write it as OBJ. Exit code 0 for a
+    /// Mesh a field document (blobs and field CSG, JSON) or a CSG scene by
+    /// marching cubes into a validated closed solid and write it as OBJ. Exit code 0 for a
     /// valid solid, 1 for an empty field (nothing written), 2 for a
     /// document or grid that is refused (a cell below f64's resolution far
     /// from the origin among them; nothing written).
     Mesh {
-        /// The field document (.json).
+        /// The field document or CSG scene (.json). A scene (a document
+        /// with "root") is meshed over its exact point classification: every
+        /// grid node decided exactly, vertices at cell-edge midpoints.
         field: PathBuf,
         /// The OBJ to write.
         #[arg(short = 'o', long = "output", value_name = "OUT.obj")]
@@ -353,6 +356,12 @@ fn main() -> ExitCode {
             show,
             max_face_corners,
         }),
+        Command::Mesh {
+            field,
+            output,
+            resolution,
+            ..
+        } if mesh_scene::is_scene(&field) => mesh_scene::run(&field, &output, resolution),
         Command::Mesh {
             field,
             output,

@@ -25,7 +25,16 @@ pub fn run(
     midpoints: bool,
     stats: bool,
 ) -> Outcome {
-    let doc = load_json(field).map_err(|e| e.to_string())?;
+    // Field-document errors name the file, as every other message does.
+    let doc = load_json(field).map_err(|e| {
+        let text = e.to_string();
+        let name = field.display().to_string();
+        if text.starts_with(&name) {
+            text
+        } else {
+            format!("{name}: {text}")
+        }
+    })?;
     let options = MarchingOptions {
         resolution: resolution.or(doc.resolution).unwrap_or(DEFAULT_RESOLUTION),
         placement: if midpoints {
