@@ -38,6 +38,13 @@ pub(crate) struct PieceSource {
     pub alone: bool,
 }
 
+/// The most corners a merged face may have: the limit the validator and
+/// the readers apply to a polygon by default
+/// ([`DEFAULT_MAX_FACE_CORNERS`](crate::io::DEFAULT_MAX_FACE_CORNERS)), so
+/// that every written result is read back by the project's own tools. A
+/// larger flat region stays several faces.
+pub(crate) const MAX_MERGED_CORNERS: usize = crate::io::DEFAULT_MAX_FACE_CORNERS;
+
 /// Merges every pair of neighbouring faces from the same operand face or
 /// exactly one plane facing one way ([`Solid::merge_faces_where`]), except
 /// faces at a point where the result touches itself (two vertices at one
@@ -115,7 +122,11 @@ pub(crate) fn merge_faces(
         {
             return false;
         }
-        let allowed = mergeable(&l, &r);
+        // A merged face stays readable: its polygon within the corner
+        // limit every reader of the project applies (counted before the
+        // shared edges go, so the bound holds).
+        let corners = |f: FaceId| solid.face_vertices(f).count();
+        let allowed = mergeable(&l, &r) && corners(left) + corners(right) <= MAX_MERGED_CORNERS;
         if allowed {
             merged.push((left, right));
             let index = |f: FaceId| solid.face(f).attributes.source_index.unwrap_or_default();

@@ -91,6 +91,8 @@ pub fn import_obj_bytes(
     options: &ObjOptions,
 ) -> Result<ObjImport, ObjError> {
     let start = std::time::Instant::now();
+    // Hexadecimal floats (`0x1.8p+1`) become the decimals of the same bits.
+    let bytes = &*super::hex_float::decimal_floats(bytes);
     precheck(path, bytes, options.max_face_corners)?;
     // The line pass runs first and tobj only on bytes it accepted: tobj
     // overflows (a panic in debug builds, wrong indexing in release) on face

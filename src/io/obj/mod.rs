@@ -28,6 +28,7 @@ mod corner;
 mod error;
 #[cfg(test)]
 mod fixture;
+mod hex_float;
 mod import;
 mod precheck;
 mod run_tobj;

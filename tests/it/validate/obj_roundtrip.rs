@@ -57,3 +57,58 @@ fn obj_text_is_one_based_and_counter_clockwise() {
             .all(|i| (1..=4).contains(&i.parse::<usize>().unwrap()))
     }));
 }
+
+/// C99 hexadecimal floats (`%a`, as manifold writes its test meshes) read
+/// to exactly the bits they name: a cube of side 0.1 at 1e8 written in hex
+/// reads back bit for bit as the same cube written in decimal, and
+/// validates.
+#[test]
+fn hexadecimal_floats_read_exactly() {
+    fn hex(x: f64) -> String {
+        let bits = x.to_bits();
+        let sign = if bits >> 63 == 1 { "-" } else { "" };
+        let exponent = ((bits >> 52) & 0x7ff) as i64;
+        let fraction = bits & ((1 << 52) - 1);
+        if exponent == 0 {
+            format!("{sign}0x0.{fraction:013x}p-1022")
+        } else {
+            format!("{sign}0x1.{fraction:013x}p{:+}", exponent - 1023)
+        }
+    }
+    let cube =
+        wingedge::mesh::builders::cuboid(glam::DVec3::splat(1e8), glam::DVec3::splat(1e8 + 0.1))
+            .unwrap();
+    let decimal = wingedge::io::to_obj_string(&cube);
+    let hexadecimal: String = decimal
+        .lines()
+        .map(|line| match line.strip_prefix("v ") {
+            Some(rest) => {
+                let xs: Vec<String> = rest
+                    .split_whitespace()
+                    .map(|t| hex(t.parse().unwrap()))
+                    .collect();
+                format!("v {}\n", xs.join(" "))
+            }
+            None => format!("{line}\n"),
+        })
+        .collect();
+    assert!(hexadecimal.contains("v 0x1."), "{hexadecimal}");
+    let options = wingedge::io::ObjOptions::default();
+    let read = |text: &str| {
+        wingedge::io::import_obj_bytes(std::path::Path::new("t.obj"), text.as_bytes(), &options)
+            .unwrap()
+            .soup
+    };
+    let (a, b) = (read(&decimal), read(&hexadecimal));
+    let bits = |s: &wingedge::mesh::PolygonSoup| -> Vec<[u64; 3]> {
+        s.positions
+            .iter()
+            .map(|p| p.to_array().map(f64::to_bits))
+            .collect()
+    };
+    assert_eq!(bits(&a), bits(&b));
+    let report =
+        wingedge::validate::validate_soup(&b, None, &wingedge::validate::Options::default())
+            .unwrap();
+    assert!(report.is_valid(), "{report:?}");
+}
