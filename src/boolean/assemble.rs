@@ -14,7 +14,6 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use crate::mesh::{FaceId, Polygon, PolygonSoup};
-use crate::validate::Report;
 
 use super::merge::PieceSource;
 use super::operand::{FaceOrigin, Prepared};
@@ -468,24 +467,6 @@ fn rotated_to_smallest(mut corners: [usize; 3]) -> [usize; 3] {
     let first = (0..3).min_by_key(|&k| corners[k]).unwrap_or(0);
     corners.rotate_left(first);
     corners
-}
-
-/// The first few defects of a report, one line each.
-#[must_use]
-pub(crate) fn summary(report: &Report) -> String {
-    let mut lines: Vec<String> = report
-        .violations
-        .iter()
-        .take(5)
-        .map(|v| format!("{}: {}", v.rule.name(), v.message))
-        .collect();
-    if report.violations.len() > 5 {
-        lines.push(format!("and {} more", report.violations.len() - 5));
-    }
-    if let Some(reason) = &report.not_built {
-        lines.push(reason.clone());
-    }
-    lines.join("; ")
 }
 
 #[cfg(test)]

@@ -31,6 +31,7 @@ mod classify;
 mod crossings;
 mod error;
 mod expression;
+mod failure;
 mod intersect;
 mod merge;
 mod operand;

@@ -35,7 +35,8 @@ use crate::io::written_soup;
 use crate::mesh::{FaceId, PolygonSoup, Solid};
 use crate::validate::{Options, Report, Rule, validate_soup, validate_soup_near_changed};
 
-use super::assemble::{Fixes, KeptPiece, Rounded, soup_of, summary};
+use super::assemble::{Fixes, KeptPiece, Rounded, soup_of};
+use super::failure::{invalid, not_built};
 use super::merge::{PieceSource, merge_faces};
 use super::operand::{FaceOrigin, Prepared};
 use super::points::PointTable;
@@ -86,7 +87,12 @@ pub(crate) fn build_and_prove(
                     }
                     _ => (Vec::new(), None),
                 };
-                failure = Some(BooleanError::NotBuilt(e.to_string()));
+                failure = Some(BooleanError::NotBuilt(not_built(
+                    &e,
+                    &polygons,
+                    &soup,
+                    |p| sources.get(p).map(|s| s.origin.operand),
+                )));
                 let pairs: Vec<(usize, usize)> = polygons
                     .iter()
                     .enumerate()
@@ -122,7 +128,11 @@ pub(crate) fn build_and_prove(
             }
             return Ok((solid, origins, report, proof_seconds, fixes.work(round)));
         }
-        failure = Some(invalid(&report, &written));
+        failure = Some(invalid(&report, &written, |polygon| {
+            let face = faces.get(polygon)?;
+            let index = solid.get_face(*face)?.attributes.source_index?;
+            Some(sources.get(index)?.origin.operand)
+        }));
         let proven = Proven {
             solid: &solid,
             written: &written,
@@ -536,43 +546,6 @@ fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
     (p - (a + d * t)).length()
 }
 
-/// The error for a result the rounds could not make valid: its defects,
-/// located in space.
-fn invalid(report: &Report, written: &PolygonSoup) -> BooleanError {
-    let mut located = summary(report);
-    let points: Vec<DVec3> = report
-        .violations
-        .iter()
-        .flat_map(|v| {
-            v.vertices
-                .iter()
-                .chain(v.faces.iter().flat_map(|&f| {
-                    written
-                        .polygons
-                        .get(f)
-                        .map(|p| &p.vertices[..])
-                        .unwrap_or(&[])
-                }))
-                .filter_map(|&i| written.positions.get(i).copied())
-                .collect::<Vec<_>>()
-        })
-        .collect();
-    if let Some(first) = points.first() {
-        let (lo, hi) = points
-            .iter()
-            .fold((*first, *first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-        located.push_str(&format!(
-            "; at {} … {}",
-            crate::geom::ReadableVec(lo),
-            crate::geom::ReadableVec(hi)
-        ));
-    }
-    BooleanError::InvalidResult {
-        validity: report.validity.describe().to_string(),
-        report: located,
-    }
-}
-
 /// Each operand face the result's faces came from, once, in the order of
 /// the faces; and for each face with a source, its index in that list.
 fn origins_of(solid: &Solid, sources: &[PieceSource]) -> (Vec<FaceOrigin>, Vec<(FaceId, usize)>) {
@@ -614,6 +587,6 @@ pub(crate) fn prove(solid: &Solid) -> Result<Report, BooleanError> {
     if report.is_valid() {
         Ok(report)
     } else {
-        Err(invalid(&report, &written))
+        Err(invalid(&report, &written, |_| None))
     }
 }

@@ -25,7 +25,20 @@ pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> O
     let evaluated = match evaluate(&loaded.csg, &options) {
         Ok(e) => e,
         Err(e @ EvaluateError::Boolean { .. }) => {
-            eprintln!("{name}: {e}");
+            // Exit 1: the scene was read, the result could not be made
+            // valid; nothing is written. With --json, still one object.
+            if json {
+                let mut out = Out::new();
+                let value = serde_json::json!({
+                    "scene": name.to_string(),
+                    "output": serde_json::Value::Null,
+                    "validity": "invalid",
+                    "error": format!("{name}: {e}"),
+                });
+                out.write(format!("{value:#}\n"))?;
+                out.finish()?;
+            }
+            eprintln!("error: {name}: {e}; {} not written", output.display());
             return Ok(ExitCode::from(1));
         }
         Err(e) => return Err(format!("{name}: {e}")),
