@@ -51,6 +51,7 @@
 mod error;
 mod field_leaf;
 mod json;
+mod leaf_path;
 mod limits;
 mod load;
 mod mesh_leaf;
