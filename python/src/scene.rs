@@ -14,6 +14,7 @@ use wingedge::csg::{EvaluateError, EvaluateOptions, Stats, VolumeError, evaluate
 use wingedge::geom::Ray;
 use wingedge::geom::Readable;
 use wingedge::glam::DVec3;
+use wingedge::io::ImportOptions;
 use wingedge::query::QueryError as CoreQueryError;
 use wingedge::render::{RenderOptions, render};
 use wingedge::scene::Scene;
@@ -31,6 +32,15 @@ create_exception!(
      file, the JSON position or the JSON path."
 );
 
+/// Import options whose only setting is the folders a scene's leaves may
+/// also resolve into.
+fn allowing(allow_paths: Option<Vec<PathBuf>>) -> ImportOptions {
+    ImportOptions {
+        allowed_roots: allow_paths.unwrap_or_default(),
+        ..ImportOptions::default()
+    }
+}
+
 /// A scene loaded from a file or from JSON text.
 #[pyclass(name = "NativeScene", module = "wingedge._wingedge", frozen)]
 pub struct PyScene {
@@ -39,22 +49,35 @@ pub struct PyScene {
 
 #[pymethods]
 impl PyScene {
-    /// Reads a scene file (mesh paths relative to its folder).
+    /// Reads a scene file (mesh paths relative to its folder); leaves must
+    /// resolve inside its folder, the working directory or a folder of
+    /// `allow_paths`.
     #[staticmethod]
-    fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyScene> {
+    #[pyo3(signature = (path, allow_paths = None))]
+    fn load(py: Python<'_>, path: PathBuf, allow_paths: Option<Vec<PathBuf>>) -> PyResult<PyScene> {
+        let options = allowing(allow_paths);
         let scene = py
-            .detach(|| Scene::from_file(&path))
+            .detach(|| Scene::from_file_with(&path, &options))
             .map_err(|e| SceneError::new_err(e.to_string()))?;
         Ok(PyScene {
             scene: Arc::new(scene),
         })
     }
 
-    /// Parses scene text; `base` is the folder mesh paths are relative to.
+    /// Parses scene text; `base` is the folder mesh paths are relative to,
+    /// and leaves must resolve inside it, the working directory or a folder
+    /// of `allow_paths`.
     #[staticmethod]
-    fn from_json(py: Python<'_>, text: &str, base: PathBuf) -> PyResult<PyScene> {
+    #[pyo3(signature = (text, base, allow_paths = None))]
+    fn from_json(
+        py: Python<'_>,
+        text: &str,
+        base: PathBuf,
+        allow_paths: Option<Vec<PathBuf>>,
+    ) -> PyResult<PyScene> {
+        let options = allowing(allow_paths);
         let scene = py
-            .detach(|| Scene::from_json(text, "<json>", &base))
+            .detach(|| Scene::from_json_with(text, "<json>", &base, &options))
             .map_err(|e| SceneError::new_err(e.to_string()))?;
         Ok(PyScene {
             scene: Arc::new(scene),

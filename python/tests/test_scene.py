@@ -75,3 +75,28 @@ def test_numbers_from_python_reach_the_scene_exactly():
     scene = wingedge.Scene.from_dict({"root": {"box": {"min": [0, 0, 0], "max": [x, 1, 1]}}})
     assert scene.bounds[1, 0] == x
     assert scene.classify([[x, 0.5, 0.5], [1.0, 0.5, 0.5]]).tolist() == [0, -1]
+
+
+def _cube_obj(path):
+    path.write_text(
+        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+    )
+    return path
+
+
+def test_a_leaf_outside_the_scene_folder_is_refused_unless_allowed(tmp_path):
+    outside = tmp_path / "outside"
+    scenes = tmp_path / "scenes"
+    outside.mkdir()
+    scenes.mkdir()
+    cube = _cube_obj(outside / "cube.obj")
+    scene_file = scenes / "scene.json"
+    scene_file.write_text('{"root": {"mesh": "../outside/cube.obj"}}')
+    with pytest.raises(wingedge.SceneError, match=r"root\.mesh: .*allow_paths"):
+        wingedge.Scene.load(scene_file)
+    assert wingedge.Scene.load(scene_file, allow_paths=[outside]).leaf_count == 1
+    with pytest.raises(wingedge.SceneError, match=r"root\.mesh: "):
+        wingedge.Scene.from_dict({"root": {"mesh": str(cube)}}, base=scenes)
+    scene = wingedge.Scene.from_dict({"root": {"mesh": str(cube)}}, base=scenes, allow_paths=[outside])
+    assert scene.classify([[0, 0, 0]]).tolist() == [1]

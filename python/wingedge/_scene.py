@@ -24,16 +24,25 @@ class Scene:
         self._native = native
 
     @classmethod
-    def load(cls, path) -> "Scene":
-        """Reads a scene file; mesh paths are relative to its folder. Raises
+    def load(cls, path, *, allow_paths=()) -> "Scene":
+        """Reads a scene file; mesh paths are relative to its folder. A leaf
+        (mesh, field or included scene file) must resolve, symbolic links
+        followed, inside the scene's folder, the working directory or a
+        folder in ``allow_paths``, and be a regular file. Raises
         ``SceneError`` naming the file and the JSON path."""
-        return cls(_wingedge.NativeScene.load(str(path)))
+        return cls(_wingedge.NativeScene.load(str(path), [str(p) for p in allow_paths]))
 
     @classmethod
-    def from_dict(cls, scene: dict, base=".") -> "Scene":
+    def from_dict(cls, scene: dict, base=".", *, allow_paths=()) -> "Scene":
         """A scene from Python objects shaped like a scene file (dicts,
-        lists, numbers, strings); mesh paths are relative to ``base``."""
-        return cls(_wingedge.NativeScene.from_json(json.dumps(scene), str(base)))
+        lists, numbers, strings); mesh paths are relative to ``base``, and
+        leaves must resolve inside ``base``, the working directory or a
+        folder in ``allow_paths``."""
+        return cls(
+            _wingedge.NativeScene.from_json(
+                json.dumps(scene), str(base), [str(p) for p in allow_paths]
+            )
+        )
 
     bounds = property(
         lambda self: np.array(self._native.bounds, dtype=np.float64),

@@ -115,11 +115,16 @@ class NativeScene:
     """A CSG scene (the JSON scene format) with its leaves' accels."""
 
     @staticmethod
-    def load(path: _Path) -> NativeScene:
-        """Loads a scene file (a ``.json`` scene or an ``.obj`` mesh)."""
+    def load(path: _Path, allow_paths: Optional[Sequence[_Path]] = None) -> NativeScene:
+        """Loads a scene file; leaves must resolve inside its folder, the
+        working directory or a folder of ``allow_paths``."""
     @staticmethod
-    def from_json(text: str, base: _Path) -> NativeScene:
-        """A scene from JSON text; relative paths resolve against ``base``."""
+    def from_json(
+        text: str, base: _Path, allow_paths: Optional[Sequence[_Path]] = None
+    ) -> NativeScene:
+        """A scene from JSON text; relative paths resolve against ``base``,
+        and leaves must resolve inside it, the working directory or a folder
+        of ``allow_paths``."""
     @property
     def bounds(self) -> Tuple[_Vec3, _Vec3]: ...
     @property

@@ -18,8 +18,8 @@ use crate::mesh::{Polygon, PolygonSoup};
 /// object or a mesh many times multiplies a small file's triangles.
 pub const MAX_PLACED_TRIANGLES: usize = 50_000_000;
 
-/// How to read a mesh file.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// How to read a mesh file, and which folders a scene's leaves may name.
+#[derive(Clone, Debug, PartialEq)]
 pub struct ImportOptions {
     /// The format; `None` picks it by the extension ([`Format::of_input`]:
     /// OBJ for an extension that names no format).
@@ -31,6 +31,12 @@ pub struct ImportOptions {
     /// The most corners one face may have (OBJ, PLY, OFF, ASCII STL); see
     /// [`ObjOptions::max_face_corners`].
     pub max_face_corners: usize,
+    /// Scenes only: folders, beyond the scene file's own folder and the
+    /// working directory, inside which a scene's leaves (mesh, field and
+    /// included scene files) may resolve, symbolic links followed. Empty
+    /// by default; a mesh file read directly ignores it. See
+    /// [`crate::scene`] (the path policy) and docs/hostile-input.md.
+    pub allowed_roots: Vec<PathBuf>,
 }
 
 impl Default for ImportOptions {
@@ -39,6 +45,7 @@ impl Default for ImportOptions {
             format: None,
             weld: WeldMode::default(),
             max_face_corners: DEFAULT_MAX_FACE_CORNERS,
+            allowed_roots: Vec::new(),
         }
     }
 }

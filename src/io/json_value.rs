@@ -47,11 +47,11 @@ pub enum JsonError {
         message: String,
     },
     /// A key the format does not have there.
-    #[error("{at}: unknown key \"{key}\" (expected {expected})")]
+    #[error("{at}: unknown key \"{}\" (expected {expected})", super::import_error::excerpt(.key.as_bytes()))]
     UnknownKey {
         /// The JSON path of the object.
         at: String,
-        /// The key found.
+        /// The key found (the message quotes a short, escaped excerpt).
         key: String,
         /// The keys allowed there.
         expected: &'static str,

@@ -56,6 +56,30 @@ pub enum SceneError {
         /// The files of the cycle, from the first to the one included again.
         chain: Vec<PathBuf>,
     },
+    /// A leaf (mesh, field document or included scene) names a file that
+    /// resolves, symbolic links followed, outside the scene file's folder,
+    /// the working directory and every allowed folder.
+    #[error("{at}: {} resolves to {}, outside the scene's folder and the working directory; a scene reads leaves only there unless a folder is allowed (--allow-path DIR; ImportOptions::allowed_roots; allow_paths in Python)", .file.display(), .resolved.display())]
+    PathOutside {
+        /// The JSON path of the leaf.
+        at: String,
+        /// The path as named, joined to the scene's folder.
+        file: PathBuf,
+        /// Where it resolves to.
+        resolved: PathBuf,
+    },
+    /// A leaf names something other than a regular file (a directory, a
+    /// FIFO, a device): refused before it is opened, so that reading never
+    /// blocks.
+    #[error("{at}: {} is a {kind}, not a regular file; scene leaves must be regular files", .file.display())]
+    NotRegularFile {
+        /// The JSON path of the leaf.
+        at: String,
+        /// The path as named, joined to the scene's folder.
+        file: PathBuf,
+        /// What it is instead.
+        kind: &'static str,
+    },
     /// An included scene file is unreadable or wrong.
     #[error("{at}: included scene: {source}")]
     Include {

@@ -1,7 +1,7 @@
 //! Field leaves: a field document (inline or a file) meshed by marching
 //! cubes into a validated [`Polyhedron`] leaf.
 
-use std::path::Path;
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use serde_json::Value;
@@ -19,21 +19,22 @@ pub const DEFAULT_FIELD_RESOLUTION: usize = 64;
 pub const MAX_FIELD_RESOLUTION: usize = 256;
 
 /// The leaf of `{"field": BODY}` at JSON path `at`: BODY is a field
-/// document, or the path of a field document file relative to `base`.
+/// document, or the path of a field document file, which `leaf_file`
+/// resolves (and refuses where the path policy does).
 ///
 /// # Errors
 ///
-/// [`SceneError::Value`] or [`SceneError::UnknownKey`] naming the JSON path
-/// (inside the scene, or the file and its own path), a resolution above
-/// [`MAX_FIELD_RESOLUTION`], or an empty field.
+/// [`SceneError::Json`] naming the JSON path (inside the scene, or the
+/// file and its own path), a resolution above [`MAX_FIELD_RESOLUTION`],
+/// or an empty field; `leaf_file`'s refusal.
 pub(super) fn field_leaf(
     body: &Value,
     at: &str,
-    base: &Path,
+    leaf_file: impl FnOnce(&str) -> Result<PathBuf, SceneError>,
 ) -> Result<Arc<dyn Primitive>, SceneError> {
     let doc = match body {
         Value::String(relative) => {
-            let file = base.join(relative);
+            let file = leaf_file(relative)?;
             crate::field::load_json(&file).map_err(|e| {
                 value_error(
                     at,

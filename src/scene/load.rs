@@ -33,13 +33,29 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Reads a scene file; mesh paths are relative to its folder.
+    /// Reads a scene file; mesh paths are relative to its folder, and
+    /// leaves must resolve inside its folder or the working directory (see
+    /// the module's path policy).
     ///
     /// # Errors
     ///
     /// [`SceneError`] naming the file, the JSON position or the JSON path.
     pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
-        let state = ReadState::default();
+        Scene::from_file_with(path, &crate::io::ImportOptions::default())
+    }
+
+    /// [`Scene::from_file`], leaves also allowed inside
+    /// `options.allowed_roots` (the other options are for mesh files read
+    /// directly: each leaf is read as its node says).
+    ///
+    /// # Errors
+    ///
+    /// As [`Scene::from_file`].
+    pub fn from_file_with(
+        path: &Path,
+        options: &crate::io::ImportOptions,
+    ) -> Result<Scene, SceneError> {
+        let state = ReadState::new(&options.allowed_roots);
         let (value, root) = read_scene_file(path, &state, Vec::new(), 0)?;
         object(&value, "scene")
             .and_then(|top| Scene::assemble(top, root))
@@ -54,7 +70,22 @@ impl Scene {
     /// As [`Scene::from_file`]; errors other than JSON syntax name the JSON
     /// path only (the text has no file).
     pub fn from_json(text: &str, name: &str, base: &Path) -> Result<Scene, SceneError> {
-        let state = ReadState::default();
+        Scene::from_json_with(text, name, base, &crate::io::ImportOptions::default())
+    }
+
+    /// [`Scene::from_json`], leaves also allowed inside
+    /// `options.allowed_roots` (besides `base` and the working directory).
+    ///
+    /// # Errors
+    ///
+    /// As [`Scene::from_json`].
+    pub fn from_json_with(
+        text: &str,
+        name: &str,
+        base: &Path,
+        options: &crate::io::ImportOptions,
+    ) -> Result<Scene, SceneError> {
+        let state = ReadState::new(&options.allowed_roots);
         let value = parse_json(text, name)?;
         let reader = Reader {
             base,
@@ -79,7 +110,8 @@ impl Scene {
     }
 
     /// [`Scene::from_path`], a mesh read as `options` say (its format
-    /// given, say); with a format given, a `.json` path is read as a mesh.
+    /// given, say); with a format given, a `.json` path is read as a mesh;
+    /// a scene's leaves also allowed inside `options.allowed_roots`.
     ///
     /// # Errors
     ///
@@ -89,7 +121,7 @@ impl Scene {
         options: &crate::io::ImportOptions,
     ) -> Result<Scene, SceneError> {
         if is_scene_path(path) && options.format.is_none() {
-            return Scene::from_file(path);
+            return Scene::from_file_with(path, options);
         }
         let primitive = load_mesh(path, options).map_err(|message| SceneError::MeshFile {
             file: path.to_path_buf(),

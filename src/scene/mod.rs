@@ -23,6 +23,16 @@
 //! scene file. Unknown keys and bad values are errors naming the JSON path,
 //! e.g. `root.difference[1].sphere.radius`.
 //!
+//! # Paths
+//!
+//! A file a leaf names (mesh, field document, included scene) must
+//! resolve, symbolic links followed, inside the naming scene file's folder
+//! or the working directory, or inside a folder of
+//! [`ImportOptions::allowed_roots`](crate::io::ImportOptions::allowed_roots)
+//! ([`SceneError::PathOutside`] otherwise), and must be a regular file
+//! ([`SceneError::NotRegularFile`]: a FIFO or a device is refused before
+//! it is opened). Messages quote input only in short, escaped excerpts.
+//!
 //! # Limits
 //!
 //! Hostile files are refused quickly, with the limit named in the error:
@@ -41,8 +51,8 @@
 //! # Files
 //!
 //! `json.rs` reads values with their JSON paths, `node.rs` the tree's
-//! nodes, `reader.rs` files and inclusions, `limits.rs` counts against the
-//! limits, `mesh_leaf.rs` loads and validates OBJ leaves, `solid_leaf.rs` builds
+//! nodes, `reader.rs` files and inclusions, `leaf_path.rs` the path
+//! policy of leaves, `limits.rs` counts against the limits, `mesh_leaf.rs` loads and validates OBJ leaves, `solid_leaf.rs` builds
 //! and validates sweep, revolve and loft leaves, `field_leaf.rs` meshes
 //! field leaves, `view.rs` the
 //! camera and light, `load.rs` assembles a [`Scene`], `target.rs` is the
@@ -51,6 +61,7 @@
 mod error;
 mod field_leaf;
 mod json;
+mod leaf_path;
 mod limits;
 mod load;
 mod mesh_leaf;

@@ -70,7 +70,7 @@ impl Reader<'_> {
             "loft" => solid_leaf::loft(body, &here).map(leaf),
             "mesh" => {
                 let (relative, format) = mesh_reference(body, &here)?;
-                let file = self.base.join(relative);
+                let file = self.leaf_file(relative, &here)?;
                 let primitive =
                     self.state
                         .meshes
@@ -82,12 +82,15 @@ impl Reader<'_> {
                         })?;
                 Ok(leaf(primitive))
             }
-            "field" => super::field_leaf::field_leaf(body, &here, self.base).map(leaf),
+            "field" => super::field_leaf::field_leaf(body, &here, |relative| {
+                self.leaf_file(relative, &here)
+            })
+            .map(leaf),
             "scene" => {
                 let Value::String(relative) = body else {
                     return Err(bad(&here, "a scene file path (string)", body));
                 };
-                self.include(&self.base.join(relative), &here, depth)
+                self.include(relative, &here, depth)
             }
             _ => Err(SceneError::Json(JsonError::UnknownKey {
                 at: at.to_string(),

@@ -11,6 +11,7 @@ use serde_json::{Map, Value};
 use super::SceneError;
 use super::error::in_file;
 use super::json::{check_keys, object, parse_json};
+use super::leaf_path::PathPolicy;
 use super::limits::{IncludedSize, NodeBudget};
 use super::mesh_leaf::MeshLeaves;
 use crate::csg::CsgExpr;
@@ -25,7 +26,20 @@ const TOP_KEYS: &str = "root, camera, light, shadows";
 pub(super) struct ReadState {
     pub(super) budget: NodeBudget,
     pub(super) meshes: MeshLeaves,
+    /// Where leaves may resolve.
+    pub(super) paths: PathPolicy,
     scenes: RefCell<HashMap<PathBuf, IncludedScene>>,
+}
+
+impl ReadState {
+    /// The state of a scene read with leaves allowed in `allowed_roots`
+    /// (besides each scene file's folder and the working directory).
+    pub(super) fn new(allowed_roots: &[PathBuf]) -> ReadState {
+        ReadState {
+            paths: PathPolicy::new(allowed_roots),
+            ..ReadState::default()
+        }
+    }
 }
 
 /// A scene file read once, for the next inclusions.
@@ -116,14 +130,22 @@ impl Reader<'_> {
         Ok((top, self.node(root, "root", depth)?))
     }
 
-    /// The root of another scene file, included at `at` by a node `depth`
-    /// deep; refused if it would include itself or nest too deep.
+    /// The file `relative` names for the leaf at `at`, when the path
+    /// policy admits it (see `leaf_path.rs`).
+    pub(super) fn leaf_file(&self, relative: &str, at: &str) -> Result<PathBuf, SceneError> {
+        self.state.paths.admit(self.base, relative, at)
+    }
+
+    /// The root of the scene file `relative` names, included at `at` by a
+    /// node `depth` deep; refused if the path policy refuses the file, or
+    /// if it would include itself or nest too deep.
     pub(super) fn include(
         &self,
-        file: &Path,
+        relative: &str,
         at: &str,
         depth: usize,
     ) -> Result<CsgExpr, SceneError> {
+        let file = &self.leaf_file(relative, at)?;
         if let Ok(canonical) = std::fs::canonicalize(file)
             && let Some(first) = self.files.iter().position(|f| *f == canonical)
         {

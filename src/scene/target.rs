@@ -137,14 +137,15 @@ impl Target {
     }
 
     /// [`Target::try_load`], a mesh read as `options` say (its format
-    /// given, say); with a format given, a `.json` path is read as a mesh.
+    /// given, say); with a format given, a `.json` path is read as a mesh;
+    /// a scene's leaves also allowed inside `options.allowed_roots`.
     ///
     /// # Errors
     ///
     /// As [`Target::try_load`].
     pub fn try_load_with(path: &Path, options: &ImportOptions) -> Result<Target, TargetError> {
         let kind = if is_scene_path(path) && options.format.is_none() {
-            Kind::Scene(Scene::from_file(path)?)
+            Kind::Scene(Scene::from_file_with(path, options)?)
         } else {
             let soup = match import(path, options) {
                 Ok(import) => import.soup,

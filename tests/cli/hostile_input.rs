@@ -328,7 +328,9 @@ fn scenes_that_include_themselves() {
 
 /// Found by the fuzzing audit: a mesh path naming an endless device was
 /// read until memory ran out. Reads now stop at the first NUL byte (binary
-/// data, named by its line) and at `MAX_INPUT_BYTES`.
+/// data, named by its line) and at `MAX_INPUT_BYTES`; a scene leaf naming
+/// a device is refused before it is opened (outside the scene's folder,
+/// and, allowed, not a regular file).
 #[cfg(target_os = "linux")]
 #[test]
 fn endless_devices_are_refused_as_binary() {
@@ -338,7 +340,17 @@ fn endless_devices_are_refused_as_binary() {
     every_scene_command_refuses(
         &dir,
         scene.to_str().expect("path"),
-        &["/dev/zero:1: binary data"],
+        &["root.mesh: /dev/zero", "outside the scene's folder"],
+    );
+    let allowed = wingedge::io::ImportOptions {
+        allowed_roots: vec!["/dev".into()],
+        ..wingedge::io::ImportOptions::default()
+    };
+    let e = Scene::from_file_with(&scene, &allowed).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("root.mesh: /dev/zero is a character device, not a regular file"),
+        "{e}"
     );
     let o = run(
         &["classify", "fixtures/valid/cube.obj", "/dev/zero"],

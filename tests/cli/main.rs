@@ -2,7 +2,7 @@
 //! one crate with a module per command (`validate`, `info`, `query` for
 //! `classify` and `raycast`, `csg` for the scene commands, `mesh`, `cells`)
 //! and for the promises every command keeps (`determinism`,
-//! `error_catalogue`, `hostile_input`). Built with the `cli` feature only.
+//! `error_catalogue`, `hostile_input`, `paths`). Built with the `cli` feature only.
 //! Run one module with a filter: `cargo test --test cli hostile_input::`.
 
 #[path = "../common/mod.rs"]
@@ -16,5 +16,6 @@ mod formats;
 mod hostile_input;
 mod info;
 mod mesh;
+mod paths;
 mod query;
 mod validate;

@@ -30,7 +30,7 @@ pub fn run(
     let named = |e: &dyn std::fmt::Display| format!("{}: {e}", target.display());
     let mut mesh_volume = None;
     let (tree, seconds, scene_stats) = if is_scene_path(target) && options.format.is_none() {
-        let scene = Scene::from_file(target).map_err(|e| e.to_string())?;
+        let scene = Scene::from_file_with(target, options).map_err(|e| e.to_string())?;
         let start = Instant::now();
         let mut stats = Stats::default();
         let tree = Octree::classify_csg(&scene.csg, depth, &mut stats).map_err(|e| named(&e))?;

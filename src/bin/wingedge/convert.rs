@@ -42,6 +42,7 @@ pub fn run(args: Args) -> Outcome {
         format: args.format,
         weld,
         max_face_corners: args.max_face_corners,
+        ..ImportOptions::default()
     };
     let validation = Options {
         tolerance,

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use wingedge::csg::{EvaluateError, EvaluateOptions, evaluate};
-use wingedge::io::write_obj;
+use wingedge::io::{ImportOptions, write_obj};
 use wingedge::scene::Scene;
 
 use crate::output::{Out, Outcome, measure};
@@ -14,10 +14,17 @@ use crate::output::{Out, Outcome, measure};
 /// Evaluates the scene at `scene` and writes the solid to `output`. Exit 0
 /// for a valid solid, 1 when a boolean's result could not be made valid
 /// (the defect located, nothing written), 2 for a scene that cannot be read
-/// or has leaves that cannot be evaluated.
-pub fn run(scene: &Path, output: &Path, tolerance: Option<f64>, json: bool) -> Outcome {
+/// or has leaves that cannot be evaluated. Leaves may also resolve inside
+/// `allowed.allowed_roots`.
+pub fn run(
+    scene: &Path,
+    output: &Path,
+    tolerance: Option<f64>,
+    json: bool,
+    allowed: &ImportOptions,
+) -> Outcome {
     let name = scene.display();
-    let loaded = Scene::from_file(scene).map_err(|e| e.to_string())?;
+    let loaded = Scene::from_file_with(scene, allowed).map_err(|e| e.to_string())?;
     let options = EvaluateOptions {
         tolerance: tolerance.unwrap_or(EvaluateOptions::default().tolerance),
     };

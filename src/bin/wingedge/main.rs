@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use wingedge::io::{Format, ImportOptions};
 
 mod cells;
@@ -71,6 +71,8 @@ enum Command {
         /// by the extension, OBJ for any other.
         #[arg(long, value_name = "FORMAT")]
         format: Option<Format>,
+        #[command(flatten)]
+        paths: PathArgs,
     },
     /// Cast rays at a closed solid: prints, per ray, `inside`, `outside` or
     /// `boundary` for its origin, then the ascending parameters t > 0 of its
@@ -90,6 +92,8 @@ enum Command {
         /// by the extension, OBJ for any other.
         #[arg(long, value_name = "FORMAT")]
         format: Option<Format>,
+        #[command(flatten)]
+        paths: PathArgs,
     },
     /// Print the volume of a mesh or a scene: closed form for a single
     /// solid, otherwise by integrating ray spans over a grid.
@@ -111,6 +115,8 @@ enum Command {
         /// by the extension, OBJ for any other.
         #[arg(long, value_name = "FORMAT")]
         format: Option<Format>,
+        #[command(flatten)]
+        paths: PathArgs,
     },
     /// Validate mesh files (obj, stl, ply, off, 3mf, gltf, glb): a graded
     /// verdict per file and every defect with its line (text formats) or
@@ -203,6 +209,8 @@ enum Command {
         /// by the extension, OBJ for any other.
         #[arg(long, value_name = "FORMAT")]
         format: Option<Format>,
+        #[command(flatten)]
+        paths: PathArgs,
     },
     /// Mesh a field document (blobs and field CSG, JSON) or a CSG scene by
     /// marching cubes into a validated closed solid and write it as OBJ. Exit code 0 for a
@@ -246,6 +254,8 @@ enum Command {
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        paths: PathArgs,
     },
     /// Render a scene to a PNG: Lambert shading with the scene's light,
     /// shadows only if the scene asks.
@@ -261,7 +271,20 @@ enum Command {
         /// Print the work counters to standard error.
         #[arg(long)]
         stats: bool,
+        #[command(flatten)]
+        paths: PathArgs,
     },
+}
+
+/// Where a scene's leaves may be read from.
+#[derive(Debug, Args)]
+struct PathArgs {
+    /// Also allow a scene's leaves (mesh, field and included scene files)
+    /// inside DIR (repeatable). By default a leaf must resolve, symbolic
+    /// links followed, inside the scene file's folder or the working
+    /// directory, and must be a regular file.
+    #[arg(long = "allow-path", value_name = "DIR")]
+    allow_path: Vec<PathBuf>,
 }
 
 /// The `--method` values of `classify`.
@@ -285,10 +308,12 @@ impl From<MethodArg> for wingedge::query::Method {
     }
 }
 
-/// Import options with only the format set.
-fn options(format: Option<Format>) -> ImportOptions {
+/// Import options with the format and the folders scene leaves may also
+/// resolve into.
+fn options(format: Option<Format>, paths: PathArgs) -> ImportOptions {
     ImportOptions {
         format,
+        allowed_roots: paths.allow_path,
         ..ImportOptions::default()
     }
 }
@@ -308,32 +333,42 @@ fn main() -> ExitCode {
             method,
             stats,
             format,
-        } => query::classify(&mesh, &points, method.into(), stats, &options(format)),
+            paths,
+        } => query::classify(
+            &mesh,
+            &points,
+            method.into(),
+            stats,
+            &options(format, paths),
+        ),
         Command::Raycast {
             mesh,
             rays,
             stats,
             format,
-        } => query::raycast(&mesh, &rays, stats, &options(format)),
+            paths,
+        } => query::raycast(&mesh, &rays, stats, &options(format, paths)),
         Command::Volume {
             target,
             spacing,
             integrate,
             stats,
             format,
-        } => volume::run(&target, spacing, integrate, stats, &options(format)),
+            paths,
+        } => volume::run(&target, spacing, integrate, stats, &options(format, paths)),
         Command::Cells {
             target,
             depth,
             npy,
             obj,
             format,
+            paths,
         } => cells::run(
             &target,
             depth,
             npy.as_deref(),
             obj.as_deref(),
-            &options(format),
+            &options(format, paths),
         ),
         Command::Convert {
             input,
@@ -374,13 +409,15 @@ fn main() -> ExitCode {
             output,
             tolerance,
             json,
-        } => csg::run(&scene, &output, tolerance, json),
+            paths,
+        } => csg::run(&scene, &output, tolerance, json, &options(None, paths)),
         Command::Render {
             scene,
             output,
             size,
             stats,
-        } => render::run(&scene, &output, size, stats),
+            paths,
+        } => render::run(&scene, &output, size, stats, &options(None, paths)),
         Command::Validate {
             files,
             json,

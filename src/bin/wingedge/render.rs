@@ -3,6 +3,7 @@
 use std::path::Path;
 use std::process::ExitCode;
 
+use wingedge::io::ImportOptions;
 use wingedge::render::{RenderOptions, render};
 use wingedge::scene::Scene;
 
@@ -22,8 +23,16 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     }
 }
 
-pub fn run(scene: &Path, out: &Path, size: (u32, u32), show_stats: bool) -> Outcome {
-    let scene_data = Scene::from_file(scene).map_err(|e| e.to_string())?;
+/// Renders `scene` to `out`; leaves may also resolve inside
+/// `allowed.allowed_roots`.
+pub fn run(
+    scene: &Path,
+    out: &Path,
+    size: (u32, u32),
+    show_stats: bool,
+    allowed: &ImportOptions,
+) -> Outcome {
+    let scene_data = Scene::from_file_with(scene, allowed).map_err(|e| e.to_string())?;
     let options = RenderOptions {
         width: size.0,
         height: size.1,

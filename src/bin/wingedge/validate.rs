@@ -68,6 +68,7 @@ pub fn run(args: Args) -> Outcome {
                 format: args.format,
                 weld,
                 max_face_corners: args.max_face_corners,
+                ..ImportOptions::default()
             },
         )
         .map_err(|e| (e.to_string(), e.line()))

@@ -49,11 +49,11 @@ pub(super) fn check_attribute_index(
     match parse_index(text) {
         IndexText::NotAnIndex => Err(error(format!(
             "cannot read {what} index `{}`",
-            String::from_utf8_lossy(text)
+            crate::io::import_error::excerpt(text)
         ))),
         IndexText::TooLarge { negative } => Err(error(format!(
             "{what} index {} is out of range: {} `{keyword}` lines are defined",
-            String::from_utf8_lossy(text),
+            crate::io::import_error::excerpt(text),
             if negative {
                 count.defined
             } else {

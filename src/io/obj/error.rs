@@ -78,7 +78,7 @@ pub enum ObjError {
         path: PathBuf,
         /// The face's line.
         line: usize,
-        /// The index as written.
+        /// The index as written (a short, escaped excerpt).
         token: String,
         /// How many vertices the file defines (for a negative index: the
         /// vertices defined before the line).
@@ -104,7 +104,7 @@ pub enum ObjError {
         path: PathBuf,
         /// The face's line.
         line: usize,
-        /// The corner as written.
+        /// The corner as written (a short, escaped excerpt).
         token: String,
     },
     /// A vertex with a NaN or infinite coordinate.

@@ -56,19 +56,14 @@ fn describe_tobj_error(error: &tobj::LoadError) -> String {
     .to_string()
 }
 
-/// The text of a 1-based line, shortened to at most 60 characters.
+/// The text of a 1-based line as a short, escaped excerpt (see
+/// [`excerpt`](crate::io::import_error::excerpt)).
 fn excerpt_of_line(bytes: &[u8], line: usize) -> String {
-    const SHOWN: usize = 60;
     let text = bytes
         .split(|&b| b == b'\n')
         .nth(line - 1)
         .unwrap_or_default();
-    let text = String::from_utf8_lossy(text);
-    let text = text.trim();
-    match text.char_indices().nth(SHOWN) {
-        Some((cut, _)) => format!("{}…", &text[..cut]),
-        None => text.to_string(),
-    }
+    crate::io::import_error::excerpt(text.trim_ascii())
 }
 
 /// The first line that makes tobj fail with `error`, found by re-checking

@@ -87,7 +87,7 @@ pub(super) fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                     let bad = || ObjError::BadCorner {
                         path: p(),
                         line,
-                        token: String::from_utf8_lossy(word).into_owned(),
+                        token: crate::io::import_error::excerpt(word),
                     };
                     let (index_text, texture, normal) = corner_parts(word).ok_or_else(bad)?;
                     if let Some(text) = texture {
@@ -102,7 +102,7 @@ pub(super) fn scan(path: &Path, bytes: &[u8]) -> Result<Scan, ObjError> {
                             return Err(ObjError::IndexTooLarge {
                                 path: p(),
                                 line,
-                                token: String::from_utf8_lossy(index_text).into_owned(),
+                                token: crate::io::import_error::excerpt(index_text),
                                 available: if negative {
                                     defined
                                 } else {

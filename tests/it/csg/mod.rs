@@ -7,5 +7,6 @@ mod mesh;
 mod ray_range;
 mod render;
 mod scene_fields;
+mod scene_paths;
 mod scene_solids;
 mod tree;
