@@ -193,6 +193,24 @@ fn learn(fixes: &mut Fixes, at: &Round, report: &Report, proven: &Proven) -> boo
         .map(|(v, &p)| (key(p), v))
         .collect();
     let soup_vertex = |w: usize| vertex_at.get(&key(proven.written.positions[w])).copied();
+    // A shell turned inside out is a sliver between near-coincident
+    // sheets that rounding flipped: dropped first, if thinner than f64
+    // can hold, before any fix moves points around it.
+    let inward: Vec<usize> = report
+        .violations
+        .iter()
+        .filter(|v| v.rule == Rule::ShellOrientedInward)
+        .flat_map(|v| v.faces.iter().copied())
+        .collect();
+    if !inward.is_empty()
+        && drop_thin_shells(fixes, at, proven.written, &inward, &|p| {
+            let face = proven.faces.get(p)?;
+            let source = proven.solid.face(*face).attributes.source_index?;
+            Some(members[&group_of[source]].clone())
+        })
+    {
+        return true;
+    }
     let mut learnt = false;
     let mut to_fix: Vec<usize> = Vec::new();
     let mut pairs: Vec<(usize, usize)> = Vec::new();
