@@ -48,6 +48,7 @@ impl Raster {
     }
 
     /// The colour of pixel `(x, y)`, if it is in the image.
+    #[cfg(test)]
     pub(crate) fn get(&self, x: i64, y: i64) -> Option<Rgb> {
         self.index(x, y).map(|i| self.colour[i])
     }
