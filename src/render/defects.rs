@@ -268,10 +268,10 @@ fn draw_faces(raster: &mut Raster, frame: &Frame, soup: &PolygonSoup, violations
         .filter(|v| defect_mark(v.rule) == DefectMark::Face)
     {
         for &f in &v.faces {
-            if let Some(slot) = face_rule.get_mut(f) {
-                if slot.is_none_or(|old| rank(v.rule) < rank(old)) {
-                    *slot = Some(v.rule);
-                }
+            if let Some(slot) = face_rule.get_mut(f)
+                && slot.is_none_or(|old| rank(v.rule) < rank(old))
+            {
+                *slot = Some(v.rule);
             }
         }
     }
