@@ -11,6 +11,7 @@
 
 mod arrays;
 mod boolean;
+mod defects;
 mod errors;
 mod expression;
 mod face_index;
@@ -40,6 +41,8 @@ fn _wingedge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(boolean::combine, m)?)?;
     m.add_function(wrap_pyfunction!(report::validate_path, m)?)?;
     m.add_function(wrap_pyfunction!(report::validate_solid, m)?)?;
+    m.add_function(wrap_pyfunction!(defects::render_defects_path, m)?)?;
+    m.add_function(wrap_pyfunction!(defects::render_defects_solid, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -255,6 +255,35 @@ pub(crate) struct PyReport {
 }
 
 impl PyReport {
+    /// The violations as the crate's type (how they are drawn).
+    ///
+    /// # Errors
+    ///
+    /// `ValueError` for a rule name the crate does not have (a report
+    /// unpickled from edited JSON).
+    pub(crate) fn core_violations(&self) -> PyResult<Vec<validate::Violation>> {
+        self.violations
+            .0
+            .iter()
+            .map(|v| {
+                let v = v.get();
+                let rule = Rule::ALL
+                    .into_iter()
+                    .find(|r| r.name() == v.rule)
+                    .ok_or_else(|| PyValueError::new_err(format!("no rule named {:?}", v.rule)))?;
+                Ok(validate::Violation {
+                    rule,
+                    message: v.message.clone(),
+                    line: v.line,
+                    lines: v.lines.clone(),
+                    vertices: v.vertices.clone(),
+                    faces: v.faces.clone(),
+                    value: v.value,
+                })
+            })
+            .collect()
+    }
+
     fn new(
         py: Python<'_>,
         report: &validate::Report,
@@ -372,7 +401,8 @@ impl PyReport {
     }
 }
 
-fn options(planarity: Option<f64>) -> PyResult<Options> {
+/// The validation options of a `planarity` argument.
+pub(crate) fn options(planarity: Option<f64>) -> PyResult<Options> {
     let mut tolerance = Tolerance::default();
     if let Some(p) = planarity {
         if !(p.is_finite() && p >= 0.0) {

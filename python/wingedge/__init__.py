@@ -18,7 +18,7 @@ checks they share). Import from ``wingedge`` itself.
 
 from . import _wingedge
 from ._io import load, load_obj
-from ._report import Report, Violation, validate
+from ._report import Report, Violation, render_defects, validate
 from ._scene import Scene
 from ._solid import (
     Solid,
@@ -55,6 +55,7 @@ __all__ = [
     "Violation",
     "load",
     "load_obj",
+    "render_defects",
     "validate",
     "combine",
     "builtin",

@@ -255,3 +255,21 @@ def validate_path(
     """The report ``validate --json`` prints for a file."""
 def validate_solid(solid: NativeSolid, planarity: Optional[float] = None) -> Report:
     """The report for a solid's source soup."""
+def render_defects_path(
+    path: _Path,
+    width: int = 800,
+    height: int = 600,
+    report: Optional[Report] = None,
+    weld: Optional[object] = None,
+    planarity: Optional[float] = None,
+    format: Optional[str] = None,
+) -> npt.NDArray[np.uint8]:
+    """A file's defect picture, ``(height, width, 3)`` uint8."""
+def render_defects_solid(
+    solid: NativeSolid,
+    width: int = 800,
+    height: int = 600,
+    report: Optional[Report] = None,
+    planarity: Optional[float] = None,
+) -> npt.NDArray[np.uint8]:
+    """A solid's source soup's defect picture, ``(height, width, 3)`` uint8."""

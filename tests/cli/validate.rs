@@ -233,3 +233,87 @@ fn empty_files_are_the_empty_solid() {
     let (code, files) = json(&[&only.to_string_lossy()]);
     assert_eq!(code, 2, "{files:?}");
 }
+
+/// The size and pixels of a PNG file.
+fn read_png(path: &std::path::Path) -> (u32, u32, Vec<[u8; 3]>) {
+    let file = std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .expect("a PNG header");
+    let mut bytes = vec![0; reader.output_buffer_size().expect("a size")];
+    let info = reader.next_frame(&mut bytes).expect("a PNG image");
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    let pixels = bytes[..info.buffer_size()]
+        .chunks(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    (info.width, info.height, pixels)
+}
+
+#[test]
+fn image_draws_the_defects_at_the_size_asked_and_keeps_the_exit_code() {
+    let dir = TempDir::new("validate-image");
+    let picture = dir.path().join("hole.png");
+    let (code, out, err) = wingedge(&[
+        "validate",
+        "fixtures/broken/edge_in_one_face.obj",
+        "--image",
+        &picture.display().to_string(),
+        "--image-size",
+        "320x200",
+    ]);
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(out.contains("edge_in_one_face: 3"), "{out}");
+    let (width, height, pixels) = read_png(&picture);
+    assert_eq!((width, height), (320, 200));
+    let rim = wingedge::render::defect_colour(wingedge::validate::Rule::EdgeInOneFace);
+    let drawn = pixels.iter().filter(|&&p| p == rim).count();
+    // The legend's 7 × 7 swatch at this width, and the rim's lines.
+    assert!(drawn > 49 + 50, "{drawn} pixels in the rim's colour");
+}
+
+#[test]
+fn image_of_a_valid_solid_exits_0_and_is_800_by_600() {
+    let dir = TempDir::new("validate-image-valid");
+    let picture = dir.path().join("cube.png");
+    let (code, out, err) = wingedge(&[
+        "validate",
+        "fixtures/valid/cube.obj",
+        "--image",
+        &picture.display().to_string(),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let (width, height, pixels) = read_png(&picture);
+    assert_eq!((width, height), (800, 600));
+    assert!(
+        pixels.iter().all(|p| p[0] == p[1] && p[1] == p[2]),
+        "greys only"
+    );
+}
+
+#[test]
+fn image_refuses_several_files_and_writes_nothing() {
+    let dir = TempDir::new("validate-image-two");
+    let picture = dir.path().join("two.png");
+    let (code, out, err) = wingedge(&[
+        "validate",
+        "fixtures/valid/cube.obj",
+        "fixtures/broken/edge_in_one_face.obj",
+        "--image",
+        &picture.display().to_string(),
+    ]);
+    assert_eq!(code, 2, "{out}");
+    assert!(
+        err.contains("--image draws one file's defects, but 2 files were given"),
+        "{err}"
+    );
+    assert!(!picture.exists());
+    let (code, _, err) = wingedge(&[
+        "validate",
+        "fixtures/valid/cube.obj",
+        "--image-size",
+        "10x10",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--image"), "{err}");
+}

@@ -152,6 +152,14 @@ enum Command {
         /// by the extension, OBJ for any other.
         #[arg(long, value_name = "FORMAT")]
         format: Option<Format>,
+        /// Also draw the mesh with its defects marked (framed on them, a
+        /// legend of the counts per rule) as a PNG file; one input file
+        /// only. The exit code is the verdict's.
+        #[arg(long, value_name = "OUT.png")]
+        image: Option<PathBuf>,
+        /// The size of the --image picture.
+        #[arg(long, value_name = "WxH", default_value = "800x600", value_parser = render::parse_size, requires = "image")]
+        image_size: (u32, u32),
     },
     /// Convert a mesh between formats (obj, stl, ply, off, 3mf, gltf, glb),
     /// validating it on the way: exit code 0 when written, 1 with the
@@ -427,6 +435,8 @@ fn main() -> ExitCode {
             show,
             max_face_corners,
             format,
+            image,
+            image_size,
         } => validate::run(validate::Args {
             files,
             json,
@@ -436,6 +446,8 @@ fn main() -> ExitCode {
             show,
             max_face_corners,
             format,
+            image,
+            image_size,
         }),
     })
 }

@@ -1,4 +1,5 @@
-//! `wingedge validate FILE...`: a verdict per file, every defect located.
+//! `wingedge validate FILE...`: a verdict per file, every defect located;
+//! `--image OUT.png` draws them (one file only).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -6,6 +7,7 @@ use std::process::ExitCode;
 use serde_json::{Value, json};
 use wingedge::geom::Tolerance;
 use wingedge::io::{Format, ImportOptions, WeldMode, import};
+use wingedge::render::{DefectImageOptions, render_defects};
 use wingedge::validate::{Options, Report, Rule, report_json, validate_import};
 
 use crate::output::{Out, Outcome, measure};
@@ -20,6 +22,10 @@ pub struct Args {
     pub show: usize,
     pub max_face_corners: usize,
     pub format: Option<Format>,
+    /// Where to draw the defects (`--image`), one input file only.
+    pub image: Option<PathBuf>,
+    /// The picture's width and height (`--image-size`).
+    pub image_size: (u32, u32),
 }
 
 /// The weld mode and tolerances of `--weld`, `--no-weld` and
@@ -53,6 +59,12 @@ pub fn weld_mode(
 
 pub fn run(args: Args) -> Outcome {
     let (weld, tolerance) = weld_mode(args.weld, args.no_weld, args.planarity)?;
+    if args.image.is_some() && args.files.len() != 1 {
+        return Err(format!(
+            "--image draws one file's defects, but {} files were given: validate them one at a time",
+            args.files.len()
+        ));
+    }
     let options = Options {
         tolerance,
         ..Options::default()
@@ -104,6 +116,17 @@ pub fn run(args: Args) -> Outcome {
                     json_out.push(report_json(&report, Some(path), Some(&import.weld)));
                 } else {
                     out.write(describe(path, &import, &report, args.show))?;
+                }
+                if let Some(image_path) = &args.image {
+                    let (width, height) = args.image_size;
+                    render_defects(
+                        &import.soup,
+                        &report.violations,
+                        &DefectImageOptions { width, height },
+                    )
+                    .map_err(|e| e.to_string())
+                    .and_then(|image| image.write_png(image_path).map_err(|e| e.to_string()))
+                    .map_err(|e| format!("--image: {e}"))?;
                 }
             }
         }
