@@ -16,5 +16,6 @@ mod formats;
 mod hostile_input;
 mod info;
 mod mesh;
+mod messages;
 mod query;
 mod validate;
