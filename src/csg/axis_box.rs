@@ -13,7 +13,7 @@ use crate::geom::{Aabb, Ray};
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum AxisBoxError {
     /// `min < max` must hold in every coordinate (a flat box has no volume).
-    #[error("box min {min:?} is not below max {max:?} in every coordinate")]
+    #[error("box min {} is not below max {} in every coordinate", crate::geom::ReadableVec(*.min), crate::geom::ReadableVec(*.max))]
     Inverted {
         /// The corner given as `min`.
         min: DVec3,

@@ -14,7 +14,7 @@ use crate::geom::{Aabb, Ray, Readable, ReadableVec};
 pub enum CylinderError {
     /// The axis must be a non-zero finite vector, the radius positive and
     /// finite, the base finite.
-    #[error("cylinder with base {base:?}, axis {axis:?} and radius {radius} is not a solid")]
+    #[error("cylinder with base {}, axis {} and radius {} is not a solid", crate::geom::ReadableVec(*.base), crate::geom::ReadableVec(*.axis), crate::geom::Readable(*.radius))]
     Invalid {
         /// The base centre given.
         base: DVec3,

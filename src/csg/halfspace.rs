@@ -16,7 +16,7 @@ pub enum HalfSpaceError {
     #[error("half-space normal is zero")]
     ZeroNormal,
     /// A coordinate is NaN or infinite.
-    #[error("half-space point {point:?} or normal {normal:?} is not finite")]
+    #[error("half-space point {} or normal {} is not finite", crate::geom::ReadableVec(*.point), crate::geom::ReadableVec(*.normal))]
     NonFinite {
         /// The point given.
         point: DVec3,

@@ -11,7 +11,7 @@ use crate::geom::{Aabb, Ray, Readable, ReadableVec};
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum SphereError {
     /// The radius must be positive and finite, the centre finite.
-    #[error("sphere with centre {center:?} and radius {radius} is not a solid")]
+    #[error("sphere with centre {} and radius {} is not a solid", ReadableVec(*.center), Readable(*.radius))]
     Invalid {
         /// The centre given.
         center: DVec3,

@@ -21,12 +21,13 @@ pub enum TessellateError {
         kind: &'static str,
     },
     /// The tolerance is not a positive fraction below 1.
-    #[error("the chord tolerance must be in (0, 1), got {0:e}")]
+    #[error("the chord tolerance must be in (0, 1), got {}", crate::geom::Readable(*.0))]
     Tolerance(f64),
     /// The tessellation would need more facets than [`MAX_SEGMENTS`]
     /// around.
     #[error(
-        "a chord tolerance of {tolerance:e} needs {segments} segments around, more than {MAX_SEGMENTS}"
+        "a chord tolerance of {} needs {segments} segments around, more than {MAX_SEGMENTS}",
+        crate::geom::Readable(*.tolerance)
     )]
     TooFine {
         /// The tolerance asked for.

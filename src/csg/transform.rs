@@ -18,7 +18,7 @@ use crate::query::TileError;
 pub enum TransformError {
     /// The linear part has determinant zero (for example a zero scale):
     /// the image of a solid would have no volume.
-    #[error("transform is singular (determinant {determinant}) or not finite")]
+    #[error("transform is singular (determinant {}) or not finite", Readable(*.determinant))]
     Singular {
         /// The determinant of the linear part.
         determinant: f64,

@@ -13,7 +13,11 @@ use crate::geom::{Aabb, Ray, Readable};
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum VolumeError {
     /// The solid's bounds are infinite (a half-space not cut down).
-    #[error("the solid is unbounded (bounds {bounds:?}); cut it with a bounded solid first")]
+    #[error(
+        "the solid is unbounded (bounds {} to {}); cut it with a bounded solid first",
+        crate::geom::ReadableVec(.bounds.min),
+        crate::geom::ReadableVec(.bounds.max)
+    )]
     Unbounded {
         /// The bounds found.
         bounds: Aabb,

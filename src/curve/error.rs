@@ -7,7 +7,7 @@ use thiserror::Error;
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum CurveError {
     /// A knot is NaN or infinite.
-    #[error("knot {index} is not finite: {value}")]
+    #[error("knot {index} is not finite: {}", crate::geom::Readable(*.value))]
     NonFiniteKnot {
         /// Its index in the knot vector.
         index: usize,
@@ -15,7 +15,7 @@ pub enum CurveError {
         value: f64,
     },
     /// The knot vector decreases somewhere.
-    #[error("the knots decrease at index {index}: {previous} is followed by {next}")]
+    #[error("the knots decrease at index {index}: {} is followed by {}", crate::geom::Readable(*.previous), crate::geom::Readable(*.next))]
     DecreasingKnots {
         /// The index of the smaller, later knot.
         index: usize,
@@ -35,7 +35,7 @@ pub enum CurveError {
         needed: usize,
     },
     /// A knot value repeated more than `degree + 1` times.
-    #[error("knot {value} at index {index} is repeated {multiplicity} times; degree {degree} allows at most {}", .degree + 1)]
+    #[error("knot {} at index {index} is repeated {multiplicity} times; degree {degree} allows at most {}", crate::geom::Readable(*.value), .degree + 1)]
     KnotMultiplicity {
         /// Where its run of copies starts.
         index: usize,
@@ -50,7 +50,7 @@ pub enum CurveError {
     #[error("a curve needs degree 1 or more; degree 0 gives separate points")]
     ZeroDegree,
     /// The parameter domain `[t_p, t_n]` has zero length.
-    #[error("the domain [{start}, {end}] of the knot vector is empty")]
+    #[error("the domain [{}, {}] of the knot vector is empty", crate::geom::Readable(*.start), crate::geom::Readable(*.end))]
     EmptyDomain {
         /// `t_p`.
         start: f64,
@@ -87,15 +87,32 @@ pub enum CurveError {
         points: usize,
     },
     /// A weight that is not a finite positive number.
-    #[error("weight {index} is {value}; weights must be finite and > 0")]
+    #[error("weight {index} is {}; weights must be finite and > 0", crate::geom::Readable(*.value))]
     BadWeight {
         /// Its index.
         index: usize,
         /// Its value.
         value: f64,
     },
+    /// A weight outside [`MIN_WEIGHT`, `MAX_WEIGHT`]: the rational
+    /// evaluation would overflow or underflow.
+    ///
+    /// [`MIN_WEIGHT`]: super::MIN_WEIGHT
+    /// [`MAX_WEIGHT`]: super::MAX_WEIGHT
+    #[error(
+        "weight {index} is {}, outside [2^-64, 2^64] ({} to {}); only the weights' ratios shape a curve: scale them all alike",
+        crate::geom::Readable(*.value),
+        crate::geom::Readable(super::MIN_WEIGHT),
+        crate::geom::Readable(super::MAX_WEIGHT)
+    )]
+    WeightOutOfRange {
+        /// Its index.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
     /// A parameter outside the curve's domain (or NaN).
-    #[error("parameter {t} is outside the domain [{start}, {end}]")]
+    #[error("parameter {} is outside the domain [{}, {}]", crate::geom::Readable(*.t), crate::geom::Readable(*.start), crate::geom::Readable(*.end))]
     ParameterOutOfDomain {
         /// The parameter.
         t: f64,
@@ -123,14 +140,14 @@ pub enum CurveError {
         knots: usize,
     },
     /// A chord tolerance that is not a finite positive number.
-    #[error("the chord tolerance {tolerance} must be finite and > 0")]
+    #[error("the chord tolerance {} must be finite and > 0", crate::geom::Readable(*.tolerance))]
     BadTolerance {
         /// The tolerance (a fraction of the curve's size).
         tolerance: f64,
     },
     /// Flattening to the chord tolerance would need more segments than the
     /// stated limit.
-    #[error("flattening to the chord tolerance {tolerance} needs more than {limit} segments")]
+    #[error("flattening to the chord tolerance {} needs more than {limit} segments", crate::geom::Readable(*.tolerance))]
     TooManySegments {
         /// The tolerance (a fraction of the curve's size).
         tolerance: f64,

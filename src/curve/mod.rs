@@ -31,3 +31,13 @@ pub const MAX_SEGMENTS: usize = 1 << 17;
 /// The highest derivative order of a [`Nurbs`] (the quotient rule needs all
 /// lower ones); plain [`BSpline`] derivatives of any order are fine.
 pub const MAX_RATIONAL_DERIVATIVE: usize = 32;
+
+/// The smallest weight a [`Nurbs`] takes, 2^-64: with weights in
+/// `[MIN_WEIGHT, MAX_WEIGHT]` the homogeneous control points `w P` and their
+/// derivatives stay far inside f64 for coordinates up to 1e100 (a weight of
+/// 1e300 overflowed them, and the overflow read as a zero tangent). Only
+/// ratios of weights shape a curve: scale them all alike to bring them in.
+pub const MIN_WEIGHT: f64 = 5.421010862427522e-20;
+
+/// The largest weight a [`Nurbs`] takes, 2^64 (see [`MIN_WEIGHT`]).
+pub const MAX_WEIGHT: f64 = 18446744073709551616.0;

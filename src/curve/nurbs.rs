@@ -7,7 +7,10 @@ use glam::{DVec3, DVec4};
 use super::bspline::{check_insertion, check_points};
 use super::de_boor::{derivative, insert_knot};
 use super::flatten::flatten_homogeneous;
-use super::{Approach, Curve, CurveError, CurveSample, KnotVector, MAX_RATIONAL_DERIVATIVE};
+use super::{
+    Approach, Curve, CurveError, CurveSample, KnotVector, MAX_RATIONAL_DERIVATIVE, MAX_WEIGHT,
+    MIN_WEIGHT,
+};
 
 /// A rational B-spline `C(t) = Σ N_i(t) w_i P_i / Σ N_i(t) w_i` of degree
 /// `p ≥ 1`.
@@ -16,7 +19,8 @@ use super::{Approach, Curve, CurveError, CurveSample, KnotVector, MAX_RATIONAL_D
 ///
 /// - the knot vector serves exactly as many control points as there are,
 ///   and there is one weight per control point;
-/// - every control point is finite; every weight is finite and positive
+/// - every control point is finite; every weight lies in
+///   [`MIN_WEIGHT`, `MAX_WEIGHT`] (2^-64 to 2^64)
 ///   (so the denominator never vanishes and the curve stays in the convex
 ///   hull of its control points);
 /// - the degree is at least 1.
@@ -33,8 +37,9 @@ impl Nurbs {
     /// # Errors
     ///
     /// As for [`BSpline::try_new`](super::BSpline::try_new), plus
-    /// [`CurveError::WeightCount`] and [`CurveError::BadWeight`] for a weight
-    /// that is not finite and positive.
+    /// [`CurveError::WeightCount`], [`CurveError::BadWeight`] for a weight
+    /// that is not finite and positive and [`CurveError::WeightOutOfRange`]
+    /// for one outside `[MIN_WEIGHT, MAX_WEIGHT]` (2^-64 to 2^64).
     pub fn try_new(
         points: Vec<DVec3>,
         weights: Vec<f64>,
@@ -53,6 +58,13 @@ impl Nurbs {
             .find(|(_, w)| !(w.is_finite() && **w > 0.0))
         {
             return Err(CurveError::BadWeight { index, value });
+        }
+        if let Some((index, &value)) = weights
+            .iter()
+            .enumerate()
+            .find(|(_, w)| !(MIN_WEIGHT..=MAX_WEIGHT).contains(*w))
+        {
+            return Err(CurveError::WeightOutOfRange { index, value });
         }
         let homogeneous = points
             .iter()
@@ -204,6 +216,25 @@ mod tests {
                 matches!(err, Err(CurveError::BadWeight { index: i, .. }) if i == index),
                 "{err:?}"
             );
+        }
+        // Regression: a weight of 1e300 overflowed the homogeneous points
+        // and a sweep along the curve said "the path's tangent is zero".
+        for (w, shown) in [
+            (1e300, "1e300"),
+            (1e-300, "1e-300"),
+            (MAX_WEIGHT * 2.0, "3.6893488147419103e19"),
+        ] {
+            let err = Nurbs::try_new(points.clone(), vec![1.0, w, 1.0], knots.clone()).unwrap_err();
+            assert_eq!(err, CurveError::WeightOutOfRange { index: 1, value: w });
+            assert_eq!(
+                err.to_string(),
+                format!(
+                    "weight 1 is {shown}, outside [2^-64, 2^64] (5.421010862427522e-20 to 1.8446744073709552e19); only the weights' ratios shape a curve: scale them all alike"
+                )
+            );
+        }
+        for w in [MIN_WEIGHT, MAX_WEIGHT] {
+            assert!(Nurbs::try_new(points.clone(), vec![1.0, w, 1.0], knots.clone()).is_ok());
         }
         assert!(matches!(
             Nurbs::try_new(points, vec![1.0; 2], knots),

@@ -42,7 +42,7 @@ pub enum FieldError {
         value: f64,
     },
     /// A source strength that is NaN or infinite.
-    #[error("source {source_index} has a non-finite strength {strength}")]
+    #[error("source {source_index} has a non-finite strength {}", Readable(*.strength))]
     BadStrength {
         /// The source.
         source_index: usize,
@@ -79,7 +79,7 @@ pub enum FieldError {
         found: usize,
     },
     /// A sample value that is NaN or infinite.
-    #[error("sample ({i}, {j}, {k}) has the non-finite value {value}")]
+    #[error("sample ({i}, {j}, {k}) has the non-finite value {}", Readable(*.value))]
     NonFiniteSample {
         /// Index along x.
         i: usize,
@@ -123,7 +123,7 @@ pub enum FieldError {
         spacing: f64,
     },
     /// An edge margin outside `[0, ½]`.
-    #[error("the edge margin {0} must lie in [0, 0.5]")]
+    #[error("the edge margin {} must lie in [0, 0.5]", Readable(*.0))]
     BadEdgeMargin(f64),
     /// The field is below ½ everywhere (no source, only negative sources, an
     /// empty intersection): there is no surface to mesh.

@@ -87,7 +87,7 @@ pub fn parse_json(text: &str) -> Result<FieldDocument, JsonError> {
 }
 
 fn parse_named(text: &str, name: &str) -> Result<FieldDocument, JsonError> {
-    let value = json_value::parse_json::<JsonError>(text, name)?;
+    let value = json_value::parse_json::<JsonError>(text, name, "field", "field")?;
     read_document(&value, "field")
 }
 
@@ -328,6 +328,18 @@ mod tests {
                 .starts_with("field.difference: difference needs at least 2")
         );
         assert!(error("{\"blobs\": [").starts_with("<string>: line 1"));
+        // A key twice, at the top or nested, is refused (serde_json keeps
+        // the last one silently).
+        assert_eq!(
+            error(r#"{"resolution": 8, "blobs": [], "resolution": 9}"#),
+            "<string>: field: key \"resolution\" appears twice"
+        );
+        assert_eq!(
+            error(
+                r#"{"union": [{"blobs": []}, {"blobs": [{"center": [0,0,0], "radius": 1, "center": [1,1,1]}]}]}"#
+            ),
+            "<string>: field.union[1].blobs[0]: key \"center\" appears twice"
+        );
         assert!(
             error(r#"{"blobs": [{"center": [0,0,0], "radius": 1}, {"center": [0,0,0], "radius": 1e-300}]}"#)
                 .starts_with("field.blobs[1].radius: source 1 (radius 1e-300) is out of range"),

@@ -13,7 +13,12 @@ use thiserror::Error;
 pub enum PlaneError {
     /// The three points are collinear or (some of them) coincident, so they
     /// span no plane.
-    #[error("points {points:?} are collinear or coincident and span no plane")]
+    #[error(
+        "points {}, {} and {} are collinear or coincident and span no plane",
+        super::ReadableVec(.points[0]),
+        super::ReadableVec(.points[1]),
+        super::ReadableVec(.points[2])
+    )]
     Collinear {
         /// The offending points.
         points: [DVec3; 3],

@@ -61,7 +61,8 @@ pub enum ExportError {
     },
     /// A coordinate beyond what the format's numbers hold.
     #[error(
-        "vertex {vertex} has the coordinate {value:e}, beyond the range of f32 that {format} holds"
+        "vertex {vertex} has the coordinate {}, beyond the range of f32 that {format} holds",
+        crate::geom::Readable(*.value)
     )]
     OutOfRange {
         /// The format.

@@ -74,7 +74,7 @@ pub enum ImportError {
         size: u64,
     },
     /// A vertex with a NaN or infinite coordinate.
-    #[error("{}: vertex {vertex} has a non-finite coordinate {position}", At(.path, .at))]
+    #[error("{}: vertex {vertex} has a non-finite coordinate {}", At(.path, .at), crate::geom::ReadableVec(*.position))]
     NonFinite {
         /// The file.
         path: PathBuf,

@@ -3,9 +3,12 @@
 //! (`root.difference[1].sphere.radius`), and is generic over the caller's
 //! error type, which only has to take a [`JsonError`].
 
+use std::cell::RefCell;
+use std::collections::HashSet;
 use std::path::PathBuf;
 
 use glam::DVec3;
+use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::{Map, Value};
 use thiserror::Error;
 
@@ -46,6 +49,17 @@ pub enum JsonError {
         /// What is wrong.
         message: String,
     },
+    /// A key that appears twice in one object (JSON leaves that to the
+    /// reader, and taking the last silently would hide the first).
+    #[error("{file}: {at}: key {} appears twice", short_key(.key))]
+    DuplicateKey {
+        /// The file (`<string>` for text).
+        file: String,
+        /// The JSON path of the object.
+        at: String,
+        /// The key.
+        key: String,
+    },
     /// A key the format does not have there.
     #[error("{at}: unknown key \"{}\" (expected {expected})", super::import_error::excerpt(.key.as_bytes()))]
     UnknownKey {
@@ -58,8 +72,146 @@ pub enum JsonError {
     },
 }
 
-/// Parses JSON text, naming `name` and the position on failure.
-pub(crate) fn parse_json<E: From<JsonError>>(text: &str, name: &str) -> Result<Value, E> {
+/// A key as a message quotes it: escaped, and cut short past 40
+/// characters.
+fn short_key(key: &str) -> String {
+    let mut shown: String = key.chars().take(40).collect();
+    if shown.len() < key.len() {
+        shown.push_str("...");
+    }
+    format!("{shown:?}")
+}
+
+/// Parses JSON text, naming `name` and the position on failure; a key that
+/// appears twice in one object is refused ([`JsonError::DuplicateKey`]),
+/// naming the object's JSON path: `top` for the document itself, and
+/// `prefix.key` below it (the key alone for an empty `prefix`).
+pub(crate) fn parse_json<E: From<JsonError>>(
+    text: &str,
+    name: &str,
+    top: &str,
+    prefix: &str,
+) -> Result<Value, E> {
+    let value = parse_value(text, name)?;
+    let duplicate = RefCell::new(None);
+    let walk = Walk {
+        at: None,
+        top,
+        prefix,
+        duplicate: &duplicate,
+    };
+    let mut reader = serde_json::Deserializer::from_str(text);
+    // The text parsed above, so the walk fails only at a duplicate.
+    if walk.deserialize(&mut reader).is_err()
+        && let Some((at, key)) = duplicate.into_inner()
+    {
+        return Err(E::from(JsonError::DuplicateKey {
+            file: name.to_string(),
+            at,
+            key,
+        }));
+    }
+    Ok(value)
+}
+
+/// A walk over JSON text that only looks at the keys of each object,
+/// stopping at the first that appears twice (recorded in `duplicate`).
+struct Walk<'a> {
+    /// The JSON path of the value walked (`None` for the document).
+    at: Option<String>,
+    top: &'a str,
+    prefix: &'a str,
+    duplicate: &'a RefCell<Option<(String, String)>>,
+}
+
+impl Walk<'_> {
+    fn here(&self) -> String {
+        self.at.clone().unwrap_or_else(|| self.top.to_string())
+    }
+
+    fn below(&self, at: String) -> Self {
+        Walk {
+            at: Some(at),
+            top: self.top,
+            prefix: self.prefix,
+            duplicate: self.duplicate,
+        }
+    }
+}
+
+impl<'de> DeserializeSeed<'de> for Walk<'_> {
+    type Value = ();
+
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<(), D::Error> {
+        deserializer.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for Walk<'_> {
+    type Value = ();
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("any JSON value")
+    }
+
+    fn visit_bool<X: de::Error>(self, _: bool) -> Result<(), X> {
+        Ok(())
+    }
+
+    fn visit_i64<X: de::Error>(self, _: i64) -> Result<(), X> {
+        Ok(())
+    }
+
+    fn visit_u64<X: de::Error>(self, _: u64) -> Result<(), X> {
+        Ok(())
+    }
+
+    fn visit_f64<X: de::Error>(self, _: f64) -> Result<(), X> {
+        Ok(())
+    }
+
+    fn visit_str<X: de::Error>(self, _: &str) -> Result<(), X> {
+        Ok(())
+    }
+
+    fn visit_unit<X: de::Error>(self) -> Result<(), X> {
+        Ok(())
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
+        let here = self.here();
+        let mut index = 0;
+        while seq
+            .next_element_seed(self.below(format!("{here}[{index}]")))?
+            .is_some()
+        {
+            index += 1;
+        }
+        Ok(())
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
+        let here = self.here();
+        let mut seen = HashSet::new();
+        while let Some(key) = map.next_key::<String>()? {
+            let at = match (&self.at, self.prefix) {
+                (None, "") => key.clone(),
+                (None, prefix) => format!("{prefix}.{key}"),
+                (Some(at), _) => format!("{at}.{key}"),
+            };
+            if !seen.insert(key.clone()) {
+                *self.duplicate.borrow_mut() = Some((here, key));
+                return Err(de::Error::custom("duplicate key"));
+            }
+            map.next_value_seed(self.below(at))?;
+        }
+        Ok(())
+    }
+}
+
+/// Parses JSON text into a value, naming `name` and the position on
+/// failure.
+fn parse_value<E: From<JsonError>>(text: &str, name: &str) -> Result<Value, E> {
     serde_json::from_str(text).map_err(|e| {
         let message = if e.to_string().starts_with("recursion limit exceeded") {
             format!("nested deeper than {MAX_JSON_DEPTH} levels (the limit)")

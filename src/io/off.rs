@@ -238,7 +238,7 @@ mod tests {
         let e = parse(&text.replace("0 0 0.1", "0 0 inf")).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "t.off:7: vertex 3 has a non-finite coordinate [0, 0, inf]"
+            "t.off:7: vertex 3 has a non-finite coordinate (0, 0, inf)"
         );
         let e = parse("PLY\n").unwrap_err();
         assert_eq!(

@@ -507,7 +507,7 @@ mod tests {
         let e = parse(ASCII.replace("0.1 0.5", "nan 0.5").as_bytes()).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "t.ply:17: vertex 4 has a non-finite coordinate [NaN, 0.5, 1]"
+            "t.ply:17: vertex 4 has a non-finite coordinate (NaN, 0.5, 1)"
         );
     }
 

@@ -330,7 +330,7 @@ mod tests {
         let e = parse(text.replace("0.1 1 0", "nan 1 0").as_bytes()).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "t.stl:6: vertex 2 has a non-finite coordinate [NaN, 1, 0]"
+            "t.stl:6: vertex 2 has a non-finite coordinate (NaN, 1, 0)"
         );
         let e = parse(
             text.replace("outer loop", "outer lop\n")

@@ -124,7 +124,9 @@ fn mesh_file_text(file: &Path, message: &str) -> String {
 /// that already do are returned as they are).
 pub(super) fn in_file(file: &Path, error: SceneError) -> SceneError {
     match error {
-        SceneError::Json(JsonError::Read { .. } | JsonError::Syntax { .. })
+        SceneError::Json(
+            JsonError::Read { .. } | JsonError::Syntax { .. } | JsonError::DuplicateKey { .. },
+        )
         | SceneError::InFile { .. }
         | SceneError::MeshFile { .. } => error,
         other => SceneError::InFile {

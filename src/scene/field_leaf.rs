@@ -39,7 +39,9 @@ pub(super) fn field_leaf(
                 value_error(
                     at,
                     match e {
-                        JsonError::Read { .. } | JsonError::Syntax { .. } => e.to_string(),
+                        JsonError::Read { .. }
+                        | JsonError::Syntax { .. }
+                        | JsonError::DuplicateKey { .. } => e.to_string(),
                         _ => format!("{}: {e}", file.display()),
                     },
                 )

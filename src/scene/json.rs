@@ -8,9 +8,11 @@ use serde_json::{Map, Value};
 use super::SceneError;
 use crate::io::json_value as shared;
 
-/// Parses JSON text, naming `name` and the position on failure.
+/// Parses JSON text, naming `name` and the position on failure, or the
+/// JSON path of an object with a key twice (`root.box`; `scene` for the
+/// top-level object).
 pub(super) fn parse_json(text: &str, name: &str) -> Result<Value, SceneError> {
-    shared::parse_json(text, name)
+    shared::parse_json(text, name, "scene", "")
 }
 
 /// The value as an object.

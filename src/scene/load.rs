@@ -259,6 +259,33 @@ mod tests {
     }
 
     #[test]
+    fn a_key_twice_is_refused_with_its_object_and_key() {
+        // serde_json keeps the last of two equal keys silently: the box
+        // below read as min [0,0,0] without a word.
+        assert_eq!(
+            error(r#"{"root": {"box": {"min": [5,5,5], "max": [1,1,1], "min": [0,0,0]}}}"#),
+            "test.json: root.box: key \"min\" appears twice"
+        );
+        assert_eq!(
+            error(
+                r#"{"root": {"union": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, {"sphere": {"center": [0,0,0], "radius": 1, "radius": 2}}]}}"#
+            ),
+            "test.json: root.union[1].sphere: key \"radius\" appears twice"
+        );
+        assert_eq!(
+            error(&format!(r#"{{"root": {BOX}, "root": {BOX}}}"#)),
+            "test.json: scene: key \"root\" appears twice"
+        );
+        // Equal after unescaping; quoted escaped.
+        assert_eq!(
+            error(r#"{"root": {"box": {"min": [0,0,0], "m\u0061x": [1,1,1], "max": [1,1,1]}}}"#),
+            "test.json: root.box: key \"max\" appears twice"
+        );
+        // Equal keys in different objects are fine.
+        assert!(parse(r#"{"root": {"union": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, {"box": {"min": [2,0,0], "max": [3,1,1]}}]}}"#).is_ok());
+    }
+
+    #[test]
     fn json_nested_too_deep_is_refused_by_the_reader() {
         let depth = 100_000;
         let text = format!(

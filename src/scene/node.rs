@@ -11,6 +11,7 @@ use super::json::{bad, check_keys, fields, object, positive, req, vec3, vec3_or}
 use super::reader::Reader;
 use super::solid_leaf;
 use crate::csg::{AxisBox, CsgExpr, Cylinder, HalfSpace, Primitive, Sphere};
+use crate::geom::{Readable, ReadableVec};
 use crate::io::JsonError;
 
 const NODE_KEYS: &str = "one of mesh, halfspace, box, sphere, cylinder, sweep, revolve, loft, field, union, intersection, difference, scene, or transform with child";
@@ -199,15 +200,31 @@ fn transform(value: &Value, at: &str) -> Result<DAffine3, SceneError> {
     if scale.cmpeq(DVec3::ZERO).any() {
         return Err(refused(
             &format!("{at}.scale"),
-            format!("scale {scale:?} has a zero component: the solid would be flat"),
+            format!(
+                "scale {} has a zero component: the solid would be flat",
+                ReadableVec(scale)
+            ),
         ));
     }
     let r = rotate * (std::f64::consts::PI / 180.0);
     // Intrinsic ZYX equals rotating about x first, then y, then z.
     let rotation = DQuat::from_euler(EulerRot::ZYX, r.z, r.y, r.x);
-    Ok(DAffine3::from_scale_rotation_translation(
-        scale, rotation, translate,
-    ))
+    let affine = DAffine3::from_scale_rotation_translation(scale, rotation, translate);
+    // The scale is the value at fault when the transform cannot be
+    // inverted in f64 (its determinant overflows or underflows); refused
+    // here, at its path, rather than at the leaf it moves.
+    let determinant = affine.matrix3.determinant();
+    if determinant == 0.0 || !determinant.is_finite() {
+        return Err(refused(
+            &format!("{at}.scale"),
+            format!(
+                "scale {} gives the transform the determinant {}, beyond f64's range: it cannot be inverted",
+                ReadableVec(scale),
+                Readable(determinant)
+            ),
+        ));
+    }
+    Ok(affine)
 }
 
 /// A mesh leaf's file and format: `"PATH"` (the format by the extension),

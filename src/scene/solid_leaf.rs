@@ -26,7 +26,7 @@ use serde_json::{Map, Value};
 use super::SceneError;
 use super::json::{bad, fields, number, positive, req, vec3, vec3_or};
 use crate::csg::{Polyhedron, Primitive};
-use crate::curve::{BSpline, KnotVector, Nurbs};
+use crate::curve::{BSpline, CurveError, KnotVector, Nurbs};
 use crate::io::JsonError;
 use crate::mesh::Solid;
 use crate::shape::{
@@ -228,7 +228,14 @@ fn curve(value: &Value, at: &str) -> Result<SceneCurve, SceneError> {
             let weights = numbers(v, &weights_at)?;
             Nurbs::try_new(points, weights, knots)
                 .map(SceneCurve::Rational)
-                .map_err(|e| refused(weights_at, e))
+                .map_err(|e| match e {
+                    // The path of the weight at fault.
+                    CurveError::BadWeight { index, .. }
+                    | CurveError::WeightOutOfRange { index, .. } => {
+                        refused(format!("{weights_at}[{index}]"), e)
+                    }
+                    _ => refused(weights_at, e),
+                })
         }
         None => BSpline::try_new(points, knots)
             .map(SceneCurve::Polynomial)

@@ -83,7 +83,10 @@ pub(super) fn camera(value: &Value, at: &str) -> Result<CameraSpec, SceneError> 
     if fov_deg >= 180.0 {
         return Err(SceneError::Json(JsonError::Value {
             at: fov_at,
-            message: format!("field of view {fov_deg} must be below 180 degrees"),
+            message: format!(
+                "field of view {} must be below 180 degrees",
+                crate::geom::Readable(fov_deg)
+            ),
         }));
     }
     let forward = look_at - eye;

@@ -145,3 +145,43 @@ fn section_pivot(
         .unwrap_or(1);
     Ok([0, best, best + 1])
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::SolidPart;
+
+    /// The unit square at height `z`, turned by `quarter_turns` × 90°.
+    fn square(z: f64, quarter_turns: usize) -> Vec<DVec3> {
+        let corners = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)];
+        (0..4)
+            .map(|k| {
+                let (x, y) = corners[(k + quarter_turns) % 4];
+                DVec3::new(x, y, z)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_twisted_band_is_named_once_with_both_its_sections() {
+        // Regression: a loft whose second band is turned by half a turn
+        // was refused "near section 1 and section 1".
+        let error = try_loft(&[square(0.0, 0), square(1.0, 0), square(2.0, 2)]).unwrap_err();
+        assert!(
+            matches!(
+                error,
+                SweepError::Collides {
+                    parts: [SolidPart::Side(1), SolidPart::Side(1)],
+                    parameters: None,
+                }
+            ),
+            "{error:?}"
+        );
+        assert_eq!(
+            error.to_string(),
+            "the solid meets itself: the side between sections 1 and 2 crosses itself"
+        );
+        // Untwisted, the same sections loft.
+        assert!(try_loft(&[square(0.0, 0), square(1.0, 0), square(2.0, 0)]).is_ok());
+    }
+}

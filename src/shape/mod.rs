@@ -17,4 +17,4 @@ pub use loft::try_loft;
 pub use revolve::{
     MAX_TURN_SLIVERS, MAX_TURN_STEPS, RevolveAxis, Segments, try_revolve, try_revolve_curve,
 };
-pub use sweep::{Argument, MAX_VERTICES, SweepError, try_sweep, try_sweep_with_holes};
+pub use sweep::{Argument, MAX_VERTICES, SolidPart, SweepError, try_sweep, try_sweep_with_holes};

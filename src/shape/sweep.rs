@@ -52,7 +52,7 @@ pub(crate) fn check_size(count: usize) -> Result<(), SweepError> {
         Ok(())
     }
 }
-pub use error::{Argument, SweepError};
+pub use error::{Argument, SolidPart, SweepError};
 pub use holed::try_sweep_with_holes;
 
 /// A checked 2-D profile: its vertices counter-clockwise and three of them

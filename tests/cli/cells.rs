@@ -118,3 +118,19 @@ fn bad_requests_name_what_is_wrong() {
     assert_eq!(code, 2);
     assert!(err.contains("fixtures/scenes/no-such.json"), "{err}");
 }
+
+#[test]
+fn help_does_not_claim_an_exact_volume_for_the_obj() {
+    // docs/cells.md: the In cells' solid has volume V_in only where no
+    // contact along an edge or at a corner was filled; always within
+    // [V_in, V_in + V_on]. The help said "volume exactly V_in".
+    let (code, out, err) = wingedge(&["cells", "--help"]);
+    assert_eq!(code, 0, "{err}");
+    let obj = out
+        .split("--obj")
+        .nth(1)
+        .and_then(|rest| rest.split("\n  -").next())
+        .unwrap_or_else(|| panic!("no --obj in the help: {out}"));
+    assert!(!obj.contains("exact"), "{obj}");
+    assert!(obj.contains("[V_in, V_in + V_on]"), "{obj}");
+}

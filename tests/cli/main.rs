@@ -16,6 +16,7 @@ mod formats;
 mod hostile_input;
 mod info;
 mod mesh;
+mod messages;
 mod paths;
 mod query;
 mod validate;

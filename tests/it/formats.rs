@@ -266,7 +266,7 @@ fn hostile_files_are_refused_with_their_place() {
     nan[84 + 50 * 7 + 16..84 + 50 * 7 + 20].copy_from_slice(&f32::NAN.to_le_bytes());
     let e = message(&nan, Format::Stl);
     assert!(
-        e.starts_with("t.stl: triangle 7 (byte 434): vertex 21 has a non-finite coordinate ["),
+        e.starts_with("t.stl: triangle 7 (byte 434): vertex 21 has a non-finite coordinate ("),
         "{e}"
     );
     assert!(e.contains("NaN"), "{e}");
@@ -294,7 +294,7 @@ fn hostile_files_are_refused_with_their_place() {
     let nan = off.replacen(first_vertex, "nan 0 0", 1);
     assert_eq!(
         message(nan.as_bytes(), Format::Off),
-        "t.off:3: vertex 0 has a non-finite coordinate [NaN, 0, 0]"
+        "t.off:3: vertex 0 has a non-finite coordinate (NaN, 0, 0)"
     );
 
     // 3MF: a zip bomb (50 MB of spaces in a 50 KB entry), a declared size

@@ -209,8 +209,10 @@ enum Command {
         /// (uint8, shape (n, n, n): 0 out, 1 on, 2 in; depth at most 9).
         #[arg(long, value_name = "OUT.npy")]
         npy: Option<PathBuf>,
-        /// Write the In cells' outer faces as OBJ: a valid closed solid of
-        /// volume exactly V_in.
+        /// Write the In cells' outer faces as OBJ: a valid closed solid
+        /// whose volume lies within [V_in, V_in + V_on] (it is V_in unless
+        /// cells touching only at an edge or a corner had sub-cells filled;
+        /// the command prints the volume and how many were filled).
         #[arg(long, value_name = "OUT.obj")]
         obj: Option<PathBuf>,
         /// The mesh's format (obj, stl, ply, off, 3mf, gltf, glb); default:

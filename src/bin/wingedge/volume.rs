@@ -81,7 +81,7 @@ pub fn run(
                 Readable(v.volume),
                 Readable(v.spacing),
                 v.rays,
-                exact.map_or(String::new(), |e| format!("; closed form {e}"))
+                exact.map_or(String::new(), |e| format!("; closed form {}", Readable(e)))
             );
             if let Some(u) = v.unresolved {
                 let label = scene

@@ -108,7 +108,7 @@ pub enum ObjError {
         token: String,
     },
     /// A vertex with a NaN or infinite coordinate.
-    #[error("{}:{line}: vertex {vertex} has a non-finite coordinate {position}", .path.display())]
+    #[error("{}:{line}: vertex {vertex} has a non-finite coordinate {}", .path.display(), crate::geom::ReadableVec(*.position))]
     NonFinite {
         /// The file.
         path: PathBuf,

@@ -49,7 +49,7 @@ pub enum BuildError {
         vertex: usize,
     },
     /// A vertex used by a polygon has a NaN or infinite coordinate.
-    #[error("vertex {vertex} has a non-finite position {position}")]
+    #[error("vertex {vertex} has a non-finite position {}", crate::geom::ReadableVec(*.position))]
     NonFinitePosition {
         /// The vertex.
         vertex: usize,

@@ -24,13 +24,13 @@ pub enum EulerError {
     #[error("loop {0:?} is not a loop of this solid (stale, or from another solid)")]
     UnknownLoop(LoopId),
     /// A new vertex position with a NaN or infinite coordinate.
-    #[error("position {position} is not finite")]
+    #[error("position {} is not finite", crate::geom::ReadableVec(*.position))]
     NonFinitePosition {
         /// The position given.
         position: DVec3,
     },
     /// A vector (of an extrusion) with a NaN or infinite coordinate.
-    #[error("vector {vector} is not finite")]
+    #[error("vector {} is not finite", crate::geom::ReadableVec(*.vector))]
     NonFiniteVector {
         /// The vector given.
         vector: DVec3,
@@ -192,7 +192,7 @@ pub enum EulerError {
     },
     /// An extrusion vector that does not point to the outside of the face
     /// at one of its vertices (decided exactly).
-    #[error("extruding face {face:?} by {vector} does not move vertex {vertex:?} to its outside")]
+    #[error("extruding face {face:?} by {} does not move vertex {vertex:?} to its outside", crate::geom::ReadableVec(*.vector))]
     NotOutward {
         /// The face.
         face: FaceId,

@@ -34,7 +34,7 @@ pub enum NotConvex {
     /// Across an edge of face `face`, the neighbouring corner `point` lies
     /// strictly outside the face's plane: a reflex edge (or a face whose
     /// corners are not exactly coplanar, bent outward).
-    #[error("the corner {point} lies strictly outside the plane of face {face:?}")]
+    #[error("the corner {} lies strictly outside the plane of face {face:?}", crate::geom::ReadableVec(*.point))]
     ReflexEdge {
         /// The face.
         face: FaceId,
@@ -43,7 +43,7 @@ pub enum NotConvex {
     },
     /// Two coplanar triangles of face `face` fold over each other across an
     /// edge: the face has a reflex corner.
-    #[error("face {face:?} folds over itself near {point} (a reflex corner)")]
+    #[error("face {face:?} folds over itself near {} (a reflex corner)", crate::geom::ReadableVec(*.point))]
     ReflexCorner {
         /// The face.
         face: FaceId,

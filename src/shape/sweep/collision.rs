@@ -14,14 +14,14 @@ use glam::DVec3;
 
 use crate::geom::{Aabb, triangles_intersect};
 
-use super::SweepError;
+use super::{SolidPart, SweepError};
 use crate::mesh::PolygonSoup;
 
-/// One triangle of the stacked solid: soup indices and the section its
-/// band (or cap) starts at.
+/// One triangle of the stacked solid: soup indices and the cap or band of
+/// side faces it belongs to.
 struct Piece {
     corners: [usize; 3],
-    section: usize,
+    part: SolidPart,
     bounds: Aabb,
 }
 
@@ -38,24 +38,29 @@ pub(crate) fn check_collisions(
     let n = section_size.max(1);
     let last = soup.positions.len() / n - 1;
     let mut pieces: Vec<Piece> = Vec::new();
-    let mut push = |corners: [usize; 3], positions: &[DVec3]| {
+    let mut push = |corners: [usize; 3], cap: bool, positions: &[DVec3]| {
         let section = corners.iter().min().map_or(0, |&c| c / n);
+        let part = if cap {
+            SolidPart::Cap(section)
+        } else {
+            SolidPart::Side(section)
+        };
         let bounds = Aabb::from_points(corners.map(|c| positions[c]));
         pieces.push(Piece {
             corners,
-            section,
+            part,
             bounds,
         });
     };
     for (cap, offset) in caps.into_iter().zip([0, last * n]) {
         for t in cap {
-            push(t.map(|k| offset + k), &soup.positions);
+            push(t.map(|k| offset + k), true, &soup.positions);
         }
     }
     for polygon in soup.polygons.iter().skip(2) {
         let v = &polygon.vertices;
         for k in 1..v.len() - 1 {
-            push([v[0], v[k], v[k + 1]], &soup.positions);
+            push([v[0], v[k], v[k + 1]], false, &soup.positions);
         }
     }
     let size = Aabb::from_points(soup.positions.iter().copied()).size();
@@ -77,10 +82,16 @@ pub(crate) fn check_collisions(
                 a.bounds.min.cmple(b.bounds.max).all() && b.bounds.min.cmple(a.bounds.max).all();
             let neighbours = a.corners.iter().any(|c| b.corners.contains(c));
             if overlap && !neighbours && triangles_intersect(corners(a), corners(b)) {
-                let mut sections = [a.section, b.section];
-                sections.sort_unstable();
+                // Along the solid: a cap before the side that starts at
+                // its section.
+                let mut parts = [a.part, b.part];
+                parts.sort_unstable_by_key(|p| (p.section(), matches!(p, SolidPart::Side(_))));
+                let sections = match parts {
+                    [SolidPart::Side(s), SolidPart::Side(r)] if s == r => [s, s + 1],
+                    _ => parts.map(SolidPart::section),
+                };
                 return Err(SweepError::Collides {
-                    sections,
+                    parts,
                     parameters: parameters.map(|t| sections.map(|s| t[s])),
                 });
             }

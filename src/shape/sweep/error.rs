@@ -88,7 +88,7 @@ pub enum SweepError {
     /// A polygon vertex farther from the polygon's plane than the planarity
     /// tolerance, or off the plane a profile curve must lie in.
     #[error(
-        "{argument} is not planar: vertex {vertex} is {deviation:e} from its plane (limit {limit:e})"
+        "{argument} is not planar: vertex {vertex} is {} from its plane (limit {})", crate::geom::Readable(*.deviation), crate::geom::Readable(*.limit)
     )]
     NonPlanar {
         /// The polygon.
@@ -101,20 +101,20 @@ pub enum SweepError {
         limit: f64,
     },
     /// A sweep path of zero length (every point of it the same).
-    #[error("the path has zero length: it stays at {point}")]
+    #[error("the path has zero length: it stays at {}", crate::geom::ReadableVec(*.point))]
     ZeroLengthPath {
         /// Where it stays.
         point: DVec3,
     },
     /// A sweep path that ends where it starts: the end caps would meet.
-    #[error("the path is closed (it ends at its start {point}); closed sweeps are not supported")]
+    #[error("the path is closed (it ends at its start {}); closed sweeps are not supported", crate::geom::ReadableVec(*.point))]
     ClosedPath {
         /// The start and end.
         point: DVec3,
     },
     /// A sweep path whose tangent vanishes at a sample, so no frame is
     /// defined there.
-    #[error("the path's tangent is zero at parameter {parameter}")]
+    #[error("the path's tangent is zero at parameter {}", crate::geom::Readable(*.parameter))]
     ZeroTangent {
         /// The path parameter.
         parameter: f64,
@@ -156,7 +156,7 @@ pub enum SweepError {
     },
     /// A revolve axis whose direction is zero or not finite, or whose
     /// radial direction is parallel to it.
-    #[error("the axis is degenerate: direction {direction}, radial {radial}")]
+    #[error("the axis is degenerate: direction {}, radial {}", crate::geom::ReadableVec(*.direction), crate::geom::ReadableVec(*.radial))]
     BadAxis {
         /// The axis direction.
         direction: DVec3,
@@ -164,7 +164,7 @@ pub enum SweepError {
         radial: DVec3,
     },
     /// A revolve profile vertex on the wrong side of the axis.
-    #[error("profile vertex {vertex} has radius {radius} < 0: the profile crosses the axis")]
+    #[error("profile vertex {vertex} has radius {} < 0: the profile crosses the axis", crate::geom::Readable(*.radius))]
     CrossesAxis {
         /// The vertex.
         vertex: usize,
@@ -179,7 +179,7 @@ pub enum SweepError {
         vertex: usize,
     },
     /// A revolve angle outside `(0, 2π]`.
-    #[error("the angle {angle} is not in (0, 2π]")]
+    #[error("the angle {} is not in (0, 2π]", crate::geom::Readable(*.angle))]
     BadAngle {
         /// The angle in radians.
         angle: f64,
@@ -226,11 +226,15 @@ pub enum SweepError {
     /// Two parts of a sweep or loft that are not neighbours meet: the
     /// band of side faces after section `sections[0]` (or an end cap, for
     /// the first or last section) touches the one after `sections[1]`.
-    #[error("the solid meets itself: near section {} and section {}{}", .sections[0], .sections[1], at_parameters(*.parameters))]
+    #[error("the solid meets itself: {}{}", collision_text(.parts), at_parameters(*.parameters))]
     Collides {
-        /// The sections the two meeting faces start at.
-        sections: [usize; 2],
-        /// The path parameters of those sections (sweeps only).
+        /// The parts the two meeting faces belong to, in order along the
+        /// solid (equal when one band of side faces crosses itself, as a
+        /// twisted loft's does).
+        parts: [SolidPart; 2],
+        /// The path parameters of those parts (sweeps only): of the two
+        /// parts' first sections, or of the band's two sections when one
+        /// band crosses itself.
         parameters: Option<[f64; 2]>,
     },
     /// An end cap could not be triangulated for the self-intersection test.
@@ -241,14 +245,57 @@ pub enum SweepError {
     Build(#[from] BuildError),
 }
 
+/// A part of the boundary of a swept or lofted solid, as a collision names
+/// it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SolidPart {
+    /// The end cap at a section (the first or the last).
+    Cap(usize),
+    /// The band of side faces from a section to the next one.
+    Side(usize),
+}
+
+impl SolidPart {
+    /// The section the part starts at.
+    #[must_use]
+    pub fn section(self) -> usize {
+        match self {
+            SolidPart::Cap(s) | SolidPart::Side(s) => s,
+        }
+    }
+}
+
+impl std::fmt::Display for SolidPart {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            SolidPart::Cap(s) => write!(f, "the cap at section {s}"),
+            SolidPart::Side(s) => write!(f, "the side between sections {s} and {}", s + 1),
+        }
+    }
+}
+
+fn collision_text([a, b]: &[SolidPart; 2]) -> String {
+    if a == b {
+        format!("{a} crosses itself")
+    } else {
+        format!("{a} meets {b}")
+    }
+}
+
 fn at_parameters(parameters: Option<[f64; 2]>) -> String {
     parameters
-        .map(|[a, b]| format!(" (path parameters {a} and {b})"))
+        .map(|[a, b]| {
+            format!(
+                " (path parameters {} and {})",
+                crate::geom::Readable(a),
+                crate::geom::Readable(b)
+            )
+        })
         .unwrap_or_default()
 }
 
 fn at_parameter(parameter: Option<f64>) -> String {
     parameter
-        .map(|t| format!(" (path parameter {t})"))
+        .map(|t| format!(" (path parameter {})", crate::geom::Readable(t)))
         .unwrap_or_default()
 }

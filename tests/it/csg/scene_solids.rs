@@ -128,7 +128,7 @@ fn bad_leaves_are_refused_at_their_json_path() {
         ),
         (
             r#"{"root": {"sweep": {"profile": [[0,0],[1,0],[0,1]], "path": {"degree": 1, "points": [[0,0,0],[0,0,1]], "weights": [1, 0]}}}}"#.to_string(),
-            "root.sweep.path.weights: ",
+            "root.sweep.path.weights[1]: weight 1 is 0",
         ),
         (
             r#"{"root": {"sweep": {"profile": [[0,0],[1,0],[0,1]], "path": {"degree": 1, "points": [[0,0,0],[0,0,0]]}}}}"#.to_string(),

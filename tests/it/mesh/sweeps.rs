@@ -470,9 +470,10 @@ fn a_path_that_crosses_itself_is_refused_with_both_places() {
     let err = try_sweep(&rectangle(-0.5, 0.5, -0.5, 0.5), &path, 1e-4).unwrap_err();
     match err {
         SweepError::Collides {
-            sections: [a, b],
+            parts: [a, b],
             parameters: Some([ta, tb]),
         } => {
+            let (a, b) = (a.section(), b.section());
             assert!(b > a + 2, "{a} {b}");
             // Around the crossing, t ≈ 0.2 and 0.8.
             assert!(ta < 0.5 && tb > 0.5, "{ta} {tb}");
