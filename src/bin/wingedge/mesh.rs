@@ -11,6 +11,32 @@ use wingedge::validate::{Options, Validity, validate_soup};
 
 use crate::output::{Out, Outcome, measure};
 
+/// Builds the marched `soup`, proves it valid and writes it to `output`
+/// (atomically); what is written is what was proven: a surface the
+/// validator rejects is refused, never written. `name` names the input in
+/// messages.
+pub fn prove_and_write(
+    soup: &wingedge::mesh::PolygonSoup,
+    name: &str,
+    output: &Path,
+) -> Result<(wingedge::mesh::Solid, wingedge::validate::Report), String> {
+    let solid = marching::solid_of(soup).map_err(|e| format!("{name}: {e}"))?;
+    let report =
+        validate_soup(soup, None, &Options::default()).map_err(|e| format!("{name}: {e}"))?;
+    if report.validity != Validity::ValidSolid {
+        let first = report.violations.first().map_or_else(String::new, |v| {
+            format!("; first: {}: {}", v.rule.name(), v.message)
+        });
+        return Err(format!(
+            "{name}: the meshed surface is not a valid solid ({}{first}); {} not written",
+            report.validity.describe(),
+            output.display()
+        ));
+    }
+    write_obj(&solid, output).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+    Ok((solid, report))
+}
+
 /// The resolution when neither the command nor the document gives one.
 pub const DEFAULT_RESOLUTION: usize = 64;
 
@@ -60,22 +86,7 @@ pub fn run(
         Err(e) => return Err(format!("{name}: {e}")),
     };
     let meshing = start.elapsed().as_secs_f64();
-    let solid = marching::solid_of(&meshed.soup).map_err(|e| format!("{name}: {e}"))?;
-    let report = validate_soup(&meshed.soup, None, &Options::default())
-        .map_err(|e| format!("{name}: {e}"))?;
-    // What is written is what was proven: a surface the validator rejects
-    // is refused, never written.
-    if report.validity != Validity::ValidSolid {
-        let first = report.violations.first().map_or_else(String::new, |v| {
-            format!("; first: {}: {}", v.rule.name(), v.message)
-        });
-        return Err(format!(
-            "{name}: the meshed surface is not a valid solid ({}{first}); {} not written",
-            report.validity.describe(),
-            output.display()
-        ));
-    }
-    write_obj(&solid, output).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+    let (solid, report) = prove_and_write(&meshed.soup, &name.to_string(), output)?;
     let [nx, ny, nz] = meshed.dims;
     let genus = report
         .genus

@@ -13,10 +13,8 @@ use glam::DVec3;
 use wingedge::csg::{Csg, Stats};
 use wingedge::field::{Field, FieldError, FieldStats, MarchingOptions, Placement, try_mesh};
 use wingedge::geom::Aabb;
-use wingedge::io::write_obj;
 use wingedge::query::Containment;
 use wingedge::scene::Scene;
-use wingedge::validate::{Options, Validity, validate_soup};
 
 use crate::output::{Out, Outcome, measure};
 
@@ -97,21 +95,7 @@ pub fn run(path: &Path, output: &Path, resolution: Option<usize>) -> Outcome {
         Err(e) => return Err(format!("{name}: {e}")),
     };
     let meshing = start.elapsed().as_secs_f64();
-    let solid =
-        wingedge::field::marching::solid_of(&meshed.soup).map_err(|e| format!("{name}: {e}"))?;
-    let report = validate_soup(&meshed.soup, None, &Options::default())
-        .map_err(|e| format!("{name}: {e}"))?;
-    if report.validity != Validity::ValidSolid {
-        let first = report.violations.first().map_or_else(String::new, |v| {
-            format!("; first: {}: {}", v.rule.name(), v.message)
-        });
-        return Err(format!(
-            "{name}: the meshed surface is not a valid solid ({}{first}); {} not written",
-            report.validity.describe(),
-            output.display()
-        ));
-    }
-    write_obj(&solid, output).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+    let (solid, report) = super::mesh::prove_and_write(&meshed.soup, &name.to_string(), output)?;
     let [nx, ny, nz] = meshed.dims;
     let genus = report
         .genus
