@@ -1,5 +1,10 @@
 //! `wingedge.Solid`: a winged-edge solid with its query accel.
 //!
+//! Past 600 lines on purpose: one `#[pymethods]` block per class is what
+//! pyo3 allows without its `multiple-pymethods` feature (which pulls in
+//! `inventory` and slows every build), and the methods are the class's
+//! Python surface, each a thin call into the library.
+//!
 //! # Invariants
 //!
 //! - `soup` is the polygon soup the solid was built from (for a built-in
