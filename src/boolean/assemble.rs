@@ -197,6 +197,7 @@ impl Fixes {
             unmerged_pieces: self.blocked.len(),
             joined_pairs: self.joined.len(),
             dropped_pieces: self.dropped.len(),
+            welded_vertices: 0,
         }
     }
 

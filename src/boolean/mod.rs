@@ -40,6 +40,7 @@ mod points;
 mod select;
 mod split;
 mod stats;
+mod weld;
 
 use crate::SetOp;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -168,6 +169,43 @@ pub fn boolean(
 /// points to `f64` broke it (located); [`BooleanError::Inconsistent`]
 /// never, unless wingedge has a defect.
 pub fn combine(
+    operands: &[&Solid],
+    expression: &Expression,
+    options: BooleanOptions,
+) -> Result<Boolean, BooleanError> {
+    let first = combine_once(operands, expression, options);
+    let Err(BooleanError::InvalidResult { .. } | BooleanError::NotBuilt(_)) = &first else {
+        return first;
+    };
+    // Rounding broke the result: operands closer together than `f64` can
+    // keep apart are welded, at a growing reach, and evaluated again.
+    let named = expression.operands();
+    let solids: Vec<&Solid> = named.iter().map(|&k| operands[k]).collect();
+    for reach in weld::reaches(&solids) {
+        let Some((welded, moved)) = weld::welded(&solids, reach) else {
+            continue;
+        };
+        if welded.iter().any(|s| check_operand(s, 0).is_err()) {
+            break;
+        }
+        let mut all: Vec<&Solid> = operands.to_vec();
+        for (&k, s) in named.iter().zip(&welded) {
+            all[k] = s;
+        }
+        let again = BooleanOptions {
+            check_operands: false,
+            ..options
+        };
+        if let Ok(mut result) = combine_once(&all, expression, again) {
+            result.stats.output.welded_vertices = moved;
+            return Ok(result);
+        }
+    }
+    first
+}
+
+/// [`combine`] once, on the operands as given.
+fn combine_once(
     operands: &[&Solid],
     expression: &Expression,
     options: BooleanOptions,

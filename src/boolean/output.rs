@@ -104,8 +104,8 @@ pub(crate) fn build_and_prove(
                     polygons.len() == 4 && split_touching_edge(&mut fixes, &at, p, q)
                 });
                 if slit
-                    || fix_pieces(&mut fixes, &at, &polygons, &pairs)
                     || drop_thin_shells(&mut fixes, &at, &soup, &polygons, &|p| Some(vec![p]))
+                    || fix_pieces(&mut fixes, &at, &polygons, &pairs)
                 {
                     continue;
                 }
@@ -294,6 +294,23 @@ fn learn(fixes: &mut Fixes, at: &Round, report: &Report, proven: &Proven) -> boo
     }
     to_fix.sort_unstable();
     to_fix.dedup();
+    // Sheets that rounding made cross, with nothing merged to split: a
+    // shell thinner than `f64` can hold is left out whole before any of
+    // its points is moved (moving them folds its neighbours in turn).
+    if !learnt {
+        let named: Vec<usize> = report
+            .violations
+            .iter()
+            .flat_map(|v| v.faces.iter().copied())
+            .collect();
+        if drop_thin_shells(fixes, at, proven.written, &named, &|p| {
+            let face = proven.faces.get(p)?;
+            let source = proven.solid.face(*face).attributes.source_index?;
+            Some(members[&group_of[source]].clone())
+        }) {
+            return true;
+        }
+    }
     learnt |= fix_pieces(fixes, at, &to_fix, &pairs);
     if !learnt {
         // A defect between two pieces may be a sliver beside them that

@@ -54,6 +54,10 @@ pub struct OutputWork {
     pub joined_pairs: usize,
     /// Pieces dropped: shells thinner than `f64` can hold.
     pub dropped_pieces: usize,
+    /// Operand vertices moved onto a vertex of an earlier operand that
+    /// `f64` could not keep apart from them (the last resort, `weld`): the
+    /// boolean was run again on the welded operands.
+    pub welded_vertices: usize,
 }
 
 impl OutputWork {
@@ -66,12 +70,13 @@ impl OutputWork {
             + self.unmerged_pieces
             + self.joined_pairs
             + self.dropped_pieces
+            + self.welded_vertices
             > 0
     }
 
     /// The counts as `name value` pairs, named as in reports.
     #[must_use]
-    pub fn counts(&self) -> [(&'static str, usize); 6] {
+    pub fn counts(&self) -> [(&'static str, usize); 7] {
         [
             ("rounds", self.rounds),
             ("collapsed_points", self.collapsed_points),
@@ -79,6 +84,7 @@ impl OutputWork {
             ("unmerged_pieces", self.unmerged_pieces),
             ("joined_pairs", self.joined_pairs),
             ("dropped_pieces", self.dropped_pieces),
+            ("welded_vertices", self.welded_vertices),
         ]
     }
 
@@ -89,8 +95,16 @@ impl OutputWork {
         if !self.fixed_anything() {
             return "every point rounded once; nothing needed fixing".to_string();
         }
+        let welded = if self.welded_vertices > 0 {
+            format!(
+                ", after {} operand vertices were welded onto another operand's",
+                self.welded_vertices
+            )
+        } else {
+            String::new()
+        };
         format!(
-            "fixed in {} rounds: {} points collapsed, {} edges split, {} pieces kept unmerged, {} pairs joined, {} pieces of thin shells dropped",
+            "fixed in {} rounds: {} points collapsed, {} edges split, {} pieces kept unmerged, {} pairs joined, {} pieces of thin shells dropped{welded}",
             self.rounds,
             self.collapsed_points,
             self.split_edges,
@@ -109,6 +123,7 @@ impl std::ops::AddAssign<&OutputWork> for OutputWork {
         self.unmerged_pieces += one.unmerged_pieces;
         self.joined_pairs += one.joined_pairs;
         self.dropped_pieces += one.dropped_pieces;
+        self.welded_vertices += one.welded_vertices;
     }
 }
 

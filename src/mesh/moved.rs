@@ -1,9 +1,9 @@
 //! A solid moved by an orientation-keeping affine map: the same topology,
 //! every vertex mapped and rounded once, every face's plane fitted again.
 
-use glam::DAffine3;
+use glam::{DAffine3, DVec3};
 
-use super::Solid;
+use super::{Solid, VertexId};
 
 impl Solid {
     /// Moves every vertex by `map` (rounded to `f64`) in place, keeping
@@ -33,6 +33,26 @@ impl Solid {
             self.refit_plane(face);
         }
         true
+    }
+
+    /// Puts each vertex of `moves` at its new position in place, keeping
+    /// the topology and attributes, and fits again the plane of every face
+    /// around a moved vertex. The caller proves the moved solid valid
+    /// (moving a vertex can fold or cross faces). Vertices not in the solid
+    /// are skipped.
+    pub fn move_vertices(&mut self, moves: &[(VertexId, DVec3)]) {
+        let mut faces = Vec::new();
+        for &(v, position) in moves {
+            let Some(vertex) = self.vertices.get_mut(v) else {
+                continue;
+            };
+            vertex.position = position;
+            faces.extend(self.vertex_faces(v));
+        }
+        let faces: std::collections::HashSet<_> = faces.into_iter().collect();
+        for face in faces {
+            self.refit_plane(face);
+        }
     }
 }
 
