@@ -54,15 +54,49 @@ pub enum BooleanError {
     /// The pieces chosen for the result could not be assembled into a
     /// winged-edge solid (a non-manifold result, such as two solids that
     /// touch only along an edge, or rounding that broke the surface).
-    #[error("the result cannot be built as a winged-edge solid: {0}")]
-    NotBuilt(String),
+    #[error("the result cannot be built as a winged-edge solid: {reason}")]
+    NotBuilt {
+        /// Why, and where in world coordinates (and by operand).
+        reason: String,
+        /// The operands (by index) whose faces meet where it failed, if
+        /// known.
+        operands: Vec<usize>,
+    },
     /// The result after rounding to `f64` failed validation; `report`
     /// locates the defects.
     #[error("the rounded result is not a valid solid ({validity}): {report}")]
     InvalidResult {
         /// The validator's verdict in words.
         validity: String,
-        /// The first defects, with their faces.
+        /// The broken rules with their counts, and where in world
+        /// coordinates (and by operand) the defects are.
         report: String,
+        /// The operands (by index) whose faces hold the defects.
+        operands: Vec<usize>,
     },
+}
+
+impl BooleanError {
+    /// A failure to build or prove the result, located nowhere.
+    pub(crate) fn not_built(reason: impl Into<String>) -> BooleanError {
+        BooleanError::NotBuilt {
+            reason: reason.into(),
+            operands: Vec::new(),
+        }
+    }
+
+    /// The operands (by index) an error is about: the one refused, or
+    /// those whose faces hold the result's defects; empty when none is
+    /// known.
+    #[must_use]
+    pub fn operands(&self) -> Vec<usize> {
+        match self {
+            BooleanError::InvalidOperand { operand, .. } | BooleanError::Face { operand, .. } => {
+                vec![*operand]
+            }
+            BooleanError::NotBuilt { operands, .. }
+            | BooleanError::InvalidResult { operands, .. } => operands.clone(),
+            _ => Vec::new(),
+        }
+    }
 }

@@ -35,10 +35,11 @@ pub(super) fn invalid(
             .flat_map(|p| p.vertices.iter())
             .filter_map(|&i| written.positions.get(i).copied()),
     );
-    let operands: Vec<usize> = polygons.iter().filter_map(|&f| operand_of(f)).collect();
+    let operands = sorted(polygons.iter().filter_map(|&f| operand_of(f)).collect());
     BooleanError::InvalidResult {
         validity: report.validity.describe().to_string(),
-        report: format!("{}{}", rule_counts(report), whereabouts(&points, operands)),
+        report: format!("{}{}", rule_counts(report), whereabouts(&points, &operands)),
+        operands,
     }
 }
 
@@ -63,7 +64,7 @@ fn rule_counts(report: &Report) -> String {
 
 /// `; at (lo) … (hi), in faces of operands i and j`: where defects are, in
 /// world coordinates and by operand.
-fn whereabouts(points: &[DVec3], mut operands: Vec<usize>) -> String {
+fn whereabouts(points: &[DVec3], operands: &[usize]) -> String {
     let mut text = String::new();
     if let Some(first) = points.first() {
         let (lo, hi) = points
@@ -75,8 +76,6 @@ fn whereabouts(points: &[DVec3], mut operands: Vec<usize>) -> String {
             crate::geom::ReadableVec(hi)
         ));
     }
-    operands.sort_unstable();
-    operands.dedup();
     if !operands.is_empty() {
         let names: Vec<String> = operands.iter().map(usize::to_string).collect();
         text.push_str(&format!(
@@ -96,7 +95,7 @@ pub(super) fn not_built(
     polygons: &[usize],
     soup: &PolygonSoup,
     operand_of: impl Fn(usize) -> Option<usize>,
-) -> String {
+) -> BooleanError {
     let kind = match error {
         crate::mesh::BuildError::NonManifoldEdge { polygons, .. } => {
             format!("an edge used by {} faces", polygons.len())
@@ -111,8 +110,18 @@ pub(super) fn not_built(
         .filter_map(|&p| soup.polygons.get(p))
         .flat_map(|p| p.vertices.iter().map(|&v| soup.positions[v]))
         .collect();
-    let operands = polygons.iter().filter_map(|&p| operand_of(p)).collect();
-    format!("{kind}{}", whereabouts(&points, operands))
+    let operands = sorted(polygons.iter().filter_map(|&p| operand_of(p)).collect());
+    BooleanError::NotBuilt {
+        reason: format!("{kind}{}", whereabouts(&points, &operands)),
+        operands,
+    }
+}
+
+/// `operands` sorted, each once.
+fn sorted(mut operands: Vec<usize>) -> Vec<usize> {
+    operands.sort_unstable();
+    operands.dedup();
+    operands
 }
 
 #[cfg(test)]

@@ -6,21 +6,28 @@
 //! Voelcker's boundary evaluation, 1985). The stages, one file
 //! each, in the order they run:
 //!
-//! 1. `operand`: each face triangulated exactly, a BVH over the triangles;
+//! 0. `operand`: each face triangulated exactly, a BVH over the triangles;
 //!    operands that are not valid closed solids are refused first.
-//! 2. `intersect`: the BVH pair walk hands over triangle pairs whose boxes
-//!    meet; each pair's contact (points and segments, or a coplanar overlap)
-//!    is decided with exact predicates, new points kept implicit.
-//! 3. `points`: every point once, by exact comparison.
-//! 4. `split`: each cut triangle triangulated along its segments.
-//! 5. `classify`: pieces grouped into patches, one exact membership
-//!    decision per patch.
-//! 6. `select`: the operator's rule.
-//! 7. `assemble`: points rounded to `f64` (constructed points a few units
-//!    in the last place from another snapped onto it), the solid built.
-//! 8. `merge`: coplanar neighbours merged back into polygon faces (with
-//!    rings) by Euler operators; then the result is proven valid by the
-//!    validator (closed, oriented, no self-intersection).
+//! 1. `contacts`: the BVH pair walk hands over triangle pairs whose boxes
+//!    meet;
+//! 2. `intersect`: each pair's contact (points and segments, or a coplanar
+//!    overlap) is decided with exact predicates, new points kept implicit;
+//!    2b. `crossings` (three or more operands): segments of different
+//!    operands crossing inside a triangle; then `points`: every point
+//!    once, by exact comparison.
+//! 3. `split`: each cut triangle triangulated along its segments.
+//! 4. `classify`: pieces grouped into patches, one exact membership
+//!    decision per patch;
+//! 5. `select`: the operator's rule.
+//! 6. the kept pieces, wound to face out of the result (in `combine`).
+//! 7. `assemble`: points rounded to `f64`, the soup of kept pieces with
+//!    the output's fixes applied; `merge`: the solid built and coplanar
+//!    neighbours merged back into polygon faces (with rings) by Euler
+//!    operators.
+//! 8. `output`: what would be written proven valid by the validator
+//!    (closed, oriented, no self-intersection, planar faces), in rounds
+//!    that fix what rounding broke; `weld` is its last resort; `failure`
+//!    says what could not be fixed.
 //!
 //! No sign is decided on a rounded constructed point: implicit points
 //! ([`ImplicitPoint`]) carry their
@@ -28,6 +35,7 @@
 
 mod assemble;
 mod classify;
+mod contacts;
 mod crossings;
 mod error;
 mod expression;
@@ -59,7 +67,7 @@ pub use stats::{BooleanStats, OutputWork};
 
 use classify::{Partner, Piece};
 use crossings::{Line, Segment};
-use intersect::{Carrier, Contact, PointRef, Tri};
+use intersect::{Carrier, PointRef};
 use operand::Prepared;
 use points::PointTable;
 
@@ -174,7 +182,7 @@ pub fn combine(
     options: BooleanOptions,
 ) -> Result<Boolean, BooleanError> {
     let first = combine_once(operands, expression, options);
-    let Err(BooleanError::InvalidResult { .. } | BooleanError::NotBuilt(_)) = &first else {
+    let Err(BooleanError::InvalidResult { .. } | BooleanError::NotBuilt { .. }) = &first else {
         return first;
     };
     // Rounding broke the result: operands closer together than `f64` can
@@ -256,7 +264,7 @@ fn combine_once(
             if a.bvh.bounds().intersection(b.bvh.bounds()).is_empty() {
                 continue;
             }
-            let found = contacts(a, b, offsets[i], offsets[j]);
+            let found = contacts::contacts(a, b, offsets[i], offsets[j]);
             stats.contacts += found.len();
             if stats.contacts > options.max_contacts {
                 return Err(BooleanError::TooLarge {
@@ -497,7 +505,9 @@ fn cross_segments(
 /// Refuses an operand that is not a valid closed solid.
 fn check_operand(solid: &Solid, operand: usize) -> Result<(), BooleanError> {
     prove(solid).map(|_| ()).map_err(|e| match e {
-        BooleanError::InvalidResult { validity, report } => BooleanError::InvalidOperand {
+        BooleanError::InvalidResult {
+            validity, report, ..
+        } => BooleanError::InvalidOperand {
             operand,
             validity,
             report,
@@ -517,42 +527,6 @@ fn check_operand(solid: &Solid, operand: usize) -> Result<(), BooleanError> {
 /// [`BooleanError::InvalidResult`] with the located defects.
 pub fn prove(solid: &Solid) -> Result<Report, BooleanError> {
     output::prove(solid)
-}
-
-/// Every pair of triangles of two operands that meet, with its contact, in
-/// an order fixed by the two BVHs; point indices are global (each
-/// operand's vertices from its offset on).
-fn contacts(
-    first: &Prepared,
-    second: &Prepared,
-    first_offset: u32,
-    second_offset: u32,
-) -> Vec<(u32, u32, Contact)> {
-    let tri = |operand: &Prepared, t: u32, base: u32| Tri {
-        corners: operand.corners(t),
-        ids: operand.triangles[t as usize].map(|i| i + base),
-    };
-    first.bvh.par_leaf_pairs(&second.bvh, |la, lb, found| {
-        let (Some(items_a), Some(items_b)) = (first.bvh.leaf(la), second.bvh.leaf(lb)) else {
-            return;
-        };
-        for pa in items_a.range() {
-            let ta = first.order[pa];
-            let box_a = first.bounds[ta as usize];
-            for pb in items_b.range() {
-                let tb = second.order[pb];
-                if box_a.intersection(second.bounds[tb as usize]).is_empty() {
-                    continue;
-                }
-                if let Some(contact) = intersect::contact(
-                    &tri(first, ta, first_offset),
-                    &tri(second, tb, second_offset),
-                ) {
-                    found.push((ta, tb, contact));
-                }
-            }
-        }
-    })
 }
 
 /// The pieces of every triangle of `operand`: whole triangles where

@@ -87,12 +87,9 @@ pub(crate) fn build_and_prove(
                     }
                     _ => (Vec::new(), None),
                 };
-                failure = Some(BooleanError::NotBuilt(not_built(
-                    &e,
-                    &polygons,
-                    &soup,
-                    |p| sources.get(p).map(|s| s.origin.operand),
-                )));
+                failure = Some(not_built(&e, &polygons, &soup, |p| {
+                    sources.get(p).map(|s| s.origin.operand)
+                }));
                 let pairs: Vec<(usize, usize)> = polygons
                     .iter()
                     .enumerate()
@@ -117,7 +114,7 @@ pub(crate) fn build_and_prove(
         let (written, faces) = written_soup(&solid);
         let changed_polygons: Vec<bool> = faces.iter().map(|f| changed.contains(f)).collect();
         let report = validate_soup_near_changed(&written, &changed_polygons)
-            .map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
+            .map_err(|e| BooleanError::not_built(e.to_string()))?;
         proof_seconds += clock.elapsed().as_secs_f64();
         if report.is_valid() {
             let (origins, renumbered) = origins_of(&solid, &sources);
@@ -143,7 +140,7 @@ pub(crate) fn build_and_prove(
             break;
         }
     }
-    Err(failure.unwrap_or_else(|| BooleanError::NotBuilt("the output did not settle".into())))
+    Err(failure.unwrap_or_else(|| BooleanError::not_built("the output did not settle")))
 }
 
 /// One round's soup of pieces, as the solid was built from it.
@@ -618,7 +615,7 @@ fn origins_of(solid: &Solid, sources: &[PieceSource]) -> (Vec<FaceOrigin>, Vec<(
 pub(crate) fn prove(solid: &Solid) -> Result<Report, BooleanError> {
     let (written, _) = written_soup(solid);
     let report = validate_soup(&written, None, &Options::default())
-        .map_err(|e| BooleanError::NotBuilt(e.to_string()))?;
+        .map_err(|e| BooleanError::not_built(e.to_string()))?;
     if report.is_valid() {
         Ok(report)
     } else {

@@ -52,13 +52,16 @@ pub enum EvaluateError {
         source: BooleanError,
     },
     /// The booleans failed: the result could not be made a valid solid.
-    #[error("{tree}: {source}")]
+    #[error("{tree}: {source}{}", operand_key(leaves))]
     Boolean {
         /// The tree as a formula of its leaves' labels (its first 160
         /// characters).
         tree: String,
         /// Why.
         source: BooleanError,
+        /// The leaves the error's operands are (`source` names operands by
+        /// index), each as `(operand, label)`: in a scene, the JSON path.
+        leaves: Vec<(usize, String)>,
     },
 }
 
@@ -108,9 +111,18 @@ pub fn evaluate(csg: &Csg, options: &EvaluateOptions) -> Result<Evaluated, Evalu
         ..BooleanOptions::default()
     };
     let result = combine(&operands, &expression, boolean_options).map_err(|source| {
+        let leaves = source
+            .operands()
+            .into_iter()
+            .filter_map(|k| {
+                let id = leaves.ids.get(k)?;
+                Some((k, csg.leaves[id.0 as usize].label.clone()))
+            })
+            .collect();
         EvaluateError::Boolean {
             tree: shortened(&tree),
             source,
+            leaves,
         }
     })?;
     // Each operand's faces numbered in their order, for the operands that
@@ -206,6 +218,19 @@ fn node(
     }
 }
 
+/// ` (operand 0 is leaf root.union[0], operand 1 is leaf …)`: which leaves
+/// an error's operand numbers are.
+fn operand_key(leaves: &[(usize, String)]) -> String {
+    if leaves.is_empty() {
+        return String::new();
+    }
+    let named: Vec<String> = leaves
+        .iter()
+        .map(|(k, label)| format!("operand {k} is leaf {label}"))
+        .collect();
+    format!(" ({})", named.join(", "))
+}
+
 /// A tree's formula cut to its first [`FORMULA_CHARS`] characters, so an
 /// error about a large scene stays readable.
 fn shortened(formula: &str) -> String {
@@ -223,5 +248,23 @@ fn symbol(operation: SetOp) -> &'static str {
         SetOp::Union => "∪",
         SetOp::Intersection => "∩",
         SetOp::Difference | SetOp::ReverseDifference => "−",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_error_says_which_leaf_each_operand_is() {
+        assert_eq!(operand_key(&[]), "");
+        let key = operand_key(&[
+            (0, "root.union[0]".into()),
+            (2, "root.union[1].difference[1]".into()),
+        ]);
+        assert_eq!(
+            key,
+            " (operand 0 is leaf root.union[0], operand 2 is leaf root.union[1].difference[1])"
+        );
     }
 }

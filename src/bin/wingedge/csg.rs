@@ -32,6 +32,13 @@ pub fn run(
     let evaluated = match evaluate(&loaded.csg, &options) {
         Ok(e) => e,
         Err(e @ EvaluateError::Boolean { .. }) => {
+            let leaves: Vec<serde_json::Value> = match &e {
+                EvaluateError::Boolean { leaves, .. } => leaves
+                    .iter()
+                    .map(|(k, label)| serde_json::json!({"operand": k, "leaf": label}))
+                    .collect(),
+                _ => Vec::new(),
+            };
             // Exit 1: the scene was read, the result could not be made
             // valid; nothing is written. With --json, still one object.
             if json {
@@ -41,6 +48,7 @@ pub fn run(
                     "output": serde_json::Value::Null,
                     "validity": "invalid",
                     "error": format!("{name}: {e}"),
+                    "leaves": leaves,
                 });
                 out.write(format!("{value:#}\n"))?;
                 out.finish()?;
