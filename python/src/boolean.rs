@@ -124,13 +124,13 @@ fn prove_operands(operands: &[Arc<Inner>], expression: &Expression) -> Result<()
                 .get_or_init(|| wingedge::boolean::prove(&inner.solid).map(|_| ()));
             match verdict {
                 Ok(()) => Ok(()),
-                Err(CoreError::InvalidResult { validity, report }) => {
-                    Err(CoreError::InvalidOperand {
-                        operand: k,
-                        validity: validity.clone(),
-                        report: report.clone(),
-                    })
-                }
+                Err(CoreError::InvalidResult {
+                    validity, report, ..
+                }) => Err(CoreError::InvalidOperand {
+                    operand: k,
+                    validity: validity.clone(),
+                    report: report.clone(),
+                }),
                 Err(other) => Err(other.clone()),
             }
         })

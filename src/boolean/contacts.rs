@@ -1,7 +1,6 @@
 //! Stage 1: every pair of triangles of two operands that meet, found
 //! through the operands' BVHs and decided exactly (`intersect::contact`).
 
-
 use super::intersect::{self, Contact, Tri};
 use super::operand::Prepared;
 
