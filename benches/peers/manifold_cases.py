@@ -1,0 +1,576 @@
+"""manifold's own boolean tests, run through manifold3d and through `wingedge csg`.
+
+    python3 benches/peers/manifold_cases.py --models DIR [--wingedge PATH]
+        [--work DIR] [--only NAME,...] [--timeout S] [--write-docs]
+
+DIR holds manifold's `test/models/*.obj` (fetched from github:elalish/manifold,
+never committed). Each case is the tree of a test in manifold's
+`test/boolean_test.cpp` / `test/boolean_complex_test.cpp`: its operands are
+built with manifold3d's own constructors and transforms, or read from DIR.
+manifold3d evaluates the tree as the test does. For wingedge each leaf is
+written as an OBJ with every coordinate in full `f64` precision (`repr`), a
+transform above a boolean is applied to the leaves below it (manifold applies
+its lazy transforms to the leaves too), every leaf goes through `wingedge
+validate`, the tree through `wingedge csg SCENE -o OUT --json`, and the written
+OUT through `wingedge validate OUT --json`. Scenes, leaves and outputs stay in
+--work (default /tmp/manifold-cases/<case>/) as reproductions.
+
+Verdicts: `agrees` (relative volume difference at most 1e-9 and the same
+genus, manifold's genus 1 - chi/2 of the whole mesh); `FAILURE` (wingedge
+refused or wrote an invalid result from valid operands); `operand not a solid
+(#37)`; `differs` (both valid, numbers apart: the note says which is right).
+"""
+import argparse, json, math, os, platform, subprocess, sys, time
+from importlib import metadata
+
+import numpy as np
+import manifold3d as m3d
+
+M = m3d.Manifold
+K_PRECISION = 1e-12  # manifold's kPrecision (src/utils.h)
+
+
+# ---------------------------------------------------------------- trees
+# A tree is ("leaf", Manifold) | ("obj", file name in --models)
+# | (op, [trees]) with op in union/difference/intersection
+# | ("xf", function Manifold -> Manifold, tree).
+
+def leaf(m): return ("leaf", m)
+def obj(name): return ("obj", name)
+def U(*c): return ("union", list(c))
+def D(*c): return ("difference", list(c))
+def I(*c): return ("intersection", list(c))
+def XF(f, t): return ("xf", f, t)
+
+
+def cube(size=(1, 1, 1), center=False):
+    if not isinstance(size, (tuple, list)):
+        size = (size,) * 3
+    return M.cube(tuple(float(s) for s in size), center)
+
+
+def mesh(verts, tris):
+    return M(m3d.Mesh64(vert_properties=np.array(verts, dtype=np.float64).reshape(-1, 3),
+                        tri_verts=np.array(tris, dtype=np.uint32).reshape(-1, 3)))
+
+
+def read_obj(path):
+    verts, tris = [], []
+    with open(path) as f:
+        for line in f:
+            p = line.split()
+            if not p:
+                continue
+            if p[0] == "v":
+                verts.append([float(x) for x in p[1:4]])
+            elif p[0] == "f":
+                idx = [int(x.split("/")[0]) - 1 for x in p[1:]]
+                for k in range(1, len(idx) - 1):  # manifold reads triangles only
+                    tris.append([idx[0], idx[k], idx[k + 1]])
+    return mesh(verts, tris)
+
+
+def cs(polys):
+    return m3d.CrossSection([[tuple(map(float, p)) for p in poly] for poly in polys])
+
+
+# ---------------------------------------------------------------- the cases
+
+def tet():
+    return M.tetrahedron()
+
+
+def perturb2():
+    c = cube(2, True)
+    g = c.to_mesh64()
+    V, T = np.asarray(g.vert_properties)[:, :3], np.asarray(g.tri_verts)
+    parts = [leaf(c.rotate((5, 10, 15)))]
+    for tri in T:
+        tv = [4, 2, 0, 1, 3, 5]
+        pv = []
+        for v0 in range(3):
+            v1 = (v0 + 1) % 3
+            a, b = int(tri[v0]), int(tri[v1])
+            if b > a:
+                tv += [2 * v0, 2 * v1, 2 * v1 + 1, 2 * v0, 2 * v1 + 1, 2 * v0 + 1]
+            else:
+                tv += [2 * v0, 2 * v1, 2 * v0 + 1, 2 * v1, 2 * v1 + 1, 2 * v0 + 1]
+            pv += list(V[a]) + list(2 * V[a])
+        parts.append(leaf(mesh(pv, tv).rotate((5, 10, 15))))
+    return U(*parts)
+
+
+def perturb3():
+    n, alpha = 16, 90.0 / 16
+    c = cube(1, True)
+    gear = U(*[leaf(c.rotate((0, 0, alpha * i))) for i in range(n)])
+    return D(XF(lambda m: m.scale((2, 2, 1)), gear), gear)
+
+
+def cylinders():
+    rod = M.cylinder(1.0, 0.4, -1.0, 12)
+    a1 = [[0, 0, 1, 3, -1, 0, 0, 3, 0, -1, 0, 6], [0, 0, 1, 2, -1, 0, 0, 3, 0, -1, 0, 8],
+          [0, 0, 1, 1, -1, 0, 0, 2, 0, -1, 0, 7], [1, 0, 0, 3, 0, 1, 0, 2, 0, 0, 1, 6],
+          [0, 0, 1, 3, -1, 0, 0, 3, 0, -1, 0, 7], [0, 0, 1, 1, -1, 0, 0, 3, 0, -1, 0, 7],
+          [1, 0, 0, 3, 0, 0, 1, 4, 0, -1, 0, 6], [1, 0, 0, 4, 0, 0, 1, 4, 0, -1, 0, 6]]
+    a2 = [[1, 0, 0, 3, 0, 0, 1, 2, 0, -1, 0, 6], [1, 0, 0, 4, 0, 1, 0, 3, 0, 0, 1, 6],
+          [0, 0, 1, 2, -1, 0, 0, 2, 0, -1, 0, 7], [1, 0, 0, 3, 0, 1, 0, 3, 0, 0, 1, 7],
+          [1, 0, 0, 2, 0, 1, 0, 3, 0, 0, 1, 7], [1, 0, 0, 1, 0, 1, 0, 3, 0, 0, 1, 7],
+          [1, 0, 0, 3, 0, 1, 0, 4, 0, 0, 1, 7], [1, 0, 0, 3, 0, 1, 0, 5, 0, 0, 1, 6],
+          [0, 0, 1, 3, -1, 0, 0, 4, 0, -1, 0, 6]]
+    rods = lambda arrs: [leaf(rod.transform(np.array(a, dtype=float).reshape(3, 4))) for a in arrs]
+    return U(U(*rods(a1)), U(*rods(a2)))
+
+
+def spiral():
+    d = 2
+
+    def rec(k, r, add):
+        rot = 360.0 / (math.pi * r * 2) * d
+        r_next = r + add / 360 * rot
+        c = leaf(cube(1, True).translate((0, r, 0)))
+        if k > 0:
+            return U(XF(lambda m, rot=rot: m.rotate((0, 0, rot)), rec(k - 1, r_next, add)), c)
+        return c
+    return rec(120, 25, 2)
+
+
+def gyroid():
+    def sdf(x, y, z):
+        p = (x, y, z)
+        bound = min(min(p), min(2 * math.pi - q for q in p))
+        g = math.cos(x) * math.sin(y) + math.cos(y) * math.sin(z) + math.cos(z) * math.sin(x)
+        return min(g, bound)
+    two = 2 * math.pi
+    return M.level_set(sdf, [0, 0, 0, two, two, two], 0.5).simplify(0.0)
+
+
+def subtract_meshes():
+    tris = [0, 1, 2, 2, 3, 0, 4, 5, 6, 5, 4, 7, 6, 2, 1, 6, 5, 2, 5, 3, 2, 5, 7, 3, 7, 0, 3, 7, 4, 0, 4, 1, 0, 4, 6, 1]
+    first = mesh([0, 0, 0, 1540, 0, 0, 1540, 70, 0, 0, 70, 0, 0, 0, -278.282, 1540, 70, -278.282,
+                  1540, 0, -278.282, 0, 70, -278.282], tris)
+    second = mesh([2.04636e-12, 70, 50000, 2.04636e-12, -1.27898e-13, 50000, 1470, -1.27898e-13, 50000,
+                   1540, 70, 50000, 2.04636e-12, 70, -28.2818, 1470, -1.27898e-13, 0,
+                   2.04636e-12, -1.27898e-13, 0, 1540, 70, -28.2818], tris)
+    return D(leaf(first), leaf(second))
+
+
+def close():
+    a = M.sphere(10, 256)
+    bb = a.bounding_box()
+    eps = K_PRECISION * max(abs(x) for x in bb)  # manifold's epsilon: kPrecision times the box scale
+    return I(*[leaf(a)] + [leaf(a.translate((eps / 10 * i, 0, 0))) for i in range(10)])
+
+
+def cases():
+    c1, t = cube(), tet()
+    blk = D(leaf(cube(1, True)), leaf(M.cylinder(1, 0.5)))
+    corner = mesh([0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1], [2, 0, 1, 0, 3, 1, 2, 3, 0, 3, 2, 1])
+    big = M.extrude(cs([[(0, 2), (2, 0), (4, 2), (2, 4)], [(1, 2), (2, 3), (3, 2), (2, 1)]]), 1.0)
+    little = M.extrude(cs([[(2, 1), (3, 2), (2, 3), (1, 2)]]), 1.0).translate((0, 0, 1))
+    punch = M.extrude(cs([[(1, 2), (2, 2), (2, 3)]]), 1.0).translate((0, 0, 1))
+    cyl = M.cylinder(1.0, 1.0)
+    scale = 100 * K_PRECISION
+    big3 = 1000.0
+    dist = big3 * (1 - K_PRECISION / 2)
+    m1, m2, m4 = cube((1, 1, 1)), cube((2, 1, 1)).translate((1, 0, 0)), cube((4, 1, 1)).translate((3, 0, 0))
+    m3, m7 = cube((3, 1, 1)), cube((7, 1, 1))
+    e1, e2, e3 = M.cylinder(50, 50), M.cylinder(60, 30), M.cylinder(60, 40).mirror((0, 0, 1))
+    e4 = XF(lambda m: m.mirror((0, 0, 1)), U(leaf(e1), leaf(e2)))
+    bcube = cube((100, 100, 1))
+    bcyl = [M.cylinder(1, 30).translate((-10, 30, 0)), M.cylinder(1, 20).translate((110, 20, 0)),
+            M.cylinder(1, 40).translate((50, 110, 0))]
+    cube_stl = cube(1, True)
+    sph = M.sphere(60)
+    s12 = M.sphere(1.0, 12)
+    ext = M.extrude(cube(2, True).slice(0.0), 2, 0, 0, (2, 2))
+    yield "Tetra", "Boolean.Tetra", D(leaf(t.translate((0.5, 0.5, 0.5))), leaf(t))
+    yield "MeshGLRoundTrip", "Boolean.MeshGLRoundTrip", U(leaf(cube(2)), leaf(cube(2).translate((1, 1, 0))))
+    yield "Normals", "Boolean.Normals", D(leaf(cube_stl.scale((100, 100, 100))), D(
+        leaf(sph.rotate((180, 0, 0))), leaf(sph.scale((0.5, 0.5, 0.5)).rotate((90, 0, 0)).translate((40, 40, 40)))))
+    yield "MissingNormals", "Boolean.MissingNormals", U(leaf(cube(1, True)), leaf(cube(2, True).translate((0, 0, -1))))
+    yield "EmptyOriginal", "Boolean.EmptyOriginal", D(leaf(t), leaf(c1.translate((3, 4, 5))))
+    yield "Mirrored", "Boolean.Mirrored", D(leaf(c1.scale((1, -1, 1))), leaf(c1.scale((0.5, -1, 0.5))))
+    yield "Cubes", "Boolean.Cubes", U(leaf(cube((1.2, 1, 1), True).translate((0, -0.5, 0.5))),
+                                      leaf(cube((1, 0.8, 0.5)).translate((-0.5, 0, 0.5))),
+                                      leaf(cube((1.2, 0.1, 0.5)).translate((-0.6, -0.1, 0))))
+    yield "Cubes2", "Boolean.Cubes2", U(leaf(c1), leaf(c1.rotate((0, 0, 45))))
+    half = [leaf(cube(1, True)), leaf(cube(1, True).translate((0.5, 0, 0)))]
+    yield "DeterminismSimpleSubtract", "Boolean.DeterminismSimpleSubtract", D(*half)
+    yield "DeterminismSimpleUnion", "Boolean.DeterminismSimpleUnion", U(*half)
+    yield "DeterminismSimpleIntersect", "Boolean.DeterminismSimpleIntersect", I(*half)
+    r10 = c1.refine(10)
+    yield "Simplify", "Boolean.Simplify", U(leaf(r10), leaf(r10.translate((1, 0, 0))))
+    yield "SimplifyCracks", "Boolean.SimplifyCracks (the union, before refine and warp)", U(
+        leaf(M.cylinder(2, 50, 50, 180).rotate((-89.999999999999, 0, 0)).translate((50, 0, 50))),
+        leaf(cube((100, 2, 50))))
+    yield "NoRetainedVerts", "Boolean.NoRetainedVerts", I(leaf(cube(1, True)), leaf(M.sphere(1, 4)))
+    yield "PropsMismatch", "Boolean.PropsMismatch", U(leaf(M.cylinder(1, 1)), leaf(c1.translate((50, 0, 0))))
+    yield "UnionDifference", "Boolean.UnionDifference", U(blk, XF(lambda m: m.translate((0, 0, 1)), blk))
+    two = U(leaf(c1), leaf(c1))
+    yield "TreeTransforms", "Boolean.TreeTransforms", U(XF(lambda m: m.translate((1, 0, 0)), two), two)
+    yield "CreatePropertiesSlow", "Boolean.CreatePropertiesSlow", U(
+        leaf(M.sphere(10, 1024)), leaf(M.sphere(10, 1024).translate((5, 0, 0))))
+    yield "SimpleProperties", "Boolean.SimpleProperties", U(leaf(cube(2, True)), leaf(ext))
+    yield "SelfSubtract", "Boolean.SelfSubtract", D(leaf(c1), leaf(c1))
+    yield "Perturb", "Boolean.Perturb", D(leaf(corner), leaf(corner))
+    yield "Perturb1", "Boolean.Perturb1", D(U(leaf(big), leaf(little)), leaf(punch))
+    yield "Perturb2", "Boolean.Perturb2", perturb2()
+    yield "Perturb3", "Boolean.Perturb3 (nastyGear)", perturb3()
+    yield "Coplanar", "Boolean.Coplanar", D(leaf(cyl), leaf(cyl.scale((0.8, 0.8, 1.0)).rotate((0, 0, 185))))
+    yield "MultiCoplanar", "Boolean.MultiCoplanar", D(D(leaf(c1), leaf(c1.translate((0.3, 0.3, 0)))),
+                                                      leaf(c1.translate((-0.3, -0.3, 0))))
+    yield "AlmostCoplanar", "Boolean.AlmostCoplanar", U(
+        leaf(t), leaf(t.rotate((0.001, -0.08472872823860228, 0.055910459615905288))), leaf(t))
+    yield "FaceUnion", "Boolean.FaceUnion", U(leaf(c1), leaf(c1.translate((1, 0, 0))))
+    yield "EdgeUnion", "Boolean.EdgeUnion", U(leaf(c1), leaf(c1.translate((1, 1, 0))))
+    yield "EdgeUnion2", "Boolean.EdgeUnion2", U(leaf(t.translate((0, 0, -1))), leaf(t.translate((0, 0, 1)).rotate((0, 0, 90))))
+    yield "CornerUnion", "Boolean.CornerUnion", U(leaf(c1), leaf(c1.translate((1, 1, 1))))
+    oct_ = M.sphere(1, 4).translate((0, 0, 1))
+    yield "Split.first", "Boolean.Split (cube ∩ octahedron)", I(leaf(cube(2, True)), leaf(oct_))
+    yield "Split.second", "Boolean.Split (cube − octahedron)", D(leaf(cube(2, True)), leaf(oct_))
+    yield "Vug", "Boolean.Vug", D(leaf(cube(4, True)), leaf(c1))
+    yield "Winding", "Boolean.Winding", I(leaf(cube(1, True)), U(leaf(cube(3, True)), leaf(cube(2, True))))
+    far = c1.scale((2, 2, 2)).translate((3, 0, 0))
+    yield "NonIntersecting.union", "Boolean.NonIntersecting", U(leaf(c1), leaf(far))
+    yield "NonIntersecting.difference", "Boolean.NonIntersecting", D(leaf(c1), leaf(far))
+    yield "NonIntersecting.intersection", "Boolean.NonIntersecting", I(leaf(c1), leaf(far))
+    tiny = c1.scale((scale,) * 3).translate((100, 0, 0))
+    yield "Precision.1", "Boolean.Precision (cube + cube·1e-10 at 100)", U(leaf(c1), leaf(tiny))
+    yield "Precision.2", "Boolean.Precision (… + cube·2e-10 at 100)", U(
+        leaf(c1), leaf(tiny), leaf(c1.scale((2 * scale,) * 3).translate((100, 0, 0))))
+    k = cube(big3)
+    yield "Precision2.1", "Boolean.Precision2 (overlap 5e-10)", I(leaf(k), leaf(k.translate((-dist,) * 3)))
+    yield "Precision2.2", "Boolean.Precision2 (overlap 1.5e-9)", I(
+        leaf(k), leaf(k.translate((-dist,) * 3).translate((big3 * K_PRECISION,) * 3)))
+    yield "SimpleCubeRegression", "Boolean.SimpleCubeRegression", D(U(
+        leaf(c1.rotate((-0.10000000000000001, 0.10000000000000001, -1.0))), leaf(c1)),
+        leaf(c1.rotate((-0.10000000000000001, -0.10000000000066571, -1.0))))
+    yield "BatchBoolean.intersect", "Boolean.BatchBoolean", I(leaf(bcube), *[leaf(c) for c in bcyl])
+    yield "BatchBoolean.add", "Boolean.BatchBoolean", U(leaf(bcube), *[leaf(c) for c in bcyl])
+    yield "BatchBoolean.subtract", "Boolean.BatchBoolean", D(leaf(bcube), *[leaf(c) for c in bcyl])
+    # boolean_complex_test.cpp
+    yield "Sphere", "BooleanComplex.Sphere", D(leaf(s12), leaf(s12.translate((0.5, 0.5, 0.5))))
+    g = gyroid()
+    yield "MeshRelation", "BooleanComplex.MeshRelation (gyroid union)", U(leaf(g), leaf(g.translate((2, 2, 2))))
+    yield "Cylinders", "BooleanComplex.Cylinders", cylinders()
+    yield "Subtract", "BooleanComplex.Subtract", subtract_meshes()
+    yield "Close", "BooleanComplex.Close (^ is intersection)", close()
+    for name, tree in [("m1^m2", I(leaf(m1), leaf(m2))), ("m1+m2+m4", U(leaf(m1), leaf(m2), leaf(m4))),
+                       ("m1+m2-m4", D(U(leaf(m1), leaf(m2)), leaf(m4))),
+                       ("m1+(m2^m4)", U(leaf(m1), I(leaf(m2), leaf(m4)))), ("m7^m4", I(leaf(m7), leaf(m4))),
+                       ("m7^m3^m1", I(leaf(m7), leaf(m3), leaf(m1))), ("m7^(m1+m2)", I(leaf(m7), U(leaf(m1), leaf(m2)))),
+                       ("m7-m4", D(leaf(m7), leaf(m4))), ("m7-m4-m2", D(leaf(m7), leaf(m4), leaf(m2))),
+                       ("m7-(m7-m1)", D(leaf(m7), D(leaf(m7), leaf(m1)))),
+                       ("m7-(m1+m2)", D(leaf(m7), U(leaf(m1), leaf(m2))))]:
+        yield "BooleanVolumes " + name, "BooleanComplex.BooleanVolumes", tree
+    yield "Spiral", "BooleanComplex.Spiral", spiral()
+    yield "SelfIntersect", "BooleanComplex.SelfIntersect", U(obj("self_intersectA.obj"), obj("self_intersectB.obj"))
+    yield "GenericTwin7081", "BooleanComplex.GenericTwinBooleanTest7081", U(
+        obj("Generic_Twin_7081.1.t0_left.obj"), obj("Generic_Twin_7081.1.t0_right.obj"))
+    yield "GenericTwin7863", "BooleanComplex.GenericTwinBooleanTest7863", U(
+        obj("Generic_Twin_7863.1.t0_left.obj"), obj("Generic_Twin_7863.1.t0_right.obj"))
+    yield "Havocglass8", "BooleanComplex.Havocglass8Bool", U(obj("Havocglass8_left.obj"), obj("Havocglass8_right.obj"))
+    yield "Craycloud", "BooleanComplex.CraycloudBool", D(obj("Cray_left.obj"), obj("Cray_right.obj"))
+    yield "HullMask", "BooleanComplex.HullMask", D(obj("hull-body.obj"), obj("hull-mask.obj"))
+    yield "LazyCollider.ele4", "BooleanComplex.LazyCollider", e4
+    yield "LazyCollider.r1", "BooleanComplex.LazyCollider", D(e4, leaf(e2.translate((0, 0, -20))))
+    yield "LazyCollider.r2", "BooleanComplex.LazyCollider", D(XF(lambda m: m.translate((0, 0, 1)), e4), leaf(e3))
+    yield "Offset1+2", "BooleanComplex.OffsetTriangulationFailure", U(obj("Offset1.obj"), obj("Offset2.obj"))
+    yield "Offset3+4", "BooleanComplex.OffsetSelfIntersect", U(obj("Offset3.obj"), obj("Offset4.obj"))
+
+
+# ---------------------------------------------------------------- manifold3d
+
+def eval_manifold(tree, models, cache):
+    kind = tree[0]
+    if kind == "leaf":
+        return tree[1]
+    if kind == "obj":
+        if tree[1] not in cache:
+            cache[tree[1]] = read_obj(os.path.join(models, tree[1]))
+        return cache[tree[1]]
+    if kind == "xf":
+        return tree[1](eval_manifold(tree[2], models, cache))
+    parts = [eval_manifold(c, models, cache) for c in tree[1]]
+    out = parts[0]
+    for p in parts[1:]:
+        out = out + p if kind == "union" else out - p if kind == "difference" else out ^ p
+    return out
+
+
+def write_obj(m, path):
+    g = m.to_mesh64()
+    with open(path, "w") as f:
+        for v in np.asarray(g.vert_properties)[:, :3]:
+            f.write("v %r %r %r\n" % (float(v[0]), float(v[1]), float(v[2])))
+        for t in np.asarray(g.tri_verts):
+            f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
+
+
+# ---------------------------------------------------------------- wingedge
+
+def scene_node(tree, fns, ctx):
+    """The scene JSON of `tree` with the transforms `fns` (innermost first)
+    applied to its leaves; leaves are written into ctx['dir']."""
+    kind = tree[0]
+    if kind == "xf":
+        return scene_node(tree[2], [tree[1]] + fns, ctx)
+    if kind in ("union", "difference", "intersection"):
+        kids = [scene_node(c, fns, ctx) for c in tree[1]]
+        if kind != "difference":  # associative: a nested union is spliced in (scene depth limit)
+            kids = [g for k in kids for g in (k[kind] if kind in k else [k])]
+        return {kind: kids}
+    key = (id(tree[1]), tuple(id(f) for f in fns))
+    if key not in ctx["leaves"]:
+        if kind == "obj" and not fns:
+            name = tree[1]
+            src = os.path.join(ctx["models"], name)
+            dst = os.path.join(ctx["dir"], name)
+            if not os.path.exists(dst):
+                with open(src) as a, open(dst, "w") as b:
+                    b.write(a.read())
+        else:
+            m = eval_manifold(tree, ctx["models"], ctx["cache"])
+            for f in fns:
+                m = f(m)
+            name = "leaf%d.obj" % len(ctx["leaves"])
+            write_obj(m, os.path.join(ctx["dir"], name))
+        ctx["leaves"][key] = name
+    return {"mesh": ctx["leaves"][key]}
+
+
+def run(cmd, timeout, cwd=None):
+    t = time.time()
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=cwd)
+        return p.returncode, p.stdout, p.stderr, time.time() - t
+    except subprocess.TimeoutExpired:
+        return None, "", "timeout after %gs" % timeout, time.time() - t
+
+
+def genus_of(report):
+    """manifold's genus, 1 - chi/2 of the whole mesh, from a validate report."""
+    chi = sum(s["euler_characteristic"] for s in report.get("shell_details", []))
+    return 1 - chi // 2
+
+
+def classify(we, target, pts_file, timeout):
+    rc, out, err, _ = run([we, "classify", target, pts_file], timeout)
+    return out.split() if rc == 0 else None
+
+
+def sample_check(we, scene, outs, box, n, work, timeout):
+    """Exact point membership (wingedge classify on the scene's tree, not
+    its boolean result) against each output, on n seeded points in box."""
+    rng = np.random.default_rng(7)
+    lo, hi = np.array(box[:3]), np.array(box[3:])
+    pts = lo + (hi - lo) * rng.random((n, 3))
+    pf = os.path.join(work, "points.txt")
+    with open(pf, "w") as f:
+        f.writelines("%r %r %r\n" % (float(a), float(b), float(c)) for a, b, c in pts)
+    truth = classify(we, scene, pf, timeout)
+    res = {}
+    for name, path in outs.items():
+        got = classify(we, path, pf, timeout) if path else ["outside"] * n
+        if truth is None or got is None:
+            res[name] = None
+            continue
+        res[name] = sum(1 for a, b in zip(truth, got) if "boundary" not in (a, b) and a != b)
+    return res
+
+
+def run_case(name, source, tree, args):
+    work = os.path.join(args.work, name.replace(" ", "_").replace("^", "I").replace("+", "U")
+                        .replace("(", "").replace(")", ""))
+    os.makedirs(work, exist_ok=True)
+    row = {"case": name, "source": source, "dir": work}
+    cache = {}
+    # manifold3d
+    t = time.time()
+    try:
+        mr = eval_manifold(tree, args.models, cache)
+        row["m_volume"], row["m_genus"] = mr.volume(), mr.genus()
+        row["m_status"], row["m_tris"] = str(mr.status()).split(".")[-1], mr.num_tri()
+        row["m_empty"] = mr.is_empty()
+    except Exception as e:  # a peer's failure is a row, not a crash
+        mr = None
+        row["m_status"] = "exception: %s" % e
+    row["m_seconds"] = time.time() - t
+    # wingedge
+    ctx = {"dir": work, "models": args.models, "cache": cache, "leaves": {}}
+    scene = {"root": scene_node(tree, [], ctx)}
+    sp = os.path.join(work, "scene.json")
+    with open(sp, "w") as f:
+        json.dump(scene, f, indent=1)
+    leaves = sorted(set(ctx["leaves"].values()))
+    rc, out, err, _ = run([args.wingedge, "validate", "--json"] + leaves, args.timeout, cwd=work)
+    reps = json.loads(out) if out.strip().startswith("[") else []
+    bad = [r["file"] + ": " + r.get("verdict", "?") for r in reps if not r.get("valid")]
+    row["operands_valid"] = rc == 0 and not bad
+    row["operand_defects"] = "; ".join(bad) if bad else ("" if rc == 0 else err.strip()[:200])
+    op = os.path.join(work, "out.obj")
+    if os.path.exists(op):
+        os.remove(op)
+    rc, out, err, secs = run([args.wingedge, "csg", "scene.json", "-o", "out.obj", "--json"], args.timeout, cwd=work)
+    row["w_rc"], row["w_seconds"] = rc, secs
+    row["w_command"] = "cd %s && %s csg scene.json -o out.obj --json" % (work, args.wingedge)
+    row["w_stderr"] = err.strip()[-1500:]
+    cj = {}
+    try:
+        cj = json.loads(out) if out.strip() else {}
+    except ValueError:
+        pass
+    row["w_empty"] = bool(cj.get("empty"))
+    if rc == 0 and os.path.exists(op):
+        rc2, out2, err2, _ = run([args.wingedge, "validate", "out.obj", "--json"], args.timeout, cwd=work)
+        rep = json.loads(out2)[0] if out2.strip().startswith("[") else {}
+        row["w_valid"] = bool(rep.get("valid")) or row["w_empty"]
+        row["w_validity"] = rep.get("verdict", err2.strip()[:100])
+        row["w_volume"] = rep.get("volume", 0.0) if not row["w_empty"] else 0.0
+        row["w_genus"] = genus_of(rep) if not row["w_empty"] else None
+        row["w_faces"], row["w_shells"] = rep.get("faces"), rep.get("shells")
+    classify_row(row, mr, sp, args)
+    return row
+
+
+def obj_box(path):
+    with open(path) as f:
+        v = np.array([[float(x) for x in l.split()[1:4]] for l in f if l.startswith("v ")])
+    return list(v.min(axis=0)) + list(v.max(axis=0))
+
+
+def classify_row(row, mr, scene, args):
+    if not row["operands_valid"]:
+        row["verdict"], row["note"] = "operand not a solid (#37)", row["operand_defects"][:160]
+        return
+    if row.get("w_rc") != 0 or not row.get("w_valid"):
+        why = "timeout" if row.get("w_rc") is None else (row["w_stderr"].splitlines() or ["?"])[-1][:200]
+        row["verdict"], row["note"] = "FAILURE", why
+        return
+    if mr is None:
+        row["verdict"], row["note"] = "wingedge only", "manifold3d: " + row["m_status"]
+        return
+    mv, wv = row["m_volume"], row["w_volume"]
+    both_empty = row["w_empty"] and row.get("m_empty")
+    rel = 0.0 if both_empty else abs(mv - wv) / max(abs(mv), abs(wv), 1e-300)
+    row["rel"] = rel
+    same_genus = both_empty or row["m_genus"] == row["w_genus"]
+    if rel <= 1e-9 and same_genus:
+        row["verdict"], row["note"] = "agrees", ""
+        return
+    # Disagreement: which output matches the exact membership of the tree?
+    mo = os.path.join(row["dir"], "manifold_out.obj")
+    notes = []
+    if not row.get("m_empty"):
+        write_obj(mr, mo)
+        rc, out, _, _ = run([args.wingedge, "validate", mo, "--json"], args.timeout)
+        rep = json.loads(out)[0] if out.strip().startswith("[") else {}
+        if not rep.get("valid"):
+            notes.append("manifold3d's output: " + rep.get("verdict", "unreadable"))
+    else:
+        mo = None
+    boxes = [mr.bounding_box()] if not row.get("m_empty") else []
+    if not row["w_empty"]:
+        boxes.append(obj_box(os.path.join(row["dir"], "out.obj")))
+    lo = np.min([b[:3] for b in boxes], axis=0) if boxes else None
+    if lo is not None:
+        hi = np.max([b[3:] for b in boxes], axis=0)
+        pad = 0.05 * (hi - lo) + 1e-9
+        box = list(lo - pad) + list(hi + pad)
+        wo = None if row["w_empty"] else os.path.join(row["dir"], "out.obj")
+        miss = sample_check(args.wingedge, scene, {"wingedge": wo, "manifold3d": mo}, box,
+                            args.samples, row["dir"], args.timeout)
+        notes.append("of %d sampled points, wrong: wingedge %s, manifold3d %s"
+                     % (args.samples, miss["wingedge"], miss["manifold3d"]))
+    if not same_genus:
+        notes.append("genus %s vs manifold3d %s" % (row["w_genus"], row["m_genus"]))
+    row["verdict"], row["note"] = "differs", "; ".join(notes)
+
+
+# ---------------------------------------------------------------- table
+
+def fmt(x, spec="%.12g"):
+    return "–" if x is None else spec % x
+
+
+def table(rows):
+    lines = ["| case | manifold3d: volume, genus, triangles, s | wingedge: volume, genus, faces, s "
+             "| relative difference | verdict | note |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        m = ("empty" if r.get("m_empty") else "%s, %s, %s" % (fmt(r.get("m_volume")), r.get("m_genus"), r.get("m_tris"))) \
+            + ", %.2f" % r["m_seconds"]
+        if r.get("w_valid"):
+            w = "empty" if r["w_empty"] else "%s, %s, %s" % (fmt(r["w_volume"]), r["w_genus"], r["w_faces"])
+        else:
+            w = "refused" if r.get("w_rc") not in (None, 0) else ("timeout" if r.get("w_rc") is None else "invalid")
+        w += ", %.2f" % r.get("w_seconds", 0)
+        note = r.get("note", "").replace("|", "/").replace("\n", " ")
+        lines.append("| %s (%s) | %s | %s | %s | %s | %s |" % (
+            r["case"], r["source"], m, w, fmt(r.get("rel"), "%.1e"), r["verdict"], note))
+    return "\n".join(lines)
+
+
+def summary(rows):
+    valid = [r for r in rows if r["operands_valid"]]
+    ok = [r for r in valid if r["verdict"] == "agrees"]
+    fail = [r for r in valid if r["verdict"] == "FAILURE"]
+    diff = [r for r in valid if r["verdict"] == "differs"]
+    return ("%d cases, %d with valid operands: wingedge agrees with manifold3d on %d, differs on %d, "
+            "fails on %d%s." % (len(rows), len(valid), len(ok), len(diff), len(fail),
+                                " (" + ", ".join(r["case"] for r in fail) + ")" if fail else ""))
+
+
+def write_docs(rows, args, path):
+    cpu = ""
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next(l.split(":", 1)[1].strip() for l in f if l.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    ver = subprocess.run([args.wingedge, "--version"], capture_output=True, text=True).stdout.strip()
+    body = "\n".join([
+        "Run by `python3 benches/peers/manifold_cases.py --models DIR --write-docs` on %s "
+        "(%d cores, shared), manifold3d %s, %s, Python %s; the models from github:elalish/manifold "
+        "`test/models/` (not committed). Times in seconds (wall, one run)."
+        % (cpu or platform.machine(), os.cpu_count(), metadata.version("manifold3d"), ver,
+           platform.python_version()),
+        "", summary(rows), "", table(rows)])
+    text = open(path).read()
+    a, b = "<!-- manifold-cases:start -->", "<!-- manifold-cases:end -->"
+    i, j = text.index(a) + len(a), text.index(b)
+    with open(path, "w") as f:
+        f.write(text[:i] + "\n" + body + "\n" + text[j:])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--models", required=True, help="manifold's test/models folder")
+    ap.add_argument("--wingedge", default="/tmp/wingedge-main")
+    ap.add_argument("--work", default="/tmp/manifold-cases")
+    ap.add_argument("--only", default="", help="comma-separated case names")
+    ap.add_argument("--timeout", type=float, default=900)
+    ap.add_argument("--samples", type=int, default=20000)
+    ap.add_argument("--write-docs", action="store_true")
+    args = ap.parse_args()
+    args.models, args.work = os.path.abspath(args.models), os.path.abspath(args.work)
+    args.wingedge = os.path.abspath(args.wingedge)
+    only = set(filter(None, args.only.split(",")))
+    rows = []
+    for name, source, tree in cases():
+        if only and name not in only:
+            continue
+        r = run_case(name, source, tree, args)
+        rows.append(r)
+        print("%-32s %-10s %s" % (name, r["verdict"], r.get("note", "")), flush=True)
+        with open(os.path.join(args.work, "results.json"), "w") as f:
+            json.dump(rows, f, indent=1, default=str)
+    print()
+    print(summary(rows))
+    print(table(rows))
+    if args.write_docs:
+        write_docs(rows, args, os.path.join(os.path.dirname(__file__), "..", "..", "docs", "booleans.md"))
+
+
+if __name__ == "__main__":
+    main()
