@@ -54,9 +54,10 @@ pub struct OutputWork {
     pub joined_pairs: usize,
     /// Pieces dropped: shells thinner than `f64` can hold.
     pub dropped_pieces: usize,
-    /// Operand vertices moved onto a vertex of an earlier operand that
-    /// `f64` could not keep apart from them (the last resort, `weld`): the
-    /// boolean was run again on the welded operands.
+    /// Operand vertices moved onto a vertex of an earlier operand, or onto
+    /// the plane of another operand's axis-aligned face, that `f64` could
+    /// not keep apart from them (the last resort, `weld`): the boolean was
+    /// run again on the welded operands.
     pub welded_vertices: usize,
 }
 
@@ -97,7 +98,7 @@ impl OutputWork {
         }
         let welded = if self.welded_vertices > 0 {
             format!(
-                ", after {} operand vertices were welded onto another operand's",
+                ", after {} operand vertices were welded onto another operand's vertices or planes",
                 self.welded_vertices
             )
         } else {

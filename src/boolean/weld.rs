@@ -55,15 +55,18 @@ pub(super) fn reaches(operands: &[&Solid]) -> Vec<f64> {
 
 /// The operands with every vertex of a later operand that lies within
 /// `reach` of a vertex of an earlier one (and not on it) moved onto the
-/// nearest such vertex, and how many moved. Returns `None` when none
-/// moved.
+/// nearest such vertex, then every other vertex within `reach` of the
+/// plane of another operand's axis-aligned face put on that plane (all of
+/// a nearly coplanar face moves, not only what lies over the other face) ([`onto_axis_planes`]), and how many moved. Returns
+/// `None` when none moved.
 pub(super) fn welded(operands: &[&Solid], reach: f64) -> Option<(Vec<Solid>, usize)> {
     // Earlier operands' vertices, by grid cell of side `reach`.
     let cell = |p: DVec3| (p / reach).floor().to_array().map(|x| x as i64);
     let mut anchors: HashMap<[i64; 3], Vec<DVec3>> = HashMap::default();
+    let planes = AxisPlanes::of(operands);
     let mut out = Vec::with_capacity(operands.len());
     let mut moved = 0;
-    for solid in operands {
+    for (k, solid) in operands.iter().enumerate() {
         let mut copy = (*solid).clone();
         let mut moves: Vec<(VertexId, DVec3)> = Vec::new();
         for (v, vertex) in solid.vertices() {
@@ -82,10 +85,15 @@ pub(super) fn welded(operands: &[&Solid], reach: f64) -> Option<(Vec<Solid>, usi
                     }
                 }
             }
-            if let Some((d, q)) = nearest
-                && d > 0.0
-            {
-                moves.push((v, q));
+            match nearest {
+                Some((d, q)) if d > 0.0 => moves.push((v, q)),
+                Some(_) => {}
+                None => {
+                    let q = planes.onto_axis_planes(k, v, p, reach);
+                    if q != p {
+                        moves.push((v, q));
+                    }
+                }
             }
         }
         moved += moves.len();
@@ -99,6 +107,83 @@ pub(super) fn welded(operands: &[&Solid], reach: f64) -> Option<(Vec<Solid>, usi
         out.push(copy);
     }
     (moved > 0).then_some((out, moved))
+}
+
+/// A face whose vertices all share one coordinate: its plane is exact in
+/// `f64`, so a vertex can be put on it exactly.
+struct AxisFace {
+    operand: usize,
+    /// The coordinate all its vertices share.
+    value: f64,
+}
+
+/// The axis-aligned faces of all operands, per axis, sorted by their
+/// coordinate; and the vertices on such faces, per operand and axis.
+struct AxisPlanes {
+    faces: [Vec<AxisFace>; 3],
+    on_own: Vec<[rustc_hash::FxHashSet<VertexId>; 3]>,
+}
+
+impl AxisPlanes {
+    fn of(operands: &[&Solid]) -> AxisPlanes {
+        let mut faces: [Vec<AxisFace>; 3] = Default::default();
+        let mut on_own = Vec::with_capacity(operands.len());
+        for (k, solid) in operands.iter().enumerate() {
+            let mut own: [rustc_hash::FxHashSet<VertexId>; 3] = Default::default();
+            for (f, _) in solid.faces() {
+                let vertices: Vec<VertexId> = solid.face_vertices(f).collect();
+                let points: Vec<DVec3> =
+                    vertices.iter().map(|&v| solid.vertex(v).position).collect();
+                let Some(first) = points.first() else {
+                    continue;
+                };
+                for axis in 0..3 {
+                    if points.iter().any(|p| p[axis] != first[axis]) {
+                        continue;
+                    }
+                    faces[axis].push(AxisFace {
+                        operand: k,
+                        value: first[axis],
+                    });
+                    own[axis].extend(vertices.iter().copied());
+                }
+            }
+            on_own.push(own);
+        }
+        // Only the planes matter: one entry per operand and coordinate.
+        for list in &mut faces {
+            list.sort_by(|a, b| a.value.total_cmp(&b.value).then(a.operand.cmp(&b.operand)));
+            list.dedup_by(|a, b| a.value == b.value && a.operand == b.operand);
+        }
+        AxisPlanes { faces, on_own }
+    }
+
+    /// `p` (vertex `v` of operand `k`) with each coordinate within `reach`
+    /// of the plane of another operand's axis-aligned face set to that
+    /// face's; a vertex on an axis-aligned face of its own moves only
+    /// onto an earlier operand's plane, so two such faces do not move
+    /// towards each other.
+    fn onto_axis_planes(&self, k: usize, v: VertexId, p: DVec3, reach: f64) -> DVec3 {
+        let mut q = p;
+        for axis in 0..3 {
+            let list = &self.faces[axis];
+            let from = list.partition_point(|f| f.value < p[axis] - reach);
+            let own = self.on_own[k][axis].contains(&v);
+            let best = list[from..]
+                .iter()
+                .take_while(|f| f.value <= p[axis] + reach)
+                .filter(|f| f.operand != k && (!own || f.operand < k))
+                .min_by(|a, b| {
+                    (a.value - p[axis])
+                        .abs()
+                        .total_cmp(&(b.value - p[axis]).abs())
+                });
+            if let Some(face) = best {
+                q[axis] = face.value;
+            }
+        }
+        q
+    }
 }
 
 #[cfg(test)]
@@ -124,6 +209,26 @@ mod tests {
             p
         };
         assert_eq!(positions(&welded[1]), positions(&a));
+    }
+
+    #[test]
+    fn a_slab_tilted_by_1e_12_rad_is_put_on_the_box_faces_it_nearly_lies_in() {
+        let slab = builders::cuboid(DVec3::new(-10.0, 0.0, -10.0), DVec3::new(10.0, 2.0, 10.0))
+            .expect("a slab");
+        let mut tilted = slab.clone();
+        let turn = DAffine3::from_translation(DVec3::Y)
+            * DAffine3::from_quat(DQuat::from_rotation_x(1e-12))
+            * DAffine3::from_translation(-DVec3::Y);
+        assert!(tilted.move_by(turn));
+        let block = builders::cuboid(DVec3::new(0.0, 0.0, 0.0), DVec3::new(30.0, 2.0, 5.0))
+            .expect("a block");
+        let reach = *reaches(&[&tilted, &block]).last().expect("a reach");
+        let (welded, moved) = welded(&[&tilted, &block], reach).expect("some vertices moved");
+        assert_eq!(moved, 8);
+        for (_, v) in welded[0].vertices() {
+            assert!(v.position.y == 0.0 || v.position.y == 2.0, "{}", v.position);
+        }
+        assert!(welded[0].check_consistency().is_ok());
     }
 
     #[test]

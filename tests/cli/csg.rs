@@ -235,3 +235,39 @@ fn csg_writes_slits_turned_copies_and_empty_results_valid() {
         assert!(text.contains("writing: "), "{text}");
     }
 }
+
+/// manifold's `SimplifyCracks` union: a cylinder whose caps lie 10⁻¹² rad
+/// off a box's faces. Rounding crossed the near-coplanar sheets until the
+/// output's last resort put the caps' vertices on the box's planes; the
+/// result is valid as written and has manifold3d's volume.
+#[test]
+fn csg_of_caps_nearly_on_a_box_face_succeeds() {
+    let dir = TempDir::new("csg-cracks");
+    let out = dir.arg("cracks.obj");
+    let (code, text, err) = wingedge(
+        &[
+            "csg",
+            "fixtures/scenes/simplify_cracks.json",
+            "-o",
+            &out,
+            "--json",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{text}{err}");
+    let report: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    assert_eq!(report["validity"], "valid_solid");
+    assert_eq!(report["genus"], 0);
+    assert!(
+        report["output_work"]["welded_vertices"].as_u64() > Some(0),
+        "{text}"
+    );
+    let (code, text, err) = wingedge(&["validate", &out, "--json"], "");
+    assert_eq!(code, 0, "{text}{err}");
+    let written: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let volume = written[0]["volume"].as_f64().expect("a volume");
+    assert!(
+        (volume - 17852.3867581).abs() <= 1e-9 * 17852.4,
+        "volume {volume}"
+    );
+}
