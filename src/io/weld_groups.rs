@@ -8,9 +8,10 @@
 //! many edge uses; sorting them whole was most of the time of reading it.
 
 use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
+use std::hash::{BuildHasherDefault, Hash, Hasher};
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::mesh::PolygonSoup;
 
@@ -51,18 +52,79 @@ impl Hasher for BitsHasher {
 
 /// The cluster of each vertex under an exact weld: the smallest index of a
 /// vertex at the bit-identical position (`-0.0` counted as `0.0`).
+///
+/// Vertices are split by bits of their hash into [`SHARDS`] groups, each
+/// with a table of its own, small enough to stay in cache, and the groups
+/// are done in parallel; within a group vertices are visited in order, so
+/// the first at a position is the smallest.
 pub(super) fn exact_clusters(positions: &[DVec3]) -> Vec<usize> {
-    let canonical = |p: DVec3| [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
-    // Vertices are visited in order, so the first at a position is the
-    // smallest. The table starts at a quarter of the vertices (a binary
-    // STL has about a sixth as many positions as corners) and grows.
-    let mut first: HashMap<[u64; 3], usize, BuildHasherDefault<BitsHasher>> =
-        HashMap::with_capacity_and_hasher(positions.len() / 4, BuildHasherDefault::default());
-    positions
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| *first.entry(canonical(p)).or_insert(i))
-        .collect()
+    let n = positions.len();
+    if n < 1 << 16 || n >= u32::MAX as usize {
+        let mut first = table(n);
+        return positions
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| *first.entry(canonical(p)).or_insert(i))
+            .collect();
+    }
+    // Bits 32 to 39 of the hash pick the group: the tables index by the
+    // low bits and tag by the top seven, which then still vary.
+    let shard = |p: DVec3| {
+        let mut hasher = BitsHasher::default();
+        canonical(p).hash(&mut hasher);
+        (hasher.finish() >> 32) as usize % SHARDS
+    };
+    let shards: Vec<u8> = positions.par_iter().map(|&p| shard(p) as u8).collect();
+    // A counting sort of the vertices by group, each group in order.
+    let mut start = vec![0usize; SHARDS + 1];
+    for &s in &shards {
+        start[usize::from(s) + 1] += 1;
+    }
+    for s in 0..SHARDS {
+        start[s + 1] += start[s];
+    }
+    let mut order = vec![0u32; n];
+    let mut fill = start.clone();
+    for (i, &s) in shards.iter().enumerate() {
+        order[fill[usize::from(s)]] = i as u32;
+        fill[usize::from(s)] += 1;
+    }
+    drop(shards);
+    let firsts: Vec<Vec<u32>> = (0..SHARDS)
+        .into_par_iter()
+        .map(|s| {
+            let members = &order[start[s]..start[s + 1]];
+            let mut first = table(members.len());
+            members
+                .iter()
+                .map(|&i| *first.entry(canonical(positions[i as usize])).or_insert(i))
+                .collect()
+        })
+        .collect();
+    let mut cluster = vec![0usize; n];
+    for (s, firsts) in firsts.iter().enumerate() {
+        for (&i, &f) in order[start[s]..start[s + 1]].iter().zip(firsts) {
+            cluster[i as usize] = f as usize;
+        }
+    }
+    cluster
+}
+
+/// How many groups [`exact_clusters`] splits the vertices of a large soup
+/// into: a million-triangle STL's half a million positions make tables of
+/// a few thousand entries each.
+const SHARDS: usize = 256;
+
+/// The bits that decide an exact weld: `-0.0` counted as `0.0`.
+fn canonical(p: DVec3) -> [u64; 3] {
+    [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits)
+}
+
+/// A table from position bits to the first vertex there, for `vertices`
+/// vertices: it starts at a quarter of them (a binary STL has about a
+/// sixth as many positions as corners) and grows.
+fn table<V>(vertices: usize) -> HashMap<[u64; 3], V, BuildHasherDefault<BitsHasher>> {
+    HashMap::with_capacity_and_hasher(vertices / 4, BuildHasherDefault::default())
 }
 
 /// Pairs of open edge uses `a1→b1`, `a2→b2` that join the same two clusters
@@ -148,6 +210,28 @@ mod tests {
             DVec3::new(1.0, 2.0, 3.0 + f64::EPSILON * 4.0),
         ];
         assert_eq!(exact_clusters(&positions), [0, 1, 0, 1, 4]);
+    }
+
+    #[test]
+    fn large_soups_cluster_as_small_ones() {
+        // Past 65,536 vertices the clusters are found in parallel groups.
+        let positions: Vec<DVec3> = (0..300_000u32)
+            .map(|i| {
+                let k = i.wrapping_mul(2_654_435_761) % 70_001;
+                DVec3::new(
+                    f64::from(k % 97),
+                    f64::from(k / 97),
+                    if k % 5 == 0 { -0.0 } else { 0.0 },
+                )
+            })
+            .collect();
+        let clusters = exact_clusters(&positions);
+        let mut first = std::collections::HashMap::new();
+        for (i, p) in positions.iter().enumerate() {
+            let expected = *first.entry(canonical(*p)).or_insert(i);
+            assert_eq!(clusters[i], expected, "vertex {i}");
+        }
+        assert!(first.len() > 1000 && first.len() < positions.len());
     }
 
     #[test]
