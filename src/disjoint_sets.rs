@@ -38,6 +38,18 @@ impl DisjointSets {
         }
     }
 
+    /// The sets whose root (smallest element) each element names:
+    /// `roots[i] <= i` and `roots[roots[i]] == roots[i]`.
+    pub(crate) fn from_roots(roots: Vec<usize>) -> DisjointSets {
+        debug_assert!(
+            roots
+                .iter()
+                .enumerate()
+                .all(|(i, &r)| r <= i && roots[r] == r)
+        );
+        DisjointSets { parent: roots }
+    }
+
     /// Whether `i` is the root of its set.
     pub(crate) fn is_root(&mut self, i: usize) -> bool {
         self.find(i) == i

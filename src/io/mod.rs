@@ -23,6 +23,8 @@ mod text;
 mod threemf;
 mod threemf_model;
 mod weld;
+mod weld_closed;
+mod weld_groups;
 
 pub use crate::mesh::PolygonSoup;
 pub use atomic::write_atomically;

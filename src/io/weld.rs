@@ -22,8 +22,9 @@ use crate::disjoint_sets::DisjointSets;
 use std::collections::HashMap;
 
 use glam::DVec3;
-use rayon::prelude::*;
 
+use super::weld_closed::clusters_close_triangles;
+use super::weld_groups::{exact_clusters, glue_candidates};
 use crate::geom::{Aabb, Tolerance};
 use crate::mesh::PolygonSoup;
 
@@ -134,11 +135,32 @@ pub(crate) fn weld(
         };
         return (soup, vertex_lines, numbers, report);
     }
-    let candidates = glue_candidates(&soup, &cluster, &shared);
-    let incident = incident_polygons(&soup);
+    if mode == WeldMode::Exact && clusters_close_triangles(&soup, &cluster) {
+        // Every cluster merges whole and nothing is refused (weld_closed.rs
+        // says why); `cluster` holds each class's smallest member.
+        let uf = DisjointSets::from_roots(cluster);
+        return compact(soup, vertex_lines, numbers, uf, mode, Vec::new());
+    }
+    let (uf, refused) = glue(&soup, &cluster, &shared, &vertex_lines);
+    compact(soup, vertex_lines, numbers, uf, mode, refused)
+}
+
+/// The general weld: glue pairs of open edges between clusters, refuse
+/// merges that repeat a vertex in a face or pinch, and glue again without
+/// the refused classes until nothing more is refused. Returns the classes
+/// and the refusals.
+fn glue(
+    soup: &PolygonSoup,
+    cluster: &[usize],
+    shared: &[bool],
+    vertex_lines: &[usize],
+) -> (DisjointSets, Vec<WeldRefusal>) {
+    let n = soup.positions.len();
+    let candidates = glue_candidates(soup, cluster, shared);
+    let incident = incident_polygons(soup);
     let mut blocked = vec![false; n];
     let mut refused = Vec::new();
-    let uf = loop {
+    loop {
         let mut uf = DisjointSets::new(n);
         for &[a1, b1, a2, b2] in &candidates {
             if ![a1, b1, a2, b2].iter().any(|&v| blocked[v]) {
@@ -147,25 +169,23 @@ pub(crate) fn weld(
             }
         }
         let before = refused.len();
-        refuse_repeats(&soup, &mut uf, &mut blocked, &mut refused);
+        refuse_repeats(soup, &mut uf, &mut blocked, &mut refused);
         refuse_pinches(
-            &soup,
+            soup,
             &incident,
-            &vertex_lines,
+            vertex_lines,
             &mut uf,
             &mut blocked,
             &mut refused,
         );
         if refused.len() == before {
-            break uf;
+            break (uf, refused);
         }
-    };
-    compact(soup, vertex_lines, numbers, uf, mode, refused)
+    }
 }
 
 /// The cluster of each vertex, or `None` when nothing may be merged.
 fn clusters(positions: &[DVec3], mode: WeldMode) -> Option<Vec<usize>> {
-    let canonical = |p: DVec3| [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
     match mode {
         WeldMode::None => None,
         WeldMode::Within(tolerance) => {
@@ -201,55 +221,8 @@ fn clusters(positions: &[DVec3], mode: WeldMode) -> Option<Vec<usize>> {
             }
             Some((0..positions.len()).map(|i| uf.find(i)).collect())
         }
-        WeldMode::Exact => {
-            // Keys computed once, sorted in parallel; the index breaks ties,
-            // so the first of a group is its smallest member.
-            let mut keys: Vec<([u64; 3], usize)> = positions
-                .par_iter()
-                .enumerate()
-                .map(|(i, &p)| (canonical(p), i))
-                .collect();
-            keys.par_sort_unstable();
-            let mut cluster = vec![0; positions.len()];
-            for group in keys.chunk_by(|a, b| a.0 == b.0) {
-                for &(_, i) in group {
-                    cluster[i] = group[0].1;
-                }
-            }
-            Some(cluster)
-        }
+        WeldMode::Exact => Some(exact_clusters(positions)),
     }
-}
-
-/// Pairs of open edge uses `a1→b1`, `a2→b2` that join the same two clusters
-/// in opposite directions, with no third use between those clusters. Only
-/// edges touching a `shared` vertex (one whose cluster has other members)
-/// can be glued, so only those are looked at.
-fn glue_candidates(soup: &PolygonSoup, cluster: &[usize], shared: &[bool]) -> Vec<[usize; 4]> {
-    // (low cluster, high cluster, from, to)
-    let mut uses: Vec<(usize, usize, usize, usize)> = Vec::new();
-    for p in &soup.polygons {
-        let k = p.vertices.len();
-        for i in 0..k {
-            let (a, b) = (p.vertices[i], p.vertices[(i + 1) % k]);
-            let (ca, cb) = (cluster[a], cluster[b]);
-            if ca != cb && (shared[a] || shared[b]) {
-                uses.push((ca.min(cb), ca.max(cb), a, b));
-            }
-        }
-    }
-    uses.par_sort_unstable();
-    let mut out = Vec::new();
-    for group in uses.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
-        if let [(_, _, a1, b1), (_, _, a2, b2)] = *group {
-            let opposite = cluster[a1] == cluster[b2];
-            let already_twins = a1 == b2 && b1 == a2;
-            if opposite && !already_twins {
-                out.push([a1, b1, a2, b2]);
-            }
-        }
-    }
-    out
 }
 
 /// Vertex → polygons using it, as offsets into one list.

@@ -153,3 +153,89 @@ fn coincident_corners_without_glued_edges_stay_apart() {
     let (s, _, _, report) = weld(soup, (1..=6).collect(), WeldMode::Exact);
     assert_eq!(s.positions.len(), 6, "{report:?}");
 }
+
+/// `soup` as a binary STL has it: triangles (fanned), each with three
+/// corners of its own.
+fn as_stl(soup: &PolygonSoup) -> PolygonSoup {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for p in &soup.polygons {
+        for i in 1..p.vertices.len() - 1 {
+            let base = positions.len();
+            positions.extend([0, i, i + 1].map(|k| soup.positions[p.vertices[k]]));
+            triangles.push([base, base + 1, base + 2]);
+        }
+    }
+    PolygonSoup::new(positions, triangles)
+}
+
+/// The general weld (glue, refuse, repeat), without the fast path.
+fn general_weld(soup: PolygonSoup) -> (PolygonSoup, Vec<usize>, Vec<usize>, WeldReport) {
+    let n = soup.positions.len();
+    let cluster = clusters(&soup.positions, WeldMode::Exact).unwrap();
+    let shared: Vec<bool> = (0..n)
+        .map(|v| cluster[v] != v || cluster.iter().enumerate().any(|(w, &c)| c == v && w != v))
+        .collect();
+    let (uf, refused) = glue(&soup, &cluster, &shared, &[]);
+    compact(
+        soup,
+        Vec::new(),
+        (1..=n).collect(),
+        uf,
+        WeldMode::Exact,
+        refused,
+    )
+}
+
+#[test]
+fn the_fast_path_welds_as_the_general_weld_does() {
+    let cube = as_stl(&split_cube());
+    let mut touching = cube.clone();
+    touching.polygons.extend(
+        cube.polygons.iter().map(|p| {
+            crate::mesh::Polygon::new(p.vertices.iter().map(|v| v + cube.positions.len()))
+        }),
+    );
+    touching
+        .positions
+        .extend(cube.positions.iter().map(|&p| p + DVec3::ONE));
+    let mut open = cube.clone();
+    open.polygons.pop();
+    let mut unused = cube.clone();
+    unused.positions.push(DVec3::ZERO);
+    let cases = [
+        ("a closed cube", cube, true),
+        ("two cubes touching at a corner (a pinch)", touching, false),
+        ("an open cube", open, false),
+        ("a vertex no triangle uses", unused, false),
+    ];
+    for (name, soup, fast) in cases {
+        let n = soup.positions.len();
+        let cluster = clusters(&soup.positions, WeldMode::Exact).unwrap();
+        assert_eq!(clusters_close_triangles(&soup, &cluster), fast, "{name}");
+        let general = general_weld(soup.clone());
+        let welded = weld(soup, Vec::new(), WeldMode::Exact);
+        assert_eq!(welded, general, "{name}");
+        if fast {
+            assert_eq!(welded.3.merged, n - 8, "{name}");
+            let solid = Solid::try_from_soup(&welded.0).unwrap();
+            assert!(solid.is_closed(), "{name}");
+        }
+    }
+}
+
+#[test]
+fn the_torus_stl_takes_the_fast_path_to_the_general_answer() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/formats/torus.stl");
+    let bytes = std::fs::read(&path).unwrap();
+    let parsed = crate::io::stl::read(&path, &bytes, &crate::io::ImportOptions::default()).unwrap();
+    let soup = PolygonSoup {
+        positions: parsed.positions,
+        polygons: parsed.polygons,
+    };
+    let cluster = clusters(&soup.positions, WeldMode::Exact).unwrap();
+    assert!(clusters_close_triangles(&soup, &cluster));
+    let welded = weld(soup.clone(), Vec::new(), WeldMode::Exact);
+    assert_eq!(welded, general_weld(soup));
+    assert_eq!(welded.3.merged, 192 * 3 - 96);
+}

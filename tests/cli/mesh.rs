@@ -237,6 +237,59 @@ fn a_csg_scene_meshes_over_its_exact_classification() {
     assert!(errors[1] < errors[0], "{errors:?}");
 }
 
+/// Every other CSG scene among the fixtures meshes at 32 cells into a
+/// solid that `validate` accepts, whose volume is within half a cell times
+/// the surface area of the exact boolean's (`csg`); for the hundred-leaf
+/// scene, whose exact boolean takes most of a minute, of the volume that
+/// `volume` integrates along rays (with the meshed solid's area).
+#[test]
+fn every_csg_fixture_meshes_into_a_valid_solid_near_its_volume() {
+    let dir = TempDir::new("mesh_fixtures");
+    for (name, boolean) in [
+        ("mesh_cut", true),
+        ("platonic", true),
+        ("turned_part", true),
+        ("many_leaves", false),
+    ] {
+        let scene = format!("fixtures/scenes/{name}.json");
+        let out = dir.arg(&format!("{name}.obj"));
+        let (code, text, err) = wingedge(&["mesh", &scene, "-o", &out, "--resolution", "32"]);
+        assert_eq!(code, 0, "{name}: {text}{err}");
+        assert!(text.contains("nodes classified exactly"), "{name}: {text}");
+        let cell: f64 = text
+            .split("(cell ")
+            .nth(1)
+            .and_then(|t| t.split(')').next())
+            .and_then(|c| c.parse().ok())
+            .unwrap_or_else(|| panic!("{name}: no cell size in {text}"));
+        let (code, report, _) = wingedge(&["validate", &out]);
+        assert_eq!(code, 0, "{name}: {report}");
+        let solid = |path: &str| {
+            wingedge::mesh::Solid::try_from_soup(&read_obj(std::path::Path::new(path)).unwrap())
+                .unwrap()
+        };
+        let meshed = solid(&out);
+        let (reference, area) = if boolean {
+            let exact_out = dir.arg(&format!("{name}_exact.obj"));
+            let (code, _, err) = wingedge(&["csg", &scene, "-o", &exact_out]);
+            assert_eq!(code, 0, "{name}: {err}");
+            let exact = solid(&exact_out);
+            (exact.volume(), exact.surface_area())
+        } else {
+            let (code, text, err) = wingedge(&["volume", &scene]);
+            assert_eq!(code, 0, "{name}: {err}");
+            let volume: f64 = text.lines().next().unwrap().trim().parse().unwrap();
+            (volume, meshed.surface_area())
+        };
+        let error = (meshed.volume() - reference).abs();
+        assert!(
+            error <= 0.5 * cell * area,
+            "{name}: volume {} against {reference}: {error} > half of cell {cell} × area {area}",
+            meshed.volume()
+        );
+    }
+}
+
 /// A field document's error names the file, as every other message does.
 #[test]
 fn field_document_errors_name_the_file() {
