@@ -30,26 +30,43 @@ pub fn box_meets_triangle(b: &Aabb, t: &[DVec3; 3]) -> bool {
     if hi.cmplt(b.min).any() || lo.cmpgt(b.max).any() {
         return false;
     }
-    // The triangle's plane (a degenerate triangle has none: every sign is
-    // zero and nothing is separated here).
-    let corners = box_corners(b);
-    let mut above = false;
-    let mut below = false;
-    for &c in &corners {
-        match orient3d(t[0], t[1], t[2], c) {
-            Sign::Positive => above = true,
-            Sign::Negative => below = true,
-            Sign::Zero => {
-                above = true;
-                below = true;
+    // A corner in the closed box: they meet (the common case at a vertex
+    // where many triangles meet, such as a cone's apex).
+    if t.iter().any(|&p| b.min.cmple(p).all() && p.cmple(b.max).all()) {
+        return true;
+    }
+    // A triangle in a plane `x_a = c` normal to an axis (the flat faces of
+    // models, which often lie on the cells' own planes): that plane meets
+    // the box (the coordinate test above), and an edge line's plane
+    // parallel to another axis is normal to axis `a` too, so only the
+    // projection along `a` is left. (Skipping the other tests changes no
+    // answer; it saves the exact fallbacks their zero signs would take.)
+    let flat = (0..3).find(|&a| t[0][a] == t[1][a] && t[1][a] == t[2][a]);
+    if flat.is_none() {
+        // The triangle's plane (a degenerate triangle has none: every sign
+        // is zero and nothing is separated here).
+        let corners = box_corners(b);
+        let mut above = false;
+        let mut below = false;
+        for &c in &corners {
+            match orient3d(t[0], t[1], t[2], c) {
+                Sign::Positive => above = true,
+                Sign::Negative => below = true,
+                Sign::Zero => {
+                    above = true;
+                    below = true;
+                }
             }
         }
-    }
-    if above != below {
-        return false;
+        if above != below {
+            return false;
+        }
     }
     // Planes through a triangle edge parallel to a box axis.
     for axis in 0..3 {
+        if flat.is_some_and(|a| a != axis) {
+            continue;
+        }
         let project = |p: DVec3| match axis {
             0 => DVec2::new(p.y, p.z),
             1 => DVec2::new(p.z, p.x),
@@ -200,11 +217,24 @@ mod tests {
                 min: a.min(c),
                 max: a.max(c),
             };
-            let t = [
+            let mut t = [
                 DVec3::new(grid(), grid(), grid()),
                 DVec3::new(grid(), grid(), grid()),
                 DVec3::new(grid(), grid(), grid()),
             ];
+            assert_eq!(
+                box_meets_triangle(&b, &t),
+                clip_keeps_a_point(&b, &t),
+                "{b:?} {t:?}"
+            );
+            // The same triangle flattened onto a plane normal to an axis
+            // (often one of the box's own planes): the shortcut for such
+            // triangles gives the clip's answer too.
+            let axis = ((grid() + 1.0) * 4.0) as usize % 3;
+            let c = if grid() < 0.0 { grid() } else { b.min[axis] };
+            for p in &mut t {
+                p[axis] = c;
+            }
             assert_eq!(
                 box_meets_triangle(&b, &t),
                 clip_keeps_a_point(&b, &t),
