@@ -32,7 +32,9 @@ pub fn box_meets_triangle(b: &Aabb, t: &[DVec3; 3]) -> bool {
     }
     // A corner in the closed box: they meet (the common case at a vertex
     // where many triangles meet, such as a cone's apex).
-    if t.iter().any(|&p| b.min.cmple(p).all() && p.cmple(b.max).all()) {
+    if t.iter()
+        .any(|&p| b.min.cmple(p).all() && p.cmple(b.max).all())
+    {
         return true;
     }
     // A triangle in a plane `x_a = c` normal to an axis (the flat faces of

@@ -133,7 +133,8 @@ pub(crate) fn parse_json<E: From<JsonError>>(
     let duplicate = RefCell::new(None);
     let values = Cell::new(0);
     let walk = Walk {
-        at: None,
+        parent: None,
+        step: Step::Document,
         top,
         prefix,
         duplicate: &duplicate,
@@ -158,9 +159,12 @@ pub(crate) fn parse_json<E: From<JsonError>>(
 
 /// A walk over JSON text that only looks at the keys of each object,
 /// stopping at the first that appears twice (recorded in `duplicate`).
+/// A value's JSON path is made only for a duplicate: each step links to
+/// its parent's, so an array of millions of numbers costs no string each.
 struct Walk<'a> {
-    /// The JSON path of the value walked (`None` for the document).
-    at: Option<String>,
+    /// The walk of the enclosing value, and the step from it to this one.
+    parent: Option<&'a Walk<'a>>,
+    step: Step,
     top: &'a str,
     prefix: &'a str,
     duplicate: &'a RefCell<Option<(String, String)>>,
@@ -168,14 +172,42 @@ struct Walk<'a> {
     values: &'a Cell<usize>,
 }
 
+/// How a walked value is reached from the enclosing one.
+enum Step {
+    /// It is the document.
+    Document,
+    /// The value of this key of an object.
+    Key(String),
+    /// This element of an array.
+    Index(usize),
+}
+
 impl Walk<'_> {
-    fn here(&self) -> String {
-        self.at.clone().unwrap_or_else(|| self.top.to_string())
+    /// The JSON path of the value walked (`None` for the document).
+    fn at(&self) -> Option<String> {
+        let parent_at = || self.parent.and_then(Walk::at);
+        match &self.step {
+            Step::Document => None,
+            Step::Key(key) => Some(match (parent_at(), self.prefix) {
+                (None, "") => key.clone(),
+                (None, prefix) => format!("{prefix}.{key}"),
+                (Some(at), _) => format!("{at}.{key}"),
+            }),
+            Step::Index(index) => {
+                let here = parent_at().unwrap_or_else(|| self.top.to_string());
+                Some(format!("{here}[{index}]"))
+            }
+        }
     }
 
-    fn below(&self, at: String) -> Self {
+    fn here(&self) -> String {
+        self.at().unwrap_or_else(|| self.top.to_string())
+    }
+
+    fn below(&self, step: Step) -> Walk<'_> {
         Walk {
-            at: Some(at),
+            parent: Some(self),
+            step,
             top: self.top,
             prefix: self.prefix,
             duplicate: self.duplicate,
@@ -228,10 +260,9 @@ impl<'de> Visitor<'de> for Walk<'_> {
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
-        let here = self.here();
         let mut index = 0;
         while seq
-            .next_element_seed(self.below(format!("{here}[{index}]")))?
+            .next_element_seed(self.below(Step::Index(index)))?
             .is_some()
         {
             index += 1;
@@ -240,19 +271,13 @@ impl<'de> Visitor<'de> for Walk<'_> {
     }
 
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
-        let here = self.here();
         let mut seen = HashSet::new();
         while let Some(key) = map.next_key::<String>()? {
-            let at = match (&self.at, self.prefix) {
-                (None, "") => key.clone(),
-                (None, prefix) => format!("{prefix}.{key}"),
-                (Some(at), _) => format!("{at}.{key}"),
-            };
             if !seen.insert(key.clone()) {
-                *self.duplicate.borrow_mut() = Some((here, key));
+                *self.duplicate.borrow_mut() = Some((self.here(), key));
                 return Err(de::Error::custom("duplicate key"));
             }
-            map.next_value_seed(self.below(at))?;
+            map.next_value_seed(self.below(Step::Key(key)))?;
         }
         Ok(())
     }

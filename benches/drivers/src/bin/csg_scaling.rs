@@ -7,7 +7,7 @@
 //! as `n` (slope 1), as `n log n` at worst.
 //!
 //! ```text
-//! cargo build --release --bin wingedge -p wingedge-bench --bin csg_scaling
+//! cargo build --release -p wingedge --bin wingedge -p wingedge-bench --bin csg_scaling
 //! target/release/csg_scaling [N ...] [--limit SECONDS]
 //! ```
 //!
