@@ -25,11 +25,12 @@ use crate::geom::implicit::{
 use crate::geom::{Aabb, Sign};
 
 use super::BooleanError;
-use super::expression::Expression;
 use super::intersect::projection;
+use super::nearby::Nearby;
 use super::operand::Prepared;
 use super::points::{PointTable, PointView};
 use super::select::{Label, covered, keep};
+use super::sparse::SparseExpression;
 
 /// A piece of an operand's triangle.
 #[derive(Clone, Copy, Debug)]
@@ -48,17 +49,20 @@ pub(crate) type Partner = (usize, u32, bool);
 /// `expression`: `None` when it does not bound it, `Some(flip)` when it
 /// does (turned over when `flip`). Pieces are grouped into patches across
 /// unconstrained edges; each patch is labelled against the other operands
-/// only as far as the expression asks ([`keep`]).
+/// only as far as the expression asks ([`keep`]), and only against those
+/// whose boxes meet it (`nearby`: the others are outside it).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn keep_pieces(
     table: &PointTable,
     operands: &[Prepared],
+    nearby: &Nearby,
     mine: usize,
     pieces: &[Piece],
     constrained: &HashSet<(u32, u32)>,
     partners: &HashMap<u32, Vec<Partner>>,
-    expression: &Expression,
+    expression: &SparseExpression,
 ) -> Result<Vec<Option<bool>>, BooleanError> {
-    let mut sets = patches_of(table.canonical.len(), pieces, constrained);
+    let mut sets = patches_of(pieces, constrained);
     // Each patch's pieces in piece order, patches by their root.
     let roots: Vec<usize> = (0..pieces.len()).map(|i| sets.find(i)).collect();
     let (start, by_root) = compressed_rows(
@@ -74,6 +78,7 @@ pub(crate) fn keep_pieces(
         let patch = Patch {
             table,
             operands,
+            nearby,
             mine,
             pieces,
             members,
@@ -90,26 +95,32 @@ pub(crate) fn keep_pieces(
 /// The pieces joined across their edges that are not on a segment in
 /// `constrained`, as disjoint sets. The uses of an edge are paired in the
 /// order of the pieces (first with second, third with fourth: sheets that
-/// touch along an edge), found by bucketing each edge by its smaller end
-/// (`points` canonical points), not by hashing every edge.
-fn patches_of(points: usize, pieces: &[Piece], constrained: &HashSet<(u32, u32)>) -> DisjointSets {
+/// touch along an edge), found by bucketing each edge by its smaller end,
+/// not by hashing every edge. The buckets are over the pieces' own points
+/// (numbered in the order of their canonical indices), so an operand costs
+/// what its pieces hold, not the points of all operands.
+fn patches_of(pieces: &[Piece], constrained: &HashSet<(u32, u32)>) -> DisjointSets {
+    let mut points: Vec<u32> = pieces.iter().flat_map(|p| p.corners).collect();
+    points.sort_unstable();
+    points.dedup();
+    let local = |c: u32| points.binary_search(&c).unwrap_or_default();
     // (other end, piece) by smaller end, each bucket in piece order.
     let (start, mut uses) = compressed_rows(
-        points,
+        points.len(),
         pieces.iter().enumerate().flat_map(|(i, piece)| {
             (0..3).map(move |k| {
                 let (u, v) = (piece.corners[k], piece.corners[(k + 1) % 3]);
-                (u.min(v) as usize, (u.max(v), i as u32))
+                (local(u.min(v)), (u.max(v), i as u32))
             })
         }),
     );
     let mut sets = DisjointSets::new(pieces.len());
-    for lo in 0..points {
-        let bucket = &mut uses[start[lo]..start[lo + 1]];
+    for (lo_local, &lo) in points.iter().enumerate() {
+        let bucket = &mut uses[start[lo_local]..start[lo_local + 1]];
         // Stable: the uses of one edge stay in piece order.
         bucket.sort_by_key(|&(hi, _)| hi);
         for run in bucket.chunk_by(|a, b| a.0 == b.0) {
-            if constrained.contains(&(lo as u32, run[0].0)) {
+            if constrained.contains(&(lo, run[0].0)) {
                 continue;
             }
             for pair in run.chunks_exact(2) {
@@ -124,6 +135,7 @@ fn patches_of(points: usize, pieces: &[Piece], constrained: &HashSet<(u32, u32)>
 struct Patch<'p> {
     table: &'p PointTable,
     operands: &'p [Prepared<'p>],
+    nearby: &'p Nearby,
     /// The slot of the patch's operand in `operands`.
     mine: usize,
     pieces: &'p [Piece],
@@ -133,35 +145,58 @@ struct Patch<'p> {
 
 impl Patch<'_> {
     /// The patch's fate in the result (see [`keep_pieces`]).
-    fn decide(&self, expression: &Expression) -> Result<Option<bool>, BooleanError> {
+    fn decide(&self, expression: &SparseExpression) -> Result<Option<bool>, BooleanError> {
         let mine = self.mine;
-        let mut known: SmallVec<[(usize, Label); 8]> = SmallVec::new();
-        let mut label = |k: usize| -> Result<Label, BooleanError> {
-            if let Some(&(_, l)) = known.iter().find(|(o, _)| *o == k) {
-                return Ok(l);
-            }
-            let l = self.label(k, &self.operands[k])?;
-            known.push((k, l));
-            Ok(l)
-        };
-        // On the surface of an operand that comes first: its patch stands
-        // for this one.
+        // The operands on whose surface a piece lies (coplanar partners).
         let mut coplanar: SmallVec<[usize; 4]> = self
             .members
             .iter()
             .filter_map(|&m| self.partners.get(&self.pieces[m as usize].triangle))
             .flatten()
             .map(|&(k, _, _)| k)
-            .filter(|&k| k < mine)
             .collect();
         coplanar.sort_unstable();
         coplanar.dedup();
-        for k in coplanar {
+        // The few operands that may not be outside the patch: its own, the
+        // coplanar ones, and those whose boxes meet its first piece's box
+        // (for any other, `label` would answer `Outside` from the boxes).
+        let mut few: SmallVec<[usize; 8]> = SmallVec::new();
+        few.push(mine);
+        few.extend(coplanar.iter().copied());
+        self.nearby
+            .overlapping(&self.first_piece_box(), |k| few.push(k));
+        few.sort_unstable();
+        few.dedup();
+        let mut known: SmallVec<[Option<Label>; 8]> = smallvec::smallvec![None; few.len()];
+        let mut label = |k: usize| -> Result<Label, BooleanError> {
+            let Ok(at) = few.binary_search(&k) else {
+                return Ok(Label::Outside);
+            };
+            if let Some(l) = known[at] {
+                return Ok(l);
+            }
+            let l = self.label(k, &self.operands[k])?;
+            known[at] = Some(l);
+            Ok(l)
+        };
+        // On the surface of an operand that comes first: its patch stands
+        // for this one.
+        for &k in coplanar.iter().filter(|&&k| k < mine) {
             if covered(mine, k, label(k)?) {
                 return Ok(None);
             }
         }
-        keep(expression, mine, &mut label)
+        keep(expression, &few, mine, &mut label)
+    }
+
+    /// The box of the patch's first piece (its corners' enclosing boxes).
+    fn first_piece_box(&self) -> Aabb {
+        let first = self.pieces[self.members[0] as usize];
+        let mut piece_box = Aabb::EMPTY;
+        for c in first.corners {
+            piece_box = piece_box.union(enclosing_box(&self.table.get(c)));
+        }
+        piece_box
     }
 
     /// Where the patch lies against operand `k` (`other`).
@@ -189,11 +224,11 @@ impl Patch<'_> {
         // Off the other operand's box: outside (the patch does not cross
         // its surface, so one piece's box decides).
         let first = pieces[members[0] as usize];
-        let mut piece_box = Aabb::EMPTY;
-        for c in first.corners {
-            piece_box = piece_box.union(enclosing_box(&table.get(c)));
-        }
-        if piece_box.intersection(other.bvh.bounds()).is_empty() {
+        if self
+            .first_piece_box()
+            .intersection(other.bvh.bounds())
+            .is_empty()
+        {
             return Ok(Label::Outside);
         }
         // A corner off the other surface.
@@ -266,7 +301,7 @@ mod tests {
             piece([1, 0, 5]),
             piece([2, 1, 6]),
         ];
-        let mut sets = patches_of(7, &pieces, &HashSet::default());
+        let mut sets = patches_of(&pieces, &HashSet::default());
         let root: Vec<usize> = (0..5).map(|i| sets.find(i)).collect();
         assert_eq!(root[0], root[1]);
         assert_eq!(root[2], root[3]);
@@ -274,7 +309,7 @@ mod tests {
         assert_eq!(root[0], root[4]);
         // Edge 0–1 on a segment: only the join across 1–2 is left.
         let constrained: HashSet<(u32, u32)> = [(0, 1)].into_iter().collect();
-        let mut sets = patches_of(7, &pieces, &constrained);
+        let mut sets = patches_of(&pieces, &constrained);
         let root: Vec<usize> = (0..5).map(|i| sets.find(i)).collect();
         assert_eq!(root[0], root[4]);
         for (i, j) in [(0, 1), (1, 2), (2, 3), (0, 2)] {

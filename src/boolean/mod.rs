@@ -42,10 +42,12 @@ mod expression;
 mod failure;
 mod intersect;
 mod merge;
+mod nearby;
 mod operand;
 mod output;
 mod points;
 mod select;
+mod sparse;
 mod split;
 mod stats;
 mod weld;
@@ -68,8 +70,10 @@ pub use stats::{BooleanStats, OutputWork};
 use classify::{Partner, Piece};
 use crossings::{Line, Segment};
 use intersect::{Carrier, PointRef};
+use nearby::Nearby;
 use operand::Prepared;
 use points::PointTable;
+use sparse::SparseExpression;
 
 /// The result of a boolean: a valid solid, where each face came from, and
 /// the validator's report on it.
@@ -258,22 +262,20 @@ fn combine_once(
 
     let clock = Instant::now();
     let mut all_contacts = Vec::new();
-    for i in 0..prepared.len() {
-        for j in i + 1..prepared.len() {
-            let (a, b) = (&prepared[i], &prepared[j]);
-            if a.bvh.bounds().intersection(b.bvh.bounds()).is_empty() {
-                continue;
-            }
-            let found = contacts::contacts(a, b, offsets[i], offsets[j]);
-            stats.contacts += found.len();
-            if stats.contacts > options.max_contacts {
-                return Err(BooleanError::TooLarge {
-                    contacts: stats.contacts,
-                    limit: options.max_contacts,
-                });
-            }
-            all_contacts.push((i, j, found));
+    // Only operands whose boxes meet can touch: pairs from an index of the
+    // boxes, in the order of the all-pairs loop.
+    let nearby = Nearby::new(prepared.iter().map(|p| p.bvh.bounds()).collect());
+    for (i, j) in nearby.meeting_pairs() {
+        let (a, b) = (&prepared[i], &prepared[j]);
+        let found = contacts::contacts(a, b, offsets[i], offsets[j]);
+        stats.contacts += found.len();
+        if stats.contacts > options.max_contacts {
+            return Err(BooleanError::TooLarge {
+                contacts: stats.contacts,
+                limit: options.max_contacts,
+            });
         }
+        all_contacts.push((i, j, found));
     }
     stats.intersect_seconds = clock.elapsed().as_secs_f64();
 
@@ -342,58 +344,70 @@ fn combine_once(
     stats.cut_triangles = cuts.iter().map(HashMap::len).sum();
     let mut all_pieces = Vec::with_capacity(prepared.len());
     let mut constrained: HashSet<(u32, u32)> = HashSet::default();
-    for (slot, operand) in prepared.iter().enumerate() {
-        let (p, c) = pieces(&table, operand, offsets[slot], &cuts[slot])?;
+    // Operands side by side on all cores (a union of many small operands
+    // would otherwise hand each one's few triangles between threads).
+    let split: Vec<Result<Pieces, BooleanError>> = prepared
+        .par_iter()
+        .enumerate()
+        .map(|(slot, operand)| pieces(&table, operand, offsets[slot], &cuts[slot]))
+        .collect();
+    for result in split {
+        let (p, c) = result?;
         all_pieces.push(p);
         constrained.extend(c);
     }
     stats.split_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
+    let sparse = SparseExpression::new(&expression);
     let decisions: Vec<Vec<Option<bool>>> = (0..prepared.len())
         .into_par_iter()
         .map(|slot| {
             classify::keep_pieces(
                 &table,
                 &prepared,
+                &nearby,
                 slot,
                 &all_pieces[slot],
                 &constrained,
                 &partners[slot],
-                &expression,
+                &sparse,
             )
         })
         .collect::<Result<_, _>>()?;
     stats.classify_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    let mut kept = Vec::new();
-    for (slot, operand) in prepared.iter().enumerate() {
-        let of_operand: Vec<assemble::KeptPiece> = all_pieces[slot]
-            .par_iter()
-            .zip(&decisions[slot])
-            .filter_map(|(piece, decision)| {
-                let flip = (*decision)?;
-                let [x, y, z] = piece.corners;
-                let [p, q, r] = operand.corners(piece.triangle);
-                let mut own = operand.triangles[piece.triangle as usize]
-                    .map(|i| table.canonical[(i + offsets[slot]) as usize]);
-                own.sort_unstable();
-                let mut corners = piece.corners;
-                corners.sort_unstable();
-                let changed = corners != own;
-                Some(assemble::KeptPiece {
-                    corners: if flip { [x, z, y] } else { [x, y, z] },
-                    operand: slot,
-                    face: operand.faces[piece.triangle as usize],
-                    plane: if flip { [p, r, q] } else { [p, q, r] },
-                    changed,
-                    alone: !changed && operand.face_is_one_triangle(piece.triangle),
+    let kept_by_operand: Vec<Vec<assemble::KeptPiece>> = prepared
+        .par_iter()
+        .enumerate()
+        .map(|(slot, operand)| {
+            all_pieces[slot]
+                .iter()
+                .zip(&decisions[slot])
+                .filter_map(|(piece, decision)| {
+                    let flip = (*decision)?;
+                    let [x, y, z] = piece.corners;
+                    let [p, q, r] = operand.corners(piece.triangle);
+                    let mut own = operand.triangles[piece.triangle as usize]
+                        .map(|i| table.canonical[(i + offsets[slot]) as usize]);
+                    own.sort_unstable();
+                    let mut corners = piece.corners;
+                    corners.sort_unstable();
+                    let changed = corners != own;
+                    Some(assemble::KeptPiece {
+                        corners: if flip { [x, z, y] } else { [x, y, z] },
+                        operand: slot,
+                        face: operand.faces[piece.triangle as usize],
+                        plane: if flip { [p, r, q] } else { [p, q, r] },
+                        changed,
+                        alone: !changed && operand.face_is_one_triangle(piece.triangle),
+                    })
                 })
-            })
-            .collect();
-        kept.extend(of_operand);
-    }
+                .collect()
+        })
+        .collect();
+    let kept: Vec<assemble::KeptPiece> = kept_by_operand.into_iter().flatten().collect();
     let (solid, origins, report, proof_seconds, work) =
         output::build_and_prove(&table, &kept, &prepared)?;
     stats.proof_seconds = proof_seconds;
@@ -469,6 +483,9 @@ fn cross_segments(
                     .any(|s| s.operand != cut.segments[0].operand)
             })
             .collect();
+        if triangles.is_empty() {
+            continue;
+        }
         triangles.sort_unstable_by_key(|(t, _)| **t);
         found.extend(
             triangles

@@ -16,7 +16,7 @@
 //! sees them swapped and turns over accordingly).
 
 use super::BooleanError;
-use super::expression::Expression;
+use super::sparse::SparseExpression;
 
 /// Where a patch lies against the other operand.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -33,18 +33,21 @@ pub(crate) enum Label {
 
 /// Whether a patch of operand `own` bounds the result of `expression`, and
 /// if so whether it is turned over (`Some(true)`); `label(k)` is the
-/// patch's label against operand `k ≠ own`, asked only where it decides.
+/// patch's label against operand `k ≠ own`, asked only where it decides
+/// and only for `k` in `few` (sorted, holding `own`): every other operand
+/// is known to be outside the patch.
 ///
 /// # Errors
 ///
 /// The first error `label` returns.
 pub(crate) fn keep(
-    expression: &Expression,
+    expression: &SparseExpression,
+    few: &[usize],
     own: usize,
     label: &mut impl FnMut(usize) -> Result<Label, BooleanError>,
 ) -> Result<Option<bool>, BooleanError> {
     let mut side = |inside_own: bool| {
-        expression.contains(&mut |k| {
+        expression.contains(few, &mut |k| {
             if k == own {
                 return Ok(inside_own);
             }
@@ -77,6 +80,7 @@ pub(crate) fn covered(own: usize, other: usize, label: Label) -> bool {
 mod tests {
     use super::*;
     use crate::SetOp;
+    use crate::boolean::expression::Expression;
 
     /// With two operands the rule is the table of the regularized set
     /// operations, written out.
@@ -102,7 +106,11 @@ mod tests {
             ),
         ];
         for (op, first, second) in cases {
-            let e = Expression::of(op, Expression::Operand(0), Expression::Operand(1));
+            let e = SparseExpression::new(&Expression::of(
+                op,
+                Expression::Operand(0),
+                Expression::Operand(1),
+            ));
             for (k, label) in [Outside, Inside, OnSame, OnOpposite]
                 .into_iter()
                 .enumerate()
@@ -112,7 +120,7 @@ mod tests {
                     let got = if covered(own, other, label) {
                         None
                     } else {
-                        keep(&e, own, &mut |_| Ok(label)).unwrap()
+                        keep(&e, &[0, 1], own, &mut |_| Ok(label)).unwrap()
                     };
                     assert_eq!(got, expected, "{op:?} operand {own} {label:?}");
                 }
@@ -124,11 +132,11 @@ mod tests {
     /// result turned over; inside `c` it is hidden.
     #[test]
     fn a_patch_bounds_the_result_where_the_expression_changes_across_it() {
-        let e = Expression::of(
+        let e = SparseExpression::new(&Expression::of(
             SetOp::Difference,
             Expression::Operand(0),
             Expression::of(SetOp::Union, Expression::Operand(1), Expression::Operand(2)),
-        );
+        ));
         let labels = |inside_c: bool| {
             move |k: usize| {
                 Ok(match k {
@@ -138,7 +146,10 @@ mod tests {
                 })
             }
         };
-        assert_eq!(keep(&e, 1, &mut labels(false)).unwrap(), Some(true));
-        assert_eq!(keep(&e, 1, &mut labels(true)).unwrap(), None);
+        let all = [0, 1, 2];
+        assert_eq!(keep(&e, &all, 1, &mut labels(false)).unwrap(), Some(true));
+        assert_eq!(keep(&e, &all, 1, &mut labels(true)).unwrap(), None);
+        // Only 0 and 1 near the patch: 2 is outside.
+        assert_eq!(keep(&e, &[0, 1], 1, &mut labels(true)).unwrap(), Some(true));
     }
 }

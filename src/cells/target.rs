@@ -4,6 +4,7 @@
 
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
+use std::sync::Arc;
 
 use glam::DVec3;
 
@@ -48,23 +49,48 @@ pub(crate) trait CellTarget {
 }
 
 /// A closed solid: `Meets` exactly when a face meets the cell, every other
-/// cell `Free`.
+/// cell `Free`. The triangles that meet a refined cell are handed down to
+/// its sub-cells, which test only those (see [`BoundaryTiles::meeting`]):
+/// a cell costs what meets its parent, whatever the triangles' boxes.
 pub(crate) struct SolidTarget {
     pub(crate) accel: Accel,
     pub(crate) tiles: BoundaryTiles,
 }
 
+/// What a cell of a solid knows: the triangles that meet its parent
+/// (`None` at the root: all), and its own box once judged.
+#[derive(Clone, Debug)]
+pub(crate) struct SolidKnown {
+    among: Option<Arc<[u32]>>,
+    cell: Aabb,
+}
+
 impl CellTarget for SolidTarget {
-    type Known = ();
+    type Known = SolidKnown;
 
-    fn root_known(&self) {}
-
-    fn split(&self, (): &()) -> [(); 8] {
-        [(); 8]
+    fn root_known(&self) -> SolidKnown {
+        SolidKnown {
+            among: None,
+            cell: Aabb::EMPTY,
+        }
     }
 
-    fn judge(&self, cell: &Aabb, (): &mut ()) -> Judgement {
-        if self.tiles.meets(cell) {
+    fn split(&self, known: &SolidKnown) -> [SolidKnown; 8] {
+        // Made only for cells that are refined: a cell at the finest depth
+        // needs one triangle that meets it, not all of them.
+        let among: Arc<[u32]> = self
+            .tiles
+            .meeting(&known.cell, known.among.as_deref())
+            .into();
+        std::array::from_fn(|_| SolidKnown {
+            among: Some(Arc::clone(&among)),
+            cell: Aabb::EMPTY,
+        })
+    }
+
+    fn judge(&self, cell: &Aabb, known: &mut SolidKnown) -> Judgement {
+        known.cell = *cell;
+        if self.tiles.meets_among(cell, known.among.as_deref()) {
             Judgement::Meets
         } else {
             Judgement::Free

@@ -103,7 +103,8 @@ pub struct LeafFace {
 pub fn evaluate(csg: &Csg, options: &EvaluateOptions) -> Result<Evaluated, EvaluateError> {
     let mut leaves = Leaves::default();
     let clip = csg.bounds();
-    let (expression, tree) = node(csg, csg.root, options, &clip, &mut leaves)?;
+    let (expression, tree) = node(csg, csg.root, &mut leaves);
+    leaves.make(csg, options, &clip)?;
     let operands: Vec<&Solid> = leaves.solids.iter().collect();
     // Every leaf was proven valid above.
     let boolean_options = BooleanOptions {
@@ -156,7 +157,8 @@ pub fn evaluate(csg: &Csg, options: &EvaluateOptions) -> Result<Evaluated, Evalu
     })
 }
 
-/// The leaves made so far, in the order the expression names them.
+/// The leaves of the tree, in the order the expression names them, and
+/// their polyhedra once made.
 #[derive(Default)]
 struct Leaves {
     solids: Vec<Solid>,
@@ -166,43 +168,60 @@ struct Leaves {
     operators: usize,
 }
 
-/// The expression of the subtree at `index` over the leaves it adds to
-/// `out`, and its formula in leaf labels.
-fn node(
-    csg: &Csg,
-    index: NodeIndex,
-    options: &EvaluateOptions,
-    clip: &crate::geom::Aabb,
-    out: &mut Leaves,
-) -> Result<(Expression, String), EvaluateError> {
-    match csg.nodes[index].kind {
-        NodeKind::Leaf(id) => {
-            let leaf = &csg.leaves[id.0 as usize];
-            let clock = Instant::now();
-            let solid = leaf
-                .primitive
-                .tessellate(options.tolerance, clip)
-                .map_err(|source| EvaluateError::Leaf {
+impl Leaves {
+    /// Makes every leaf a polyhedron and proves it valid, on all cores
+    /// (each leaf on its own: a union of many small leaves costs what they
+    /// hold, not a hand-over between threads per leaf). The error is the
+    /// first leaf's in the expression's order, whatever the threads.
+    fn make(
+        &mut self,
+        csg: &Csg,
+        options: &EvaluateOptions,
+        clip: &crate::geom::Aabb,
+    ) -> Result<(), EvaluateError> {
+        use rayon::prelude::*;
+        let made: Vec<Result<(Solid, f64), EvaluateError>> = self
+            .ids
+            .par_iter()
+            .map(|&id| {
+                let leaf = &csg.leaves[id.0 as usize];
+                let clock = Instant::now();
+                let solid =
+                    leaf.primitive
+                        .tessellate(options.tolerance, clip)
+                        .map_err(|source| EvaluateError::Leaf {
+                            label: leaf.label.clone(),
+                            source,
+                        })?;
+                let seconds = clock.elapsed().as_secs_f64();
+                crate::boolean::prove(&solid).map_err(|source| EvaluateError::InvalidLeaf {
                     label: leaf.label.clone(),
                     source,
                 })?;
-            out.tessellate_seconds += clock.elapsed().as_secs_f64();
-            crate::boolean::prove(&solid).map_err(|source| EvaluateError::InvalidLeaf {
-                label: leaf.label.clone(),
-                source,
-            })?;
-            out.solids.push(solid);
+                Ok((solid, seconds))
+            })
+            .collect();
+        self.solids.reserve(made.len());
+        for result in made {
+            let (solid, seconds) = result?;
+            self.solids.push(solid);
+            self.tessellate_seconds += seconds;
+        }
+        Ok(())
+    }
+}
+
+/// The expression of the subtree at `index` over the leaves it adds to
+/// `out` (named, not yet made), and its formula in leaf labels.
+fn node(csg: &Csg, index: NodeIndex, out: &mut Leaves) -> (Expression, String) {
+    match csg.nodes[index].kind {
+        NodeKind::Leaf(id) => {
             out.ids.push(id);
-            Ok((
-                Expression::Operand(out.solids.len() - 1),
-                leaf.label.clone(),
-            ))
+            let leaf = &csg.leaves[id.0 as usize];
+            (Expression::Operand(out.ids.len() - 1), leaf.label.clone())
         }
         NodeKind::Op { op, left, right } => {
-            let (l, r) = (
-                node(csg, left, options, clip, out)?,
-                node(csg, right, options, clip, out)?,
-            );
+            let (l, r) = (node(csg, left, out), node(csg, right, out));
             let (a, b, operation) = match op {
                 SetOp::Union => (l, r, SetOp::Union),
                 SetOp::Intersection => (l, r, SetOp::Intersection),
@@ -210,10 +229,14 @@ fn node(
                 SetOp::ReverseDifference => (r, l, SetOp::Difference),
             };
             out.operators += 1;
-            Ok((
-                Expression::of(operation, a.0, b.0),
-                format!("({} {} {})", a.1, symbol(operation), b.1),
-            ))
+            // Only the formula's start is ever quoted ([`shortened`]): cut
+            // past it at every node, so a tree of n leaves does not build
+            // strings of n labels log n times.
+            let mut formula = format!("({} {} {})", a.1, symbol(operation), b.1);
+            if let Some((end, _)) = formula.char_indices().nth(FORMULA_CHARS + 1) {
+                formula.truncate(end);
+            }
+            (Expression::of(operation, a.0, b.0), formula)
         }
     }
 }

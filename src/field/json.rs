@@ -69,7 +69,8 @@ pub fn load_json(path: &Path) -> Result<FieldDocument, JsonError> {
         source,
     };
     let binary = || read_error(std::io::Error::other("binary data (not UTF-8 text)"));
-    let bytes = crate::io::read_input(path).map_err(read_error)?;
+    let bytes =
+        crate::io::read_input_at_most(path, crate::io::MAX_JSON_BYTES).map_err(read_error)?;
     if crate::io::text_len(&bytes) < bytes.len() {
         return Err(binary());
     }

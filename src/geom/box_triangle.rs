@@ -24,32 +24,57 @@ use super::{Aabb, Sign, orient2d, orient3d};
 /// point it spans.
 #[must_use]
 pub fn box_meets_triangle(b: &Aabb, t: &[DVec3; 3]) -> bool {
+    meets(b, t, true)
+}
+
+/// [`box_meets_triangle`], with its shortcuts or without (tests compare).
+fn meets(b: &Aabb, t: &[DVec3; 3], shortcuts: bool) -> bool {
     // The box's faces.
     let lo = t[0].min(t[1]).min(t[2]);
     let hi = t[0].max(t[1]).max(t[2]);
     if hi.cmplt(b.min).any() || lo.cmpgt(b.max).any() {
         return false;
     }
-    // The triangle's plane (a degenerate triangle has none: every sign is
-    // zero and nothing is separated here).
-    let corners = box_corners(b);
-    let mut above = false;
-    let mut below = false;
-    for &c in &corners {
-        match orient3d(t[0], t[1], t[2], c) {
-            Sign::Positive => above = true,
-            Sign::Negative => below = true,
-            Sign::Zero => {
-                above = true;
-                below = true;
+    // A corner in the closed box: they meet (the common case at a vertex
+    // where many triangles meet, such as a cone's apex).
+    if shortcuts
+        && t.iter()
+            .any(|&p| b.min.cmple(p).all() && p.cmple(b.max).all())
+    {
+        return true;
+    }
+    // A triangle in a plane `x_a = c` normal to an axis (the flat faces of
+    // models, which often lie on the cells' own planes): that plane meets
+    // the box (the coordinate test above), and an edge line's plane
+    // parallel to another axis is normal to axis `a` too, so only the
+    // projection along `a` is left. (Skipping the other tests changes no
+    // answer; it saves the exact fallbacks their zero signs would take.)
+    let flat = (0..3).find(|&a| shortcuts && t[0][a] == t[1][a] && t[1][a] == t[2][a]);
+    if flat.is_none() {
+        // The triangle's plane (a degenerate triangle has none: every sign
+        // is zero and nothing is separated here).
+        let corners = box_corners(b);
+        let mut above = false;
+        let mut below = false;
+        for &c in &corners {
+            match orient3d(t[0], t[1], t[2], c) {
+                Sign::Positive => above = true,
+                Sign::Negative => below = true,
+                Sign::Zero => {
+                    above = true;
+                    below = true;
+                }
             }
         }
-    }
-    if above != below {
-        return false;
+        if above != below {
+            return false;
+        }
     }
     // Planes through a triangle edge parallel to a box axis.
     for axis in 0..3 {
+        if flat.is_some_and(|a| a != axis) {
+            continue;
+        }
         let project = |p: DVec3| match axis {
             0 => DVec2::new(p.y, p.z),
             1 => DVec2::new(p.z, p.x),
@@ -210,6 +235,38 @@ mod tests {
                 clip_keeps_a_point(&b, &t),
                 "{b:?} {t:?}"
             );
+        }
+    }
+
+    /// The shortcuts (a corner in the box; a triangle in a plane normal to
+    /// an axis tested in that plane only) answer as the full test does, on
+    /// random triangles flattened onto such planes, often the box's own.
+    #[test]
+    fn the_shortcuts_answer_as_the_full_test() {
+        let mut uniform = crate::test_rng::uniform(0x5A0F_F1A7);
+        let mut grid = || (uniform() * 8.0).floor() / 4.0 - 1.0;
+        for case in 0..3000 {
+            let (a, c) = (
+                DVec3::new(grid(), grid(), grid()),
+                DVec3::new(grid(), grid(), grid()),
+            );
+            let b = Aabb {
+                min: a.min(c),
+                max: a.max(c),
+            };
+            let mut t = [
+                DVec3::new(grid(), grid(), grid()),
+                DVec3::new(grid(), grid(), grid()),
+                DVec3::new(grid(), grid(), grid()),
+            ];
+            if case % 4 != 0 {
+                let axis = case % 3;
+                let level = if case % 2 == 0 { b.min[axis] } else { grid() };
+                for p in &mut t {
+                    p[axis] = level;
+                }
+            }
+            assert_eq!(meets(&b, &t, true), meets(&b, &t, false), "{b:?} {t:?}");
         }
     }
 

@@ -3,7 +3,7 @@
 //! (`root.difference[1].sphere.radius`), and is generic over the caller's
 //! error type, which only has to take a [`JsonError`].
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::collections::HashSet;
 use std::path::PathBuf;
 
@@ -15,6 +15,19 @@ use thiserror::Error;
 /// How deep JSON may nest: serde_json's own recursion limit, refused by the
 /// parser before any value is read.
 pub const MAX_JSON_DEPTH: usize = 128;
+
+/// The largest JSON document read (a scene file, an included scene, a
+/// field document): 256 MiB, refused while reading, before parsing.
+pub const MAX_JSON_BYTES: usize = 1 << 28;
+
+/// The most values (objects, arrays, numbers, strings, booleans, nulls)
+/// one JSON document may hold: 16 million, counted by a pass over the text
+/// that builds nothing, before the document is parsed into memory. A value
+/// parsed costs some 40 to 100 bytes whatever its text (`0,` is two bytes),
+/// so this, not the size of the text, bounds a document's memory; a scene
+/// of the most nodes a scene may have (`scene::MAX_NODES`, a million
+/// boxes) holds about 10 million.
+pub const MAX_JSON_VALUES: usize = 16_000_000;
 
 /// Why a JSON document (a scene file, a field document) cannot be read:
 /// each variant names the file, the position in its text, or the JSON path
@@ -60,6 +73,17 @@ pub enum JsonError {
         /// The key.
         key: String,
     },
+    /// A document larger than [`MAX_JSON_BYTES`] or holding more than
+    /// [`MAX_JSON_VALUES`] values, refused before it is parsed.
+    #[error("{file}: the document holds more than the limit of {limit} {unit}")]
+    TooLarge {
+        /// The file (`<string>` for text).
+        file: String,
+        /// The limit.
+        limit: usize,
+        /// What is counted: `bytes` or `JSON values`.
+        unit: &'static str,
+    },
     /// A key the format does not have there.
     #[error("{at}: unknown key \"{}\" (expected {expected})", super::import_error::excerpt(.key.as_bytes()))]
     UnknownKey {
@@ -85,56 +109,109 @@ fn short_key(key: &str) -> String {
 /// Parses JSON text, naming `name` and the position on failure; a key that
 /// appears twice in one object is refused ([`JsonError::DuplicateKey`]),
 /// naming the object's JSON path: `top` for the document itself, and
-/// `prefix.key` below it (the key alone for an empty `prefix`).
+/// `prefix.key` below it (the key alone for an empty `prefix`). A text
+/// longer than [`MAX_JSON_BYTES`] or with more than [`MAX_JSON_VALUES`]
+/// values is refused ([`JsonError::TooLarge`]) before any value is built:
+/// the walk over the keys that finds duplicates counts the values first,
+/// and the document is parsed only after it.
 pub(crate) fn parse_json<E: From<JsonError>>(
     text: &str,
     name: &str,
     top: &str,
     prefix: &str,
 ) -> Result<Value, E> {
-    let value = parse_value(text, name)?;
+    let too_large = |limit, unit| {
+        E::from(JsonError::TooLarge {
+            file: name.to_string(),
+            limit,
+            unit,
+        })
+    };
+    if text.len() > MAX_JSON_BYTES {
+        return Err(too_large(MAX_JSON_BYTES, "bytes"));
+    }
     let duplicate = RefCell::new(None);
+    let values = Cell::new(0);
     let walk = Walk {
-        at: None,
+        parent: None,
+        step: Step::Document,
         top,
         prefix,
         duplicate: &duplicate,
+        values: &values,
     };
     let mut reader = serde_json::Deserializer::from_str(text);
-    // The text parsed above, so the walk fails only at a duplicate.
-    if walk.deserialize(&mut reader).is_err()
-        && let Some((at, key)) = duplicate.into_inner()
-    {
-        return Err(E::from(JsonError::DuplicateKey {
-            file: name.to_string(),
-            at,
-            key,
-        }));
+    if walk.deserialize(&mut reader).is_err() {
+        if let Some((at, key)) = duplicate.into_inner() {
+            return Err(E::from(JsonError::DuplicateKey {
+                file: name.to_string(),
+                at,
+                key,
+            }));
+        }
+        if values.get() > MAX_JSON_VALUES {
+            return Err(too_large(MAX_JSON_VALUES, "JSON values"));
+        }
+        // Otherwise the text is not JSON: the parse below says where.
     }
-    Ok(value)
+    parse_value(text, name)
 }
 
 /// A walk over JSON text that only looks at the keys of each object,
 /// stopping at the first that appears twice (recorded in `duplicate`).
+/// A value's JSON path is made only for a duplicate: each step links to
+/// its parent's, so an array of millions of numbers costs no string each.
 struct Walk<'a> {
-    /// The JSON path of the value walked (`None` for the document).
-    at: Option<String>,
+    /// The walk of the enclosing value, and the step from it to this one.
+    parent: Option<&'a Walk<'a>>,
+    step: Step,
     top: &'a str,
     prefix: &'a str,
     duplicate: &'a RefCell<Option<(String, String)>>,
+    /// The values met so far; the walk stops past [`MAX_JSON_VALUES`].
+    values: &'a Cell<usize>,
+}
+
+/// How a walked value is reached from the enclosing one.
+enum Step {
+    /// It is the document.
+    Document,
+    /// The value of this key of an object.
+    Key(String),
+    /// This element of an array.
+    Index(usize),
 }
 
 impl Walk<'_> {
-    fn here(&self) -> String {
-        self.at.clone().unwrap_or_else(|| self.top.to_string())
+    /// The JSON path of the value walked (`None` for the document).
+    fn at(&self) -> Option<String> {
+        let parent_at = || self.parent.and_then(Walk::at);
+        match &self.step {
+            Step::Document => None,
+            Step::Key(key) => Some(match (parent_at(), self.prefix) {
+                (None, "") => key.clone(),
+                (None, prefix) => format!("{prefix}.{key}"),
+                (Some(at), _) => format!("{at}.{key}"),
+            }),
+            Step::Index(index) => {
+                let here = parent_at().unwrap_or_else(|| self.top.to_string());
+                Some(format!("{here}[{index}]"))
+            }
+        }
     }
 
-    fn below(&self, at: String) -> Self {
+    fn here(&self) -> String {
+        self.at().unwrap_or_else(|| self.top.to_string())
+    }
+
+    fn below(&self, step: Step) -> Walk<'_> {
         Walk {
-            at: Some(at),
+            parent: Some(self),
+            step,
             top: self.top,
             prefix: self.prefix,
             duplicate: self.duplicate,
+            values: self.values,
         }
     }
 }
@@ -143,6 +220,10 @@ impl<'de> DeserializeSeed<'de> for Walk<'_> {
     type Value = ();
 
     fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<(), D::Error> {
+        self.values.set(self.values.get() + 1);
+        if self.values.get() > MAX_JSON_VALUES {
+            return Err(de::Error::custom("too many values"));
+        }
         deserializer.deserialize_any(self)
     }
 }
@@ -179,10 +260,9 @@ impl<'de> Visitor<'de> for Walk<'_> {
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
-        let here = self.here();
         let mut index = 0;
         while seq
-            .next_element_seed(self.below(format!("{here}[{index}]")))?
+            .next_element_seed(self.below(Step::Index(index)))?
             .is_some()
         {
             index += 1;
@@ -191,19 +271,13 @@ impl<'de> Visitor<'de> for Walk<'_> {
     }
 
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
-        let here = self.here();
         let mut seen = HashSet::new();
         while let Some(key) = map.next_key::<String>()? {
-            let at = match (&self.at, self.prefix) {
-                (None, "") => key.clone(),
-                (None, prefix) => format!("{prefix}.{key}"),
-                (Some(at), _) => format!("{at}.{key}"),
-            };
             if !seen.insert(key.clone()) {
-                *self.duplicate.borrow_mut() = Some((here, key));
+                *self.duplicate.borrow_mut() = Some((self.here(), key));
                 return Err(de::Error::custom("duplicate key"));
             }
-            map.next_value_seed(self.below(at))?;
+            map.next_value_seed(self.below(Step::Key(key)))?;
         }
         Ok(())
     }

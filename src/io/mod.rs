@@ -32,12 +32,14 @@ pub use export::{ExportError, ExportReport, export, export_bytes, export_soup};
 pub use format::{Format, UnknownFormat};
 pub use import::{Import, ImportOptions, MAX_PLACED_TRIANGLES, import, import_bytes, read_mesh};
 pub use import_error::ImportError;
-pub use json_value::JsonError;
+pub use json_value::{JsonError, MAX_JSON_BYTES, MAX_JSON_VALUES};
 pub use location::{Location, Sources};
 pub use obj::{
     DEFAULT_MAX_FACE_CORNERS, ObjError, ObjImport, ObjOptions, import_obj, import_obj_bytes,
     read_obj,
 };
 pub use obj_write::{to_obj_string, write_obj, written_soup};
-pub use read::{MAX_INPUT_BYTES, read_binary_input, read_input, read_input_from, text_len};
+pub use read::{
+    MAX_INPUT_BYTES, read_binary_input, read_input, read_input_at_most, read_input_from, text_len,
+};
 pub use weld::{WeldMode, WeldRefusal, WeldReport};

@@ -25,6 +25,16 @@ pub fn read_input(path: &Path) -> io::Result<Vec<u8>> {
     read_bounded(File::open(path)?, MAX_INPUT_BYTES)
 }
 
+/// [`read_input`] with a smaller limit than [`MAX_INPUT_BYTES`] (JSON
+/// documents: `MAX_JSON_BYTES`).
+///
+/// # Errors
+///
+/// As [`read_input`], for input longer than `limit`.
+pub fn read_input_at_most(path: &Path, limit: usize) -> io::Result<Vec<u8>> {
+    read_bounded(File::open(path)?, limit.min(MAX_INPUT_BYTES))
+}
+
 /// The bytes of the file at `path`, NUL bytes included (for the binary
 /// mesh formats), refusing input beyond [`MAX_INPUT_BYTES`].
 ///

@@ -80,6 +80,59 @@ impl BoundaryTiles {
         met
     }
 
+    /// Whether one of the triangles `among` (by index; all when `None`)
+    /// meets the closed box `cell`: [`BoundaryTiles::meets`] over a list
+    /// that [`BoundaryTiles::meeting`] made for a box holding `cell`.
+    #[must_use]
+    pub fn meets_among(&self, cell: &Aabb, among: Option<&[u32]>) -> bool {
+        match among {
+            None => self.meets(cell),
+            Some(list) => list.iter().any(|&t| self.tile_meets(cell, t)),
+        }
+    }
+
+    /// The triangles among `among` (by index; all when `None`) that meet
+    /// the closed box `cell`, in increasing order.
+    ///
+    /// Handed down an octree, a cell's list is made from its parent's: a
+    /// triangle that meets a cell meets every box holding it, so the
+    /// lists stay exact, and each costs what its parent's list holds, not
+    /// what the triangles' boxes overlap. The boxes of long thin triangles
+    /// (the sides of a cone of many segments, each from its apex to its
+    /// rim) overlap most cells near the surface; the triangles themselves
+    /// meet few.
+    #[must_use]
+    pub fn meeting(&self, cell: &Aabb, among: Option<&[u32]>) -> Vec<u32> {
+        match among {
+            None => {
+                let mut found = Vec::new();
+                self.bvh.items_overlapping(
+                    cell,
+                    |p| self.boxes[p],
+                    |p| {
+                        if box_meets_triangle(cell, &self.triangles[p]) {
+                            found.push(p as u32);
+                        }
+                    },
+                );
+                found.sort_unstable();
+                found
+            }
+            Some(list) => list
+                .iter()
+                .copied()
+                .filter(|&t| self.tile_meets(cell, t))
+                .collect(),
+        }
+    }
+
+    /// Whether triangle `t` meets the closed box `cell` (its box first).
+    fn tile_meets(&self, cell: &Aabb, t: u32) -> bool {
+        let t = t as usize;
+        !self.boxes[t].intersection(*cell).is_empty()
+            && box_meets_triangle(cell, &self.triangles[t])
+    }
+
     /// The number of triangles.
     #[must_use]
     pub fn len(&self) -> usize {

@@ -41,7 +41,8 @@ pub(super) fn field_leaf(
                     match e {
                         JsonError::Read { .. }
                         | JsonError::Syntax { .. }
-                        | JsonError::DuplicateKey { .. } => e.to_string(),
+                        | JsonError::DuplicateKey { .. }
+                        | JsonError::TooLarge { .. } => e.to_string(),
                         _ => format!("{}: {e}", file.display()),
                     },
                 )

@@ -79,7 +79,8 @@ pub(super) fn read_scene_file(
             "is a directory, not a scene file",
         )));
     }
-    let bytes = crate::io::read_input(path).map_err(read_error)?;
+    let bytes =
+        crate::io::read_input_at_most(path, crate::io::MAX_JSON_BYTES).map_err(read_error)?;
     // The text ends at the first invalid UTF-8 or NUL byte (`read_input`
     // stops at a NUL): anything after it is binary data, named by position.
     let text_len = crate::io::text_len(&bytes);

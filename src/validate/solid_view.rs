@@ -8,6 +8,7 @@ use super::context::Context;
 use super::exact::{VolumeFilter, volume_sign, winding_numbers};
 use super::report::ShellSummary;
 use crate::geom::{Aabb, Sign};
+use crate::spatial::Bvh;
 
 use crate::mesh::{Polygon, PolygonSoup, Solid};
 
@@ -144,18 +145,29 @@ pub(crate) fn measure(ctx: &Context) -> SolidView {
         edges[s] += 1;
         boundary[s] += usize::from(uses.len() == 1);
     }
+    // Each shell's faces, in face order: made once, when a shell's volume
+    // sign or the nesting needs them (never a pass over all faces per
+    // shell, which made a union of n boxes cost n²).
+    let mut members: Option<Vec<Vec<usize>>> = None;
+    let mut members_of = |shell: usize| -> Vec<usize> {
+        members.get_or_insert_with(|| {
+            let mut members = vec![Vec::new(); count];
+            for f in (0..faces).filter(|&f| ctx.in_topology[f]) {
+                members[shell_of[f]].push(f);
+            }
+            members
+        })[shell]
+            .clone()
+    };
     let mut shells = Vec::with_capacity(count);
     let mut geometry = Vec::with_capacity(count);
     for (i, &first) in first_faces.iter().enumerate() {
         let (filter, volume, area, face_count) = sums[i];
         let closed = boundary[i] == 0;
         let chi = vertices[i] as i64 - edges[i] as i64 + face_count as i64;
-        let sign = filter.sign().unwrap_or_else(|| {
-            let members: Vec<usize> = (0..faces)
-                .filter(|&f| ctx.in_topology[f] && shell_of[f] == i)
-                .collect();
-            volume_sign(&triangles_of(ctx, &members))
-        });
+        let sign = filter
+            .sign()
+            .unwrap_or_else(|| volume_sign(&triangles_of(ctx, &members_of(i))));
         geometry.push(ShellGeometry {
             volume_sign: sign,
             first_face: first,
@@ -178,12 +190,9 @@ pub(crate) fn measure(ctx: &Context) -> SolidView {
     }
     let closed = shells.iter().filter(|s| s.closed).count();
     if closed > 1 {
-        let mut members: Vec<Vec<usize>> = vec![Vec::new(); count];
-        for f in (0..faces).filter(|&f| ctx.in_topology[f]) {
-            members[shell_of[f]].push(f);
-        }
-        let triangles: Vec<Vec<[DVec3; 3]>> =
-            members.iter().map(|m| triangles_of(ctx, m)).collect();
+        let triangles: Vec<Vec<[DVec3; 3]>> = (0..count)
+            .map(|i| triangles_of(ctx, &members_of(i)))
+            .collect();
         nest(&mut shells, &triangles);
     } else {
         for s in shells.iter_mut().filter(|s| s.closed) {
@@ -226,7 +235,19 @@ fn nest(shells: &mut [ShellSummary], triangles: &[Vec<[DVec3; 3]>]) {
         .map(|t| Aabb::from_points(t.iter().flatten().copied()))
         .collect();
     let closed: Vec<usize> = (0..shells.len()).filter(|&i| shells[i].closed).collect();
+    // The closed shells by their boxes: a shell is tested against those
+    // whose boxes hold its own, found by a box query, not against all.
+    let (index, order) = Bvh::build_by(closed.len(), |k| boxes[closed[k]]);
+    let mut around: Vec<usize> = Vec::new();
     for &a in &closed {
+        around.clear();
+        index.items_overlapping(
+            &boxes[a],
+            |p| boxes[closed[order[p] as usize]],
+            |p| around.push(closed[order[p] as usize]),
+        );
+        // In shell order, as the test of every pair took them.
+        around.sort_unstable();
         let probes: Vec<DVec3> = triangles[a]
             .iter()
             .flatten()
@@ -236,7 +257,7 @@ fn nest(shells: &mut [ShellSummary], triangles: &[Vec<[DVec3; 3]>]) {
             .collect();
         let mut depth = Some(0);
         let mut parent: Option<(usize, f64)> = None;
-        for &b in &closed {
+        for &b in &around {
             // A shell inside another lies inside its bounding box.
             let inside_box =
                 boxes[b].min.cmple(boxes[a].min).all() && boxes[a].max.cmple(boxes[b].max).all();

@@ -8,6 +8,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod bounds;
 mod cells;
 mod csg;
 mod determinism;

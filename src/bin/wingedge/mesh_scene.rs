@@ -41,12 +41,14 @@ impl Field for Indicator<'_> {
 }
 
 /// Whether `path` holds a scene rather than a field document: a JSON
-/// object with a `"root"` key.
+/// object with a `"root"` key. Only the top-level keys are kept (the
+/// values are skipped, not built), and the read stops at the JSON limit,
+/// so the look costs no more memory than the document's text.
 pub fn is_scene(path: &Path) -> bool {
-    let Ok(bytes) = wingedge::io::read_binary_input(path) else {
+    let Ok(bytes) = wingedge::io::read_input_at_most(path, wingedge::io::MAX_JSON_BYTES) else {
         return false;
     };
-    serde_json::from_slice::<serde_json::Map<String, serde_json::Value>>(&bytes)
+    serde_json::from_slice::<std::collections::BTreeMap<String, serde::de::IgnoredAny>>(&bytes)
         .is_ok_and(|doc| doc.contains_key("root"))
 }
 

@@ -1,5 +1,5 @@
-//! Time and peak memory of `info`, `validate` and the classification of
-//! one point, end to end from OBJ text, on inputs whose faces meet at one
+//! Time and peak memory of `info`, `validate`, the classification of
+//! one point and the octree cells at depth 6, end to end from OBJ text, on inputs whose faces meet at one
 //! vertex (closed cones with a centre or a corner fan, a UV sphere of 4,000
 //! segments whose poles join 4,000 slivers each), on a UV sphere of the
 //! same triangle count with ordinary poles, and on a fan of faces on one
@@ -18,6 +18,7 @@
 use std::process::Command;
 use std::time::Instant;
 
+use wingedge::cells::Octree;
 use wingedge::glam::DVec3;
 use wingedge::io::{ObjOptions, import_obj_bytes};
 use wingedge::mesh::builders::{ConeBase, cone_soup, edge_fan_soup, sphere_soup, uv_sphere_soup};
@@ -53,7 +54,10 @@ const CASES: [&str; 6] = [
     "poles-80k",
     "edge-fan-100k",
 ];
-const COMMANDS: [&str; 3] = ["info", "validate", "classify"];
+const COMMANDS: [&str; 4] = ["info", "validate", "classify", "cells"];
+
+/// The depth of the `cells` command's octree (as `wingedge cells --depth 6`).
+const CELLS_DEPTH: u32 = 6;
 
 /// The soup as OBJ text.
 fn obj_text(soup: &PolygonSoup) -> String {
@@ -105,6 +109,20 @@ fn one(name: &str, command: &str) -> Result<()> {
             Ok(solid) => {
                 let accel = Accel::new(&solid);
                 format!("{:?}", accel.classify(DVec3::new(0.1, 0.2, 0.3))?)
+            }
+            Err(e) => format!(
+                "refused: {}",
+                e.to_string().chars().take(40).collect::<String>()
+            ),
+        },
+        "cells" => match Solid::try_from_soup(&import.soup) {
+            Ok(solid) => {
+                let tree = Octree::classify(&solid, CELLS_DEPTH)?;
+                let (low, high) = tree.try_volume_bounds()?;
+                format!(
+                    "volume in [{low:.4}, {high:.4}], {} leaves",
+                    tree.leaves().len()
+                )
             }
             Err(e) => format!(
                 "refused: {}",
