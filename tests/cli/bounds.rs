@@ -116,6 +116,10 @@ fn a_document_of_too_many_values_is_refused_before_it_is_parsed() {
 /// that one child, unlike [`peak_child_rss_bytes`], which is the largest
 /// of every child the test process has run).
 #[cfg(target_os = "linux")]
+#[allow(
+    clippy::zombie_processes,
+    reason = "the child is reaped by wait4, which also gives its resource usage"
+)]
 fn run_alone(args: &[&str]) -> (i32, u64) {
     use std::process::{Command, Stdio};
     let child = Command::new(env!("CARGO_BIN_EXE_wingedge"))
