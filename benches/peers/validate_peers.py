@@ -3,7 +3,8 @@ memory of the whole process (start, load, check, exit), one process per
 tool and mesh, measured by `/usr/bin/time`.
 
     python3 benches/peers/validate_peers.py --wingedge target/release/wingedge \
-        [--models DIR ...] [--own DIR] [--repeat N] [--json OUT.json]
+        [--models DIR ...] [--own DIR] [--repeat N] [--timeout S] [--json OUT.json] \
+    [--tools wingedge,meshlib,cgal] [--earlier EARLIER.json]
 
 - wingedge: `wingedge validate --json MESH` (every check, the exact
   self-intersection check among them, and the winged-edge solid);
@@ -99,7 +100,7 @@ def cone(n):
 
 def twin_fans(m, cells):
     """Two fans of `m` slivers from hubs a hair apart, sloping along each
-    other over a bumpy plate that the lower fan cuts (the shape of
+    other over a bumpy plate that they cut (the shape of
     manifold's Generic_Twin models; as in the unit test)."""
     p, f = [], []
     at = lambda i, j: i * (cells + 1) + j
@@ -209,6 +210,10 @@ def measure(args, mesh, off):
         "cgal": [sys.executable, "-c", CGAL_CHILD, off],
     }
     for tool, command in runs.items():
+        if tool not in args.tools:
+            row[tool] = args.earlier.get(
+                (row["mesh"], tool), {"seconds": 0.0, "mib": 0.0, "cpu": 0.0, "error": "not run"})
+            continue
         best = None
         for _ in range(args.repeat):
             run = timed(command, args.timeout)
@@ -272,7 +277,18 @@ def main():
     parser.add_argument("--repeat", type=int, default=1)
     parser.add_argument("--timeout", type=int, default=300, help="seconds per process")
     parser.add_argument("--json", help="also write the rows here")
+    parser.add_argument("--tools", default="wingedge,meshlib,cgal",
+                        help="the tools to run (comma-separated); the others' cells come from "
+                             "--earlier")
+    parser.add_argument("--earlier", dest="earlier_path", help="the --json of an earlier run")
     args = parser.parse_args()
+    args.tools = args.tools.split(",")
+    args.earlier = {}
+    if args.earlier_path:
+        with open(args.earlier_path) as f:
+            for row in json.load(f):
+                for tool in ("wingedge", "meshlib", "cgal"):
+                    args.earlier[(row["mesh"], tool)] = row[tool]
     meshes = []
     for d in args.models:
         meshes += sorted(os.path.join(d, n) for n in os.listdir(d) if n.endswith(".obj"))
