@@ -55,24 +55,28 @@ pub(super) fn pairs_near_changed(
             // the test would report is left out, and a sliver opens only
             // the nodes along it.
             let filter = TriangleFilter::new(&ta.vertices.map(|v| ctx.position(v)));
-            bvh.leaves_overlapping_where(&query, |b| filter.may_meet(b), |leaf| {
-                for p in bvh.leaf(leaf).unwrap_or_default().range() {
-                    let b = fresh[order[p] as usize] as usize;
-                    // A pair of two changed triangles is met twice: once.
-                    if a_fresh && b <= a {
-                        continue;
+            bvh.leaves_overlapping_where(
+                &query,
+                |b| filter.may_meet(b),
+                |leaf| {
+                    for p in bvh.leaf(leaf).unwrap_or_default().range() {
+                        let b = fresh[order[p] as usize] as usize;
+                        // A pair of two changed triangles is met twice: once.
+                        if a_fresh && b <= a {
+                            continue;
+                        }
+                        let tb = &triangles[b];
+                        let item = fresh_boxes[order[p] as usize];
+                        if ta.face != tb.face
+                            && !item.intersection(query).is_empty()
+                            && filter.may_meet(&item)
+                            && triangles_meet_beyond_shared(ctx, ta, tb)
+                        {
+                            found.push((ta.face.min(tb.face), ta.face.max(tb.face)));
+                        }
                     }
-                    let tb = &triangles[b];
-                    let item = fresh_boxes[order[p] as usize];
-                    if ta.face != tb.face
-                        && !item.intersection(query).is_empty()
-                        && filter.may_meet(&item)
-                        && triangles_meet_beyond_shared(ctx, ta, tb)
-                    {
-                        found.push((ta.face.min(tb.face), ta.face.max(tb.face)));
-                    }
-                }
-            });
+                },
+            );
             found
         })
         .collect();

@@ -8,8 +8,7 @@ use glam::DVec3;
 fn report_for(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> Vec<Vec<usize>> {
     let soup = crate::mesh::PolygonSoup::new(positions, polygons);
     let report =
-        crate::validate::validate_soup(&soup, None, &crate::validate::Options::default())
-            .unwrap();
+        crate::validate::validate_soup(&soup, None, &crate::validate::Options::default()).unwrap();
     intersecting(&report)
 }
 
@@ -152,8 +151,7 @@ fn a_huge_triangle_is_tested_against_everything() {
         .count();
     assert!(expected > n, "{expected}");
     let report =
-        crate::validate::validate_soup(&soup, None, &crate::validate::Options::default())
-            .unwrap();
+        crate::validate::validate_soup(&soup, None, &crate::validate::Options::default()).unwrap();
     assert_eq!(
         report.count(crate::validate::Rule::SelfIntersection),
         expected
@@ -180,10 +178,7 @@ fn counted(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> (Vec<(usize, usi
 }
 
 /// The face pairs and what the check counted.
-fn counted_all(
-    positions: Vec<DVec3>,
-    polygons: Vec<Vec<usize>>,
-) -> (Vec<(usize, usize)>, Counts) {
+fn counted_all(positions: Vec<DVec3>, polygons: Vec<Vec<usize>>) -> (Vec<(usize, usize)>, Counts) {
     let soup = crate::mesh::PolygonSoup::new(positions, polygons);
     let ctx = Context::new(&soup, None, crate::geom::Tolerance::default());
     intersecting_face_pairs_counted(&ctx, &triangulate(&ctx))
@@ -336,8 +331,7 @@ fn an_apex_face_folded_in_the_rim_plane_meets_the_faces_it_folds_over() {
         assert_eq!(found, want);
         // Apex faces (0..n) that share only the apex with face 9 or 10.
         let apex_only = |&&(a, b): &&(usize, usize)| (9..=10).contains(&a) && b > 11 && b < n;
-        let folded_over: Vec<(usize, usize)> =
-            found.iter().filter(apex_only).copied().collect();
+        let folded_over: Vec<(usize, usize)> = found.iter().filter(apex_only).copied().collect();
         // Each of the two far edges crosses the rim once more.
         assert_eq!(folded_over.len(), 2, "{found:?}");
         let reported: Vec<(usize, usize)> = report_for(p, f)
@@ -474,8 +468,7 @@ fn sheets_touching_or_crossing_along_coincident_edges() {
     let (p, f) = side_by_side(&[a, b]);
     let soup = crate::mesh::PolygonSoup::new(p.clone(), f.clone());
     let report =
-        crate::validate::validate_soup(&soup, None, &crate::validate::Options::default())
-            .unwrap();
+        crate::validate::validate_soup(&soup, None, &crate::validate::Options::default()).unwrap();
     assert_eq!(
         report.validity,
         crate::validate::Validity::ValidSolid,
