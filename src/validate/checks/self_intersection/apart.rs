@@ -151,13 +151,12 @@ pub(super) fn pairs_apart<T: Send>(
     // of the pieces one triangle finds are tested once each, as they are
     // found: nothing is kept but what the test returns and, while one
     // triangle asks, the triangles it found.
-    for g in 0..trees.len() {
-        for h in g + 1..trees.len() {
-            let tree = &trees[g];
-            if tree.pieces.is_empty() || members[h].is_empty() {
+    for (g, tree) in trees.iter().enumerate() {
+        for later in &members[g + 1..] {
+            if tree.pieces.is_empty() || later.is_empty() {
                 continue;
             }
-            found.par_extend(members[h].par_iter().flat_map_iter(|&b| {
+            found.par_extend(later.par_iter().flat_map_iter(|&b| {
                 let b = b as usize;
                 let filter = TriangleFilter::new(&triangles[b].vertices.map(|v| ctx.position(v)));
                 // A leaf's box holds its pieces': the triangle meeting it
