@@ -7,6 +7,7 @@
 mod aabb;
 pub(crate) mod around_axis;
 mod box_triangle;
+mod box_triangle_filter;
 mod compensated;
 mod dot;
 pub(crate) mod dyadic;
@@ -24,6 +25,7 @@ pub mod triangulate;
 
 pub use aabb::Aabb;
 pub use box_triangle::box_meets_triangle;
+pub use box_triangle_filter::TriangleFilter;
 pub use dot::{dot_sign, side_of_plane};
 pub use exact::{line_side, line_side_sos};
 pub use plane::{Plane, PlaneError, PlaneFit, newell_vector_area, unit_direction};

@@ -1,9 +1,12 @@
 //! Box queries: the leaves and items whose bounds overlap a closed box (an
 //! octree cell, a face's box).
 
-use crate::geom::Aabb;
+use glam::DVec3;
 
-use super::node::{LEAF, WIDTH};
+use crate::geom::Aabb;
+use crate::spatial::rounding::{f64_above, f64_below};
+
+use super::node::{LEAF, Node8, WIDTH};
 use super::tree::Bvh;
 
 impl Bvh {
@@ -37,6 +40,60 @@ impl Bvh {
                     stack.push(child);
                 }
             }
+        }
+    }
+
+    /// [`Bvh::leaves_overlapping`] that opens a node (inner or leaf) only
+    /// when `keep` accepts its box as well: `keep` gets a box in input
+    /// coordinates, rounded outward, that holds the exact box the node's
+    /// `f32` box stands for. With `keep` an exact test of a shape against a
+    /// box (a triangle's, say), every leaf holding an item whose exact box
+    /// overlaps `query` and meets the shape is visited: a node's box holds
+    /// its items' boxes, and a shape meeting a box meets every box that
+    /// holds it. A sliver crossing the tree obliquely opens the nodes along
+    /// it, not every node its box overlaps.
+    pub fn leaves_overlapping_where(
+        &self,
+        query: &Aabb,
+        keep: impl Fn(&Aabb) -> bool,
+        mut visit: impl FnMut(u32),
+    ) {
+        if query.is_empty() || query.intersection(self.bounds()).is_empty() {
+            return;
+        }
+        let frame = self.frame();
+        let lo: [f32; 3] = std::array::from_fn(|a| frame.lower(query.min[a], a));
+        let hi: [f32; 3] = std::array::from_fn(|a| frame.upper(query.max[a], a));
+        let mut stack = vec![0u32];
+        while let Some(node) = stack.pop() {
+            let n = &self.nodes()[node as usize];
+            for k in (0..WIDTH).rev() {
+                let child = n.child[k];
+                let meets = child != u32::MAX
+                    && (0..3).all(|a| n.bounds[a][k] <= hi[a] && lo[a] <= n.bounds[3 + a][k])
+                    && keep(&self.slot_box(n, k));
+                if !meets {
+                    continue;
+                }
+                if child & LEAF != 0 {
+                    visit(child & !LEAF);
+                } else {
+                    stack.push(child);
+                }
+            }
+        }
+    }
+
+    /// The box of slot `k` of node `n` in input coordinates, rounded
+    /// outward (the division by the frame's power-of-two scale is exact,
+    /// adding the centre is rounded to nearest, which the next `f64`
+    /// outward covers).
+    fn slot_box(&self, n: &Node8, k: usize) -> Aabb {
+        let f = self.frame();
+        let back = |row: usize, a: usize| f64::from(n.bounds[row][k]) / f.scale + f.centre[a];
+        Aabb {
+            min: DVec3::from_array([0, 1, 2].map(|a| f64_below(back(a, a)))),
+            max: DVec3::from_array([0, 1, 2].map(|a| f64_above(back(3 + a, a)))),
         }
     }
 

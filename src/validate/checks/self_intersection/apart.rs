@@ -1,17 +1,25 @@
 //! The pairs of triangles that share no vertex and whose boxes overlap,
 //! found by walks of the shared BVH without handing over the pairs around a
-//! vertex of high valence.
+//! vertex of high valence, and decided as they are found: no list of
+//! candidate pairs is gathered, so memory stays proportional to the
+//! triangles and to what the test returns, however many pairs the walks
+//! meet.
 //!
 //! The triangles around the vertices of highest valence (the hubs: a
 //! cone's apex, a pole, the centre of a fan) each form a group of their
 //! own. Two triangles of one group share the hub, so no walk pairs a group
 //! with itself; the other triangles are walked against each other and
 //! every group against every other. A hub's triangles are slivers whose
-//! boxes are as large as the hub's neighbourhood, so for these walks each
-//! is cut across into pieces that shrink geometrically towards the hub and
+//! boxes are as large as the hub's neighbourhood, so in the trees each is
+//! cut across into pieces that shrink geometrically towards the hub and
 //! towards the far edge, until a piece is about as long as the triangle is
 //! wide: boxes that follow the sliver, so two fans that meet along a rim
-//! (a cone's side and its base) overlap only near the rim.
+//! (a cone's side and its base) overlap only near the rim. A group is
+//! walked against an earlier group's tree one triangle at a time, the
+//! triangle itself tested against the boxes of the nodes it opens (by
+//! separating axes, `geom::TriangleFilter`, which never rejects a box the
+//! triangle meets), so a long thin triangle crossing the model obliquely
+//! opens only the nodes along it.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -20,7 +28,7 @@ use rayon::prelude::*;
 
 use super::super::super::context::Context;
 use super::triangles::Triangle;
-use crate::geom::Aabb;
+use crate::geom::{Aabb, TriangleFilter};
 use crate::spatial::Bvh;
 
 /// The most hubs that get a group of their own (those of highest valence).
@@ -35,6 +43,10 @@ pub(super) struct Apart<T> {
     pub found: Vec<T>,
     /// Pairs handed to the test.
     pub tested: usize,
+    /// The most candidate triangles held at once, waiting for the test
+    /// (those one triangle found in another group's tree): candidates are
+    /// decided as they are found, not gathered.
+    pub held: usize,
 }
 
 /// Calls `test(a, b)` (triangle indices, `a < b`) once on every pair of
@@ -49,6 +61,7 @@ pub(super) fn pairs_apart<T: Send>(
     test: impl Fn(usize, usize) -> Option<T> + Sync,
 ) -> Apart<T> {
     let tested = AtomicUsize::new(0);
+    let held = AtomicUsize::new(0);
     let try_pair = |a: usize, b: usize| -> Option<T> {
         let (ta, tb) = (&triangles[a], &triangles[b]);
         if ta.face == tb.face || ta.shared_vertices(tb) != 0 || !overlap(&boxes[a], &boxes[b]) {
@@ -61,6 +74,7 @@ pub(super) fn pairs_apart<T: Send>(
     // Group 0: triangles of no hub, one piece each (its own box). A piece
     // is its triangle and its index along it; its box is made when asked.
     let mut pieces: Vec<Vec<(u32, u8)>> = vec![Vec::new(); hubs.len() + 1];
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); hubs.len() + 1];
     let mut halvings_of = vec![0u8; triangles.len()];
     for (i, t) in triangles.iter().enumerate() {
         let group = t
@@ -69,6 +83,7 @@ pub(super) fn pairs_apart<T: Send>(
             .filter_map(|&v| hub_of[v])
             .min()
             .map_or(0, |h| h + 1);
+        members[group].push(i as u32);
         if group == 0 {
             pieces[0].push((i as u32, 0));
         } else {
@@ -115,48 +130,61 @@ pub(super) fn pairs_apart<T: Send>(
             }
         })
         .collect();
-    let leaf_items = |tree: &PieceTree, leaf: u32| tree.triangles(leaf).collect::<Vec<_>>();
     // The triangles of no hub: one piece each, so each pair once.
     let mut found = if trees[0].pieces.len() >= 2 {
         let tree = &trees[0];
         tree.bvh.par_self_leaf_pairs(|la, lb, found| {
-            let others = leaf_items(tree, lb);
-            for (k, a) in leaf_items(tree, la).into_iter().enumerate() {
+            for (k, a) in tree.triangles(la).enumerate() {
                 let from = if la == lb { k + 1 } else { 0 };
-                found.extend(others[from..].iter().filter_map(|&b| try_pair(a, b)));
+                found.extend(tree.triangles(lb).skip(from).filter_map(|b| try_pair(a, b)));
             }
         })
     } else {
         Vec::new()
     };
-    // Group against group: pieces pair up more than once, so the triangle
-    // pairs are gathered and tested once each.
-    for g in 0..trees.len() {
-        for h in g + 1..trees.len() {
-            let (tg, th) = (&trees[g], &trees[h]);
-            if tg.pieces.is_empty() || th.pieces.is_empty() {
+    // Group against group, streamed: each triangle of the later group asks
+    // the earlier group's tree for the pieces whose boxes overlap its own,
+    // opening only the nodes whose boxes its triangle may meet (a pair
+    // that meets has a common point, in a piece of the one and in the
+    // other, so no pair the test would report is left out, and a sliver
+    // opens the nodes along it, not all its box overlaps). The triangles
+    // of the pieces one triangle finds are tested once each, as they are
+    // found: nothing is kept but what the test returns and, while one
+    // triangle asks, the triangles it found.
+    for (g, tree) in trees.iter().enumerate() {
+        for later in &members[g + 1..] {
+            if tree.pieces.is_empty() || later.is_empty() {
                 continue;
             }
-            let mut candidates: Vec<(u32, u32)> =
-                tg.bvh.par_leaf_pairs(&th.bvh, |la, lb, found| {
-                    for a in leaf_items(tg, la) {
-                        for b in leaf_items(th, lb) {
-                            found.push((a.min(b) as u32, a.max(b) as u32));
-                        }
-                    }
-                });
-            candidates.par_sort_unstable();
-            candidates.dedup();
-            found.par_extend(
-                candidates
-                    .par_iter()
-                    .filter_map(|&(a, b)| try_pair(a as usize, b as usize)),
-            );
+            found.par_extend(later.par_iter().flat_map_iter(|&b| {
+                let b = b as usize;
+                let filter = TriangleFilter::new(&triangles[b].vertices.map(|v| ctx.position(v)));
+                // A leaf's box holds its pieces': the triangle meeting it
+                // is the filter (the pair test checks the whole boxes).
+                let mut near = Vec::new();
+                tree.bvh.leaves_overlapping_where(
+                    &boxes[b],
+                    |node| filter.may_meet(node),
+                    |leaf| near.extend(tree.triangles(leaf).map(|a| a as u32)),
+                );
+                if g > 0 {
+                    // A hub's triangle is cut into pieces, several of
+                    // which may be found.
+                    near.sort_unstable();
+                    near.dedup();
+                }
+                held.fetch_max(near.len(), Ordering::Relaxed);
+                near.into_iter()
+                    .filter(|&a| g > 0 || filter.may_meet(&boxes[a as usize]))
+                    .filter_map(|a| try_pair(a as usize, b))
+                    .collect::<Vec<_>>()
+            }));
         }
     }
     Apart {
         found,
         tested: tested.into_inner(),
+        held: held.into_inner(),
     }
 }
 

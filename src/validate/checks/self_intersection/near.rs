@@ -5,7 +5,8 @@
 //!
 //! Every triangle of a changed face is indexed in a BVH of its own; every
 //! triangle of the surface asks that BVH for the changed triangles whose
-//! boxes overlap its own, and each such pair gets the same exact test as
+//! boxes overlap its own and that its triangle may meet (opening only the
+//! nodes whose boxes it may meet), and each such pair gets the same exact test as
 //! in the full check ([`triangles_meet_beyond_shared`], which also holds the
 //! rules for triangles sharing a vertex or an edge). Pairs of two unchanged
 //! triangles are not tested: the caller vouches for them.
@@ -16,7 +17,7 @@ use super::super::super::context::Context;
 use super::bounds;
 use super::pair::triangles_meet_beyond_shared;
 use super::triangles::Triangle;
-use crate::geom::Aabb;
+use crate::geom::{Aabb, TriangleFilter};
 use crate::spatial::Bvh;
 
 /// The pairs of faces (smaller index first, sorted, each once) of which two
@@ -48,18 +49,31 @@ pub(super) fn pairs_near_changed(
             }
             let ta = &triangles[a];
             let a_fresh = is_changed(ta);
-            bvh.items_overlapping(
+            // Only the nodes and items whose boxes the triangle may meet
+            // (`TriangleFilter` never rejects one it meets): a pair
+            // with a common point has one in the other's box, so no pair
+            // the test would report is left out, and a sliver opens only
+            // the nodes along it.
+            let filter = TriangleFilter::new(&ta.vertices.map(|v| ctx.position(v)));
+            bvh.leaves_overlapping_where(
                 &query,
-                |p| fresh_boxes[order[p] as usize],
-                |p| {
-                    let b = fresh[order[p] as usize] as usize;
-                    // A pair of two changed triangles is met twice: once.
-                    if a_fresh && b <= a {
-                        return;
-                    }
-                    let tb = &triangles[b];
-                    if ta.face != tb.face && triangles_meet_beyond_shared(ctx, ta, tb) {
-                        found.push((ta.face.min(tb.face), ta.face.max(tb.face)));
+                |b| filter.may_meet(b),
+                |leaf| {
+                    for p in bvh.leaf(leaf).unwrap_or_default().range() {
+                        let b = fresh[order[p] as usize] as usize;
+                        // A pair of two changed triangles is met twice: once.
+                        if a_fresh && b <= a {
+                            continue;
+                        }
+                        let tb = &triangles[b];
+                        let item = fresh_boxes[order[p] as usize];
+                        if ta.face != tb.face
+                            && !item.intersection(query).is_empty()
+                            && filter.may_meet(&item)
+                            && triangles_meet_beyond_shared(ctx, ta, tb)
+                        {
+                            found.push((ta.face.min(tb.face), ta.face.max(tb.face)));
+                        }
                     }
                 },
             );
