@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use crate::common::cli::{peak_child_rss_bytes, run};
+use crate::common::cli::{Outcome, run};
 use crate::common::temp_dir::TempDir;
 use wingedge::io::{ObjError, ObjOptions, import_obj};
 use wingedge::scene::{Scene, SceneError};
@@ -52,6 +52,7 @@ fn every_mesh_command_refuses(mesh: &str, expect: &[&str]) {
         };
         let o = run(&args, stdin, &[]);
         assert_eq!(o.code, 2, "{args:?}: {}", o.stderr);
+        assert_memory_bounded(&o, &args);
         // validate reports on standard output, the others on standard error.
         let said = format!("{}{}", o.out(), o.stderr);
         for fragment in expect {
@@ -80,6 +81,7 @@ fn every_scene_command_refuses(dir: &TempDir, scene: &str, expect: &[&str]) {
         };
         let o = run(&args, stdin, &[]);
         assert_eq!(o.code, 2, "{args:?}: {}", o.stderr);
+        assert_memory_bounded(&o, &args);
         for fragment in expect {
             assert!(
                 o.stderr.contains(fragment),
@@ -91,17 +93,18 @@ fn every_scene_command_refuses(dir: &TempDir, scene: &str, expect: &[&str]) {
     assert!(!Path::new(&png).exists(), "no image for a refused scene");
 }
 
-fn assert_memory_bounded() {
-    match peak_child_rss_bytes() {
+/// `o`, the outcome of `wingedge ARGS`, stayed within [`RSS_BOUND`].
+fn assert_memory_bounded(o: &Outcome, args: &[&str]) {
+    match o.peak_rss {
         Some(peak) => assert!(
             peak < RSS_BOUND,
-            "a command peaked at {} MiB",
+            "{args:?} peaked at {} MiB",
             peak / (1024 * 1024)
         ),
         // Said, not skipped silently: `cargo test -- --nocapture` shows it.
-        None => println!(
-            "the memory bound is not checked here: this system has no getrusage for child processes"
-        ),
+        None => {
+            println!("{args:?}: the memory bound is not checked here: this system has no wait4")
+        }
     }
 }
 
@@ -130,11 +133,12 @@ fn fifty_megabytes_of_binary_garbage() {
     std::fs::rename(&path, dir.path().join("junk.json")).unwrap();
     let scene = dir.arg("junk.json");
     every_scene_command_refuses(&dir, &scene, &[&scene, "binary data"]);
-    let o = run(&["classify", "fixtures/valid/cube.obj", &scene], "", &[]);
+    let args = ["classify", "fixtures/valid/cube.obj", scene.as_str()];
+    let o = run(&args, "", &[]);
     assert_eq!(o.code, 2);
+    assert_memory_bounded(&o, &args);
     assert!(o.stderr.contains(&format!("{scene}:")), "{}", o.stderr);
     assert!(o.stderr.contains("binary data"), "{}", o.stderr);
-    assert_memory_bounded();
 }
 
 #[test]
@@ -158,7 +162,6 @@ fn fifty_megabytes_of_text_garbage() {
     let line = e.line().expect("a line is named");
     let mesh = path.to_string_lossy().into_owned();
     every_mesh_command_refuses(&mesh, &[&format!("{mesh}:{line}: ")]);
-    assert_memory_bounded();
 }
 
 #[test]
@@ -210,7 +213,6 @@ fn a_face_with_ten_million_corners_is_refused_before_parsing() {
         out.contains(":4: a face with 6 corners exceeds the limit of 5"),
         "{out}"
     );
-    assert_memory_bounded();
 }
 
 #[test]
@@ -352,12 +354,9 @@ fn endless_devices_are_refused_as_binary() {
             .contains("root.mesh: /dev/zero is a character device, not a regular file"),
         "{e}"
     );
-    let o = run(
-        &["classify", "fixtures/valid/cube.obj", "/dev/zero"],
-        "",
-        &[],
-    );
+    let args = ["classify", "fixtures/valid/cube.obj", "/dev/zero"];
+    let o = run(&args, "", &[]);
     assert_eq!(o.code, 2, "{}", o.stderr);
+    assert_memory_bounded(&o, &args);
     assert!(o.stderr.contains("/dev/zero:1:"), "{}", o.stderr);
-    assert_memory_bounded();
 }

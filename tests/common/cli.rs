@@ -19,6 +19,9 @@ pub struct Outcome {
     pub stdout: Vec<u8>,
     /// Standard error, as text.
     pub stderr: String,
+    /// The command's own peak resident memory in bytes (`wait4`'s resource
+    /// usage of this one child; `None` where there is no `wait4`).
+    pub peak_rss: Option<u64>,
 }
 
 impl Outcome {
@@ -79,22 +82,24 @@ pub fn run(args: &[&str], stdin: &str, env: &[(&str, &str)]) -> Outcome {
             .expect("stderr is readable");
         bytes
     });
-    let status = wait_or_kill(&mut child, args);
+    let (code, peak_rss) = wait_or_kill(&mut child, args);
     feeder.join().expect("stdin feeder");
     Outcome {
-        code: status.code().unwrap_or(-1),
+        code,
+        peak_rss,
         stdout: stdout.join().expect("stdout reader"),
         stderr: String::from_utf8_lossy(&stderr.join().expect("stderr reader")).into_owned(),
     }
 }
 
 /// Waits for `child` (running `wingedge ARGS`); kills it and panics if it
-/// runs longer than [`HUNG_AFTER`].
-fn wait_or_kill(child: &mut std::process::Child, args: &[&str]) -> std::process::ExitStatus {
+/// runs longer than [`HUNG_AFTER`]. Returns its exit code (-1 when killed
+/// by a signal) and, on Linux, its own peak resident memory in bytes.
+fn wait_or_kill(child: &mut std::process::Child, args: &[&str]) -> (i32, Option<u64>) {
     let started = Instant::now();
     loop {
-        if let Some(status) = child.try_wait().expect("the child can be waited for") {
-            return status;
+        if let Some(done) = reaped(child) {
+            return done;
         }
         if started.elapsed() > HUNG_AFTER {
             let _ = child.kill();
@@ -105,24 +110,35 @@ fn wait_or_kill(child: &mut std::process::Child, args: &[&str]) -> std::process:
     }
 }
 
-/// The largest peak resident memory of any child process this test
-/// process has waited for so far, in bytes (`getrusage` on Unix: kilobytes
-/// on Linux and the BSDs, bytes on macOS; `None` on other systems).
-/// Tests run in parallel threads of one process, so this bounds every
-/// command run so far, not only the last.
-pub fn peak_child_rss_bytes() -> Option<u64> {
-    #[cfg(unix)]
-    {
-        // SAFETY: getrusage only writes the struct it is given.
-        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-        let ok = unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) } == 0;
-        let unit = if cfg!(target_os = "macos") { 1 } else { 1024 };
-        ok.then(|| u64::try_from(usage.ru_maxrss).unwrap_or(0) * unit)
+/// `child`'s exit code and peak resident memory if it has ended (reaped
+/// by `wait4`, which reports that one child's resource usage).
+#[cfg(target_os = "linux")]
+fn reaped(child: &mut std::process::Child) -> Option<(i32, Option<u64>)> {
+    let pid = child.id() as libc::pid_t;
+    let mut status = 0;
+    // SAFETY: rusage is plain data, written by wait4.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: polls our own child, writing into the two locals.
+    let r = unsafe { libc::wait4(pid, &mut status, libc::WNOHANG, &mut usage) };
+    if r == 0 {
+        return None;
     }
-    #[cfg(not(unix))]
-    {
-        None
-    }
+    assert_eq!(r, pid, "wait4 of wingedge");
+    let code = if libc::WIFEXITED(status) {
+        libc::WEXITSTATUS(status)
+    } else {
+        -1
+    };
+    // Linux reports kilobytes.
+    let peak = u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024;
+    Some((code, Some(peak)))
+}
+
+/// `child`'s exit code if it has ended (no resource usage here).
+#[cfg(not(target_os = "linux"))]
+fn reaped(child: &mut std::process::Child) -> Option<(i32, Option<u64>)> {
+    let status = child.try_wait().expect("the child can be waited for")?;
+    Some((status.code().unwrap_or(-1), None))
 }
 
 /// Runs `wingedge ARGS` in the crate root, reads its standard output up to
@@ -154,9 +170,10 @@ pub fn run_first_line_only(args: &[&str]) -> Outcome {
             .expect("stdout is readable");
         // Dropping the reader closes the pipe.
     }
-    let status = wait_or_kill(&mut child, args);
+    let (code, peak_rss) = wait_or_kill(&mut child, args);
     Outcome {
-        code: status.code().unwrap_or(-1),
+        code,
+        peak_rss,
         stdout: first,
         stderr: String::from_utf8_lossy(&stderr.join().expect("stderr reader")).into_owned(),
     }
