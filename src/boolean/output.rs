@@ -190,6 +190,18 @@ fn learn(fixes: &mut Fixes, at: &Round, report: &Report, proven: &Proven) -> boo
         .map(|(v, &p)| (key(p), v))
         .collect();
     let soup_vertex = |w: usize| vertex_at.get(&key(proven.written.positions[w])).copied();
+    // The soup pieces of the (merged) face a written polygon is.
+    let pieces_of_polygon = |p: usize| -> Option<Vec<usize>> {
+        let face = proven.faces.get(p)?;
+        let source = proven.solid.face(*face).attributes.source_index?;
+        Some(members[&group_of[source]].clone())
+    };
+    // The written polygons the defects name.
+    let named: Vec<usize> = report
+        .violations
+        .iter()
+        .flat_map(|v| v.faces.iter().copied())
+        .collect();
     // A shell turned inside out is a sliver between near-coincident
     // sheets that rounding flipped: dropped first, if thinner than f64
     // can hold, before any fix moves points around it.
@@ -200,11 +212,7 @@ fn learn(fixes: &mut Fixes, at: &Round, report: &Report, proven: &Proven) -> boo
         .flat_map(|v| v.faces.iter().copied())
         .collect();
     if !inward.is_empty()
-        && drop_thin_shells(fixes, at, proven.written, &inward, &|p| {
-            let face = proven.faces.get(p)?;
-            let source = proven.solid.face(*face).attributes.source_index?;
-            Some(members[&group_of[source]].clone())
-        })
+        && drop_thin_shells(fixes, at, proven.written, &inward, &pieces_of_polygon)
     {
         return true;
     }
@@ -294,26 +302,15 @@ fn learn(fixes: &mut Fixes, at: &Round, report: &Report, proven: &Proven) -> boo
     // Sheets that rounding made cross, with nothing merged to split: a
     // shell thinner than `f64` can hold is left out whole before any of
     // its points is moved (moving them folds its neighbours in turn).
-    if !learnt {
-        let named: Vec<usize> = report
-            .violations
-            .iter()
-            .flat_map(|v| v.faces.iter().copied())
-            .collect();
-        if drop_thin_shells(fixes, at, proven.written, &named, &|p| {
-            let face = proven.faces.get(p)?;
-            let source = proven.solid.face(*face).attributes.source_index?;
-            Some(members[&group_of[source]].clone())
-        }) {
-            return true;
-        }
+    if !learnt && drop_thin_shells(fixes, at, proven.written, &named, &pieces_of_polygon) {
+        return true;
     }
     learnt |= fix_pieces(fixes, at, &to_fix, &pairs);
     if !learnt {
         // A defect between two pieces may be a sliver beside them that
         // rounding flattened (a vertex on the line of a neighbour's edge):
         // their neighbours around each vertex may hold what to fix.
-        let named: HashSet<usize> = to_fix
+        let corners: HashSet<usize> = to_fix
             .iter()
             .flat_map(|&i| at.soup.polygons[i].vertices.iter().copied())
             .collect();
@@ -322,22 +319,13 @@ fn learn(fixes: &mut Fixes, at: &Round, report: &Report, proven: &Proven) -> boo
                 at.soup.polygons[i]
                     .vertices
                     .iter()
-                    .any(|v| named.contains(v))
+                    .any(|v| corners.contains(v))
             })
             .collect();
         learnt |= fix_pieces(fixes, at, &around, &[]);
     }
     if !learnt {
-        let named: Vec<usize> = report
-            .violations
-            .iter()
-            .flat_map(|v| v.faces.iter().copied())
-            .collect();
-        learnt |= drop_thin_shells(fixes, at, proven.written, &named, &|p| {
-            let face = proven.faces.get(p)?;
-            let source = proven.solid.face(*face).attributes.source_index?;
-            Some(members[&group_of[source]].clone())
-        });
+        learnt |= drop_thin_shells(fixes, at, proven.written, &named, &pieces_of_polygon);
     }
     learnt
 }
