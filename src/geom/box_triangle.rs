@@ -214,22 +214,9 @@ mod tests {
     /// in exact arithmetic on dyadic inputs: the clip keeps a point).
     #[test]
     fn random_cases_agree_with_clipping() {
-        let mut uniform = crate::test_rng::uniform(0x0C71_5EED);
-        let mut grid = || (uniform() * 8.0).floor() / 4.0 - 1.0;
+        let mut grid = quarter_grid(0x0C71_5EED);
         for _ in 0..3000 {
-            let (a, c) = (
-                DVec3::new(grid(), grid(), grid()),
-                DVec3::new(grid(), grid(), grid()),
-            );
-            let b = Aabb {
-                min: a.min(c),
-                max: a.max(c),
-            };
-            let t = [
-                DVec3::new(grid(), grid(), grid()),
-                DVec3::new(grid(), grid(), grid()),
-                DVec3::new(grid(), grid(), grid()),
-            ];
+            let (b, t) = box_and_triangle(&mut grid);
             assert_eq!(
                 box_meets_triangle(&b, &t),
                 clip_keeps_a_point(&b, &t),
@@ -243,22 +230,9 @@ mod tests {
     /// random triangles flattened onto such planes, often the box's own.
     #[test]
     fn the_shortcuts_answer_as_the_full_test() {
-        let mut uniform = crate::test_rng::uniform(0x5A0F_F1A7);
-        let mut grid = || (uniform() * 8.0).floor() / 4.0 - 1.0;
+        let mut grid = quarter_grid(0x5A0F_F1A7);
         for case in 0..3000 {
-            let (a, c) = (
-                DVec3::new(grid(), grid(), grid()),
-                DVec3::new(grid(), grid(), grid()),
-            );
-            let b = Aabb {
-                min: a.min(c),
-                max: a.max(c),
-            };
-            let mut t = [
-                DVec3::new(grid(), grid(), grid()),
-                DVec3::new(grid(), grid(), grid()),
-                DVec3::new(grid(), grid(), grid()),
-            ];
+            let (b, mut t) = box_and_triangle(&mut grid);
             if case % 4 != 0 {
                 let axis = case % 3;
                 let level = if case % 2 == 0 { b.min[axis] } else { grid() };
@@ -268,6 +242,23 @@ mod tests {
             }
             assert_eq!(meets(&b, &t, true), meets(&b, &t, false), "{b:?} {t:?}");
         }
+    }
+
+    /// Seeded values on the grid of quarter units in `[-1, 1)`.
+    fn quarter_grid(seed: u64) -> impl FnMut() -> f64 {
+        let mut uniform = crate::test_rng::uniform(seed);
+        move || (uniform() * 8.0).floor() / 4.0 - 1.0
+    }
+
+    /// A box and a triangle with every coordinate from `grid`.
+    fn box_and_triangle(grid: &mut impl FnMut() -> f64) -> (Aabb, [DVec3; 3]) {
+        let mut point = || DVec3::new(grid(), grid(), grid());
+        let (a, c) = (point(), point());
+        let b = Aabb {
+            min: a.min(c),
+            max: a.max(c),
+        };
+        (b, [point(), point(), point()])
     }
 
     /// Sutherland–Hodgman clipping of the triangle by the box's faces in

@@ -14,33 +14,8 @@ impl Bvh {
     /// `query` (touching counts). Conservative: every leaf holding an item
     /// whose exact box overlaps `query` is visited (and possibly some that
     /// hold none). An empty or NaN `query` visits nothing.
-    pub fn leaves_overlapping(&self, query: &Aabb, mut visit: impl FnMut(u32)) {
-        if query.is_empty() || query.intersection(self.bounds()).is_empty() {
-            return;
-        }
-        // The query in the frame, rounded outward: it contains the exact
-        // in-frame query, so comparing it with the (outward-rounded) node
-        // boxes can only err towards visiting.
-        let frame = self.frame();
-        let lo: [f32; 3] = std::array::from_fn(|a| frame.lower(query.min[a], a));
-        let hi: [f32; 3] = std::array::from_fn(|a| frame.upper(query.max[a], a));
-        let mut stack = vec![0u32];
-        while let Some(node) = stack.pop() {
-            let n = &self.nodes()[node as usize];
-            for k in (0..WIDTH).rev() {
-                let child = n.child[k];
-                let meets = child != u32::MAX
-                    && (0..3).all(|a| n.bounds[a][k] <= hi[a] && lo[a] <= n.bounds[3 + a][k]);
-                if !meets {
-                    continue;
-                }
-                if child & LEAF != 0 {
-                    visit(child & !LEAF);
-                } else {
-                    stack.push(child);
-                }
-            }
-        }
+    pub fn leaves_overlapping(&self, query: &Aabb, visit: impl FnMut(u32)) {
+        self.walk(query, |_, _| true, visit);
     }
 
     /// [`Bvh::leaves_overlapping`] that opens a node (inner or leaf) only
@@ -56,11 +31,20 @@ impl Bvh {
         &self,
         query: &Aabb,
         keep: impl Fn(&Aabb) -> bool,
-        mut visit: impl FnMut(u32),
+        visit: impl FnMut(u32),
     ) {
+        self.walk(query, |n, k| keep(&self.slot_box(n, k)), visit);
+    }
+
+    /// The walk of both queries: opens slot `k` of node `n` when its box
+    /// overlaps `query` and `open(n, k)`.
+    fn walk(&self, query: &Aabb, open: impl Fn(&Node8, usize) -> bool, mut visit: impl FnMut(u32)) {
         if query.is_empty() || query.intersection(self.bounds()).is_empty() {
             return;
         }
+        // The query in the frame, rounded outward: it contains the exact
+        // in-frame query, so comparing it with the (outward-rounded) node
+        // boxes can only err towards visiting.
         let frame = self.frame();
         let lo: [f32; 3] = std::array::from_fn(|a| frame.lower(query.min[a], a));
         let hi: [f32; 3] = std::array::from_fn(|a| frame.upper(query.max[a], a));
@@ -71,7 +55,7 @@ impl Bvh {
                 let child = n.child[k];
                 let meets = child != u32::MAX
                     && (0..3).all(|a| n.bounds[a][k] <= hi[a] && lo[a] <= n.bounds[3 + a][k])
-                    && keep(&self.slot_box(n, k));
+                    && open(n, k);
                 if !meets {
                     continue;
                 }
