@@ -198,6 +198,7 @@ impl Fixes {
             joined_pairs: self.joined.len(),
             dropped_pieces: self.dropped.len(),
             welded_vertices: 0,
+            rounded_points: 0,
         }
     }
 

@@ -67,7 +67,13 @@ pub(crate) fn build_and_prove(
         if soup.polygons.is_empty() {
             let solid = Solid::default();
             let report = prove(&solid)?;
-            return Ok((solid, Vec::new(), report, proof_seconds, fixes.work(round)));
+            return Ok((
+                solid,
+                Vec::new(),
+                report,
+                proof_seconds,
+                work(&fixes, &rounded, round),
+            ));
         }
         let at = Round {
             rounded: &rounded,
@@ -123,7 +129,13 @@ pub(crate) fn build_and_prove(
                 attributes.source_index = Some(index);
                 solid.set_face_attributes(f, attributes);
             }
-            return Ok((solid, origins, report, proof_seconds, fixes.work(round)));
+            return Ok((
+                solid,
+                origins,
+                report,
+                proof_seconds,
+                work(&fixes, &rounded, round),
+            ));
         }
         failure = Some(invalid(&report, &written, |polygon| {
             let face = faces.get(polygon)?;
@@ -141,6 +153,14 @@ pub(crate) fn build_and_prove(
         }
     }
     Err(failure.unwrap_or_else(|| BooleanError::not_built("the output did not settle")))
+}
+
+/// The output's work after `round` rounds: the fixes made, and the
+/// constructed points written rounded.
+fn work(fixes: &Fixes, rounded: &Rounded, round: usize) -> OutputWork {
+    let mut work = fixes.work(round);
+    work.rounded_points = rounded.exact.iter().filter(|&&exact| !exact).count();
+    work
 }
 
 /// One round's soup of pieces, as the solid was built from it.

@@ -59,6 +59,11 @@ pub struct OutputWork {
     /// not keep apart from them (the last resort, `weld`): the boolean was
     /// run again on the welded operands.
     pub welded_vertices: usize,
+    /// Constructed points of the result written rounded: not exactly
+    /// representable in `f64` (not a fix; 0 with nothing fixed means the
+    /// written result is exactly the exact one, see
+    /// [`OutputWork::is_exact`]).
+    pub rounded_points: usize,
 }
 
 impl OutputWork {
@@ -73,6 +78,15 @@ impl OutputWork {
             + self.dropped_pieces
             + self.welded_vertices
             > 0
+    }
+
+    /// Whether what is written is exactly the exact result: every point of
+    /// it representable in `f64` as it is, and nothing fixed. Such a result
+    /// can be cut again as an operand with no rounding in between, which
+    /// is how `csg::evaluate` splits a tree into several booleans.
+    #[must_use]
+    pub fn is_exact(&self) -> bool {
+        self.rounded_points == 0 && !self.fixed_anything()
     }
 
     /// The counts as `name value` pairs, named as in reports.
@@ -125,6 +139,7 @@ impl std::ops::AddAssign<&OutputWork> for OutputWork {
         self.joined_pairs += one.joined_pairs;
         self.dropped_pieces += one.dropped_pieces;
         self.welded_vertices += one.welded_vertices;
+        self.rounded_points += one.rounded_points;
     }
 }
 

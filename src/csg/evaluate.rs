@@ -1,8 +1,11 @@
 //! Boundary evaluation of a whole tree: every leaf made a polyhedron
-//! (proven a valid solid), then the tree's set expression over all leaves
-//! evaluated in one exact pass ([`combine`]): every leaf's surface is cut by
-//! every other's and no constructed point is rounded until the result is
-//! written, so chained operators are as exact as one.
+//! (proven a valid solid), then the tree evaluated by its structure
+//! ([`structure`](super::structure): node by node where every intermediate
+//! result is exact in `f64`, sides whose boxes do not meet never cut
+//! against each other), and whatever is left in one exact pass
+//! ([`combine`]): every remaining leaf's surface is cut by every other's
+//! and no constructed point is rounded until the result is written, so
+//! chained operators are as exact as one.
 
 use crate::SetOp;
 use std::time::Instant;
@@ -10,6 +13,7 @@ use std::time::Instant;
 use thiserror::Error;
 
 use super::TessellateError;
+use super::structure::{self, Source, StructureWork};
 use super::tessellate::DEFAULT_TOLERANCE;
 use super::tree::{Csg, LeafId, NodeIndex, NodeKind};
 use crate::boolean::{BooleanError, BooleanOptions, BooleanStats, Expression, combine};
@@ -22,12 +26,17 @@ pub struct EvaluateOptions {
     /// The chord tolerance of curved leaves, a fraction of each primitive's
     /// radius ([`DEFAULT_TOLERANCE`] by default).
     pub tolerance: f64,
+    /// Evaluate by the tree's structure (on by default): node by node
+    /// where that is exact, one pass for the rest. Off: the whole tree in
+    /// one pass over all leaves (the same set; for comparison).
+    pub by_structure: bool,
 }
 
 impl Default for EvaluateOptions {
     fn default() -> EvaluateOptions {
         EvaluateOptions {
             tolerance: DEFAULT_TOLERANCE,
+            by_structure: true,
         }
     }
 }
@@ -76,8 +85,10 @@ pub struct Evaluated {
     pub stats: BooleanStats,
     /// Seconds spent making leaves into polyhedra.
     pub tessellate_seconds: f64,
-    /// The number of operators in the tree (evaluated together).
+    /// The number of operators in the tree.
     pub booleans: usize,
+    /// How the tree's structure was used (all zero for one pass).
+    pub structure: StructureWork,
     /// For each face of `solid` (by its `attributes.source_index`), the
     /// leaf and the face of the leaf's polyhedron it is part of.
     pub origins: Vec<LeafFace>,
@@ -105,14 +116,83 @@ pub fn evaluate(csg: &Csg, options: &EvaluateOptions) -> Result<Evaluated, Evalu
     let clip = csg.bounds();
     let (expression, tree) = node(csg, csg.root, &mut leaves);
     leaves.make(csg, options, &clip)?;
+    let (solid, report, sources, stats, structure) = if options.by_structure {
+        let outcome = structure::evaluate(csg, &leaves.solids, &leaves.ids).map_err(|failure| {
+            let named = failure
+                .source
+                .operands()
+                .into_iter()
+                .filter_map(|k| {
+                    let slot = (*failure.slots.get(k)?)?;
+                    let id = leaves.ids.get(slot)?;
+                    Some((k, csg.leaves[id.0 as usize].label.clone()))
+                })
+                .collect();
+            EvaluateError::Boolean {
+                tree: shortened(&tree),
+                source: failure.source,
+                leaves: named,
+            }
+        })?;
+        (
+            outcome.solid,
+            outcome.report,
+            outcome.sources,
+            outcome.stats,
+            outcome.work,
+        )
+    } else {
+        one_pass(csg, &leaves, &expression, &tree)?
+    };
+    // Each operand's faces numbered in their order, for the operands that
+    // faces of the result come from.
+    let mut numbering: Vec<Option<rustc_hash::FxHashMap<crate::mesh::FaceId, usize>>> =
+        vec![None; leaves.solids.len()];
+    let origins = sources
+        .iter()
+        .map(|&(slot, face)| {
+            let faces = numbering[slot].get_or_insert_with(|| {
+                leaves.solids[slot]
+                    .faces()
+                    .enumerate()
+                    .map(|(i, (f, _))| (f, i))
+                    .collect()
+            });
+            LeafFace {
+                leaf: leaves.ids[slot],
+                face: faces[&face],
+            }
+        })
+        .collect();
+    Ok(Evaluated {
+        solid,
+        report,
+        stats,
+        tessellate_seconds: leaves.tessellate_seconds,
+        booleans: leaves.operators,
+        structure,
+        origins,
+    })
+}
+
+/// The solid, its report, each face's leaf face, the booleans' work.
+type Result5 = (Solid, Report, Vec<Source>, BooleanStats, StructureWork);
+
+/// The whole tree's expression over all leaves in one pass.
+fn one_pass(
+    csg: &Csg,
+    leaves: &Leaves,
+    expression: &Expression,
+    tree: &str,
+) -> Result<Result5, EvaluateError> {
     let operands: Vec<&Solid> = leaves.solids.iter().collect();
-    // Every leaf was proven valid above.
+    // Every leaf was proven valid.
     let boolean_options = BooleanOptions {
         check_operands: false,
         ..BooleanOptions::default()
     };
-    let result = combine(&operands, &expression, boolean_options).map_err(|source| {
-        let leaves = source
+    let result = combine(&operands, expression, boolean_options).map_err(|source| {
+        let named = source
             .operands()
             .into_iter()
             .filter_map(|k| {
@@ -121,40 +201,23 @@ pub fn evaluate(csg: &Csg, options: &EvaluateOptions) -> Result<Evaluated, Evalu
             })
             .collect();
         EvaluateError::Boolean {
-            tree: shortened(&tree),
+            tree: shortened(tree),
             source,
-            leaves,
+            leaves: named,
         }
     })?;
-    // Each operand's faces numbered in their order, for the operands that
-    // faces of the result come from.
-    let mut numbering: Vec<Option<rustc_hash::FxHashMap<crate::mesh::FaceId, usize>>> =
-        vec![None; leaves.solids.len()];
-    let origins = result
+    let sources = result
         .origins
         .iter()
-        .map(|origin| {
-            let faces = numbering[origin.operand].get_or_insert_with(|| {
-                leaves.solids[origin.operand]
-                    .faces()
-                    .enumerate()
-                    .map(|(i, (f, _))| (f, i))
-                    .collect()
-            });
-            LeafFace {
-                leaf: leaves.ids[origin.operand],
-                face: faces[&origin.face],
-            }
-        })
+        .map(|origin| (origin.operand, origin.face))
         .collect();
-    Ok(Evaluated {
-        solid: result.solid,
-        report: result.report,
-        stats: result.stats,
-        tessellate_seconds: leaves.tessellate_seconds,
-        booleans: leaves.operators,
-        origins,
-    })
+    Ok((
+        result.solid,
+        result.report,
+        sources,
+        result.stats,
+        StructureWork::default(),
+    ))
 }
 
 /// The leaves of the tree, in the order the expression names them, and

@@ -20,6 +20,7 @@ pub fn run(
     scene: &Path,
     output: &Path,
     tolerance: Option<f64>,
+    one_pass: bool,
     json: bool,
     allowed: &ImportOptions,
 ) -> Outcome {
@@ -27,6 +28,7 @@ pub fn run(
     let loaded = Scene::from_file_with(scene, allowed).map_err(|e| e.to_string())?;
     let options = EvaluateOptions {
         tolerance: tolerance.unwrap_or(EvaluateOptions::default().tolerance),
+        by_structure: !one_pass,
     };
     let start = Instant::now();
     let evaluated = match evaluate(&loaded.csg, &options) {
@@ -88,6 +90,14 @@ pub fn run(
             "empty": solid.face_count() == 0,
             "validity": report.validity,
             "seconds": seconds_by_stage,
+            "structure": {
+                "by_structure": options.by_structure,
+                "booleans": evaluated.structure.booleans,
+                "exact": evaluated.structure.exact,
+                "set_aside": evaluated.structure.set_aside,
+                "by_boxes": evaluated.structure.by_boxes,
+                "root_operands": evaluated.structure.root_operands,
+            },
             "output_work": s
                 .output
                 .counts()

@@ -261,6 +261,11 @@ enum Command {
         /// radius (default 1e-3).
         #[arg(long, value_name = "T")]
         tolerance: Option<f64>,
+        /// Evaluate the whole tree in one pass over all leaves, instead of
+        /// node by node where that is exact (the same solid; slower on
+        /// large trees; for comparison).
+        #[arg(long)]
+        one_pass: bool,
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
@@ -418,9 +423,17 @@ fn main() -> ExitCode {
             scene,
             output,
             tolerance,
+            one_pass,
             json,
             paths,
-        } => csg::run(&scene, &output, tolerance, json, &options(None, paths)),
+        } => csg::run(
+            &scene,
+            &output,
+            tolerance,
+            one_pass,
+            json,
+            &options(None, paths),
+        ),
         Command::Render {
             scene,
             output,

@@ -5,4 +5,5 @@ mod hard;
 mod random;
 mod scale;
 mod stress;
+mod structure;
 mod tree;
