@@ -434,10 +434,9 @@ impl Walk<'_> {
             } => {
                 if let (Expression::Operand(_), [Operand::Done(_)]) =
                     (&expression, operands.as_slice())
+                    && let Some(Operand::Done(exact)) = operands.pop()
                 {
-                    if let Some(Operand::Done(exact)) = operands.pop() {
-                        return Ok(*exact);
-                    }
+                    return Ok(*exact);
                 }
                 (Some(expression), operands)
             }

@@ -99,7 +99,7 @@ fn turned_cubes_sharing_planes_stay_one_pass() {
     let leaves: Vec<CsgExpr> = (0..6)
         .map(|i| {
             let angle = f64::from(i) * std::f64::consts::FRAC_PI_2 / 6.0;
-            CsgExpr::leaf(cube.clone()).transformed(DAffine3::from_rotation_z(angle))
+            CsgExpr::leaf(cube).transformed(DAffine3::from_rotation_z(angle))
         })
         .collect();
     let (structured, one_pass) = both(&CsgExpr::Union(leaves));

@@ -35,7 +35,7 @@ fn turned(n: usize) -> Result<CsgExpr> {
     let leaves = (0..n)
         .map(|i| {
             let angle = (i as f64) * std::f64::consts::FRAC_PI_2 / n as f64;
-            CsgExpr::leaf(cube.clone()).transformed(DAffine3::from_rotation_z(angle))
+            CsgExpr::leaf(cube).transformed(DAffine3::from_rotation_z(angle))
         })
         .collect();
     Ok(CsgExpr::Union(leaves))
