@@ -33,6 +33,7 @@
 //! ([`ImplicitPoint`]) carry their
 //! definitions until the output is written.
 
+mod apart;
 mod assemble;
 mod classify;
 mod contacts;
@@ -190,27 +191,44 @@ pub fn combine(
         return first;
     };
     // Rounding broke the result: operands closer together than `f64` can
-    // keep apart are welded, at a growing reach, and evaluated again.
+    // keep apart are welded, at a growing reach, and evaluated again; then
+    // sheets nearly in one slanted plane are pushed apart (`apart`), the
+    // later operand's growing past the earlier's or shrinking behind it.
     let named = expression.operands();
     let solids: Vec<&Solid> = named.iter().map(|&k| operands[k]).collect();
-    for reach in weld::reaches(&solids) {
-        let Some((welded, moved)) = weld::welded(&solids, reach) else {
-            continue;
-        };
-        if welded.iter().any(|s| check_operand(s, 0).is_err()) {
-            break;
+    let again = BooleanOptions {
+        check_operands: false,
+        ..options
+    };
+    let attempt = |moved_solids: &[Solid], moved: usize| {
+        if moved_solids.iter().any(|s| check_operand(s, 0).is_err()) {
+            return None;
         }
         let mut all: Vec<&Solid> = operands.to_vec();
-        for (&k, s) in named.iter().zip(&welded) {
+        for (&k, s) in named.iter().zip(moved_solids) {
             all[k] = s;
         }
-        let again = BooleanOptions {
-            check_operands: false,
-            ..options
-        };
-        if let Ok(mut result) = combine_once(&all, expression, again) {
-            result.stats.output.welded_vertices = moved;
+        let mut result = combine_once(&all, expression, again).ok()?;
+        result.stats.output.welded_vertices = moved;
+        Some(result)
+    };
+    for reach in weld::reaches(&solids) {
+        let welded = weld::welded(&solids, reach);
+        if let Some((welded, moved)) = &welded
+            && let Some(result) = attempt(welded, *moved)
+        {
             return Ok(result);
+        }
+        let (base, welded_count): (Vec<&Solid>, usize) = match &welded {
+            Some((w, moved)) => (w.iter().collect(), *moved),
+            None => (solids.clone(), 0),
+        };
+        for side in [apart::Side::Grow, apart::Side::Shrink] {
+            if let Some((pushed, moved)) = apart::pushed_apart(&base, reach, side)
+                && let Some(result) = attempt(&pushed, welded_count + moved)
+            {
+                return Ok(result);
+            }
         }
     }
     first
