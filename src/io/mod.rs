@@ -17,6 +17,7 @@ mod location;
 mod obj;
 mod obj_write;
 mod off;
+mod parsed;
 mod ply;
 mod ply_header;
 mod read;
