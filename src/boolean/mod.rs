@@ -190,10 +190,9 @@ pub fn combine(
     let Err(BooleanError::InvalidResult { .. } | BooleanError::NotBuilt { .. }) = &first else {
         return first;
     };
-    // Rounding broke the result: operands closer together than `f64` can
-    // keep apart are welded, at a growing reach, and evaluated again; then
-    // sheets nearly in one slanted plane are pushed apart (`apart`), the
-    // later operand's growing past the earlier's or shrinking behind it.
+    // Rounding broke the result: the operands are moved where they lie
+    // closer together than `f64` can keep apart (`weld::retried`), proven
+    // valid, and evaluated again.
     let named = expression.operands();
     let solids: Vec<&Solid> = named.iter().map(|&k| operands[k]).collect();
     let again = BooleanOptions {
@@ -212,26 +211,7 @@ pub fn combine(
         result.stats.output.welded_vertices = moved;
         Some(result)
     };
-    for reach in weld::reaches(&solids) {
-        let welded = weld::welded(&solids, reach);
-        if let Some((welded, moved)) = &welded
-            && let Some(result) = attempt(welded, *moved)
-        {
-            return Ok(result);
-        }
-        let (base, welded_count): (Vec<&Solid>, usize) = match &welded {
-            Some((w, moved)) => (w.iter().collect(), *moved),
-            None => (solids.clone(), 0),
-        };
-        for side in [apart::Side::Grow, apart::Side::Shrink] {
-            if let Some((pushed, moved)) = apart::pushed_apart(&base, reach, side)
-                && let Some(result) = attempt(&pushed, welded_count + moved)
-            {
-                return Ok(result);
-            }
-        }
-    }
-    first
+    weld::retried(&solids, attempt).map_or(first, Ok)
 }
 
 /// [`combine`] once, on the operands as given.
