@@ -33,6 +33,7 @@
 //! ([`ImplicitPoint`]) carry their
 //! definitions until the output is written.
 
+mod apart;
 mod assemble;
 mod classify;
 mod contacts;
@@ -189,31 +190,28 @@ pub fn combine(
     let Err(BooleanError::InvalidResult { .. } | BooleanError::NotBuilt { .. }) = &first else {
         return first;
     };
-    // Rounding broke the result: operands closer together than `f64` can
-    // keep apart are welded, at a growing reach, and evaluated again.
+    // Rounding broke the result: the operands are moved where they lie
+    // closer together than `f64` can keep apart (`weld::retried`), proven
+    // valid, and evaluated again.
     let named = expression.operands();
     let solids: Vec<&Solid> = named.iter().map(|&k| operands[k]).collect();
-    for reach in weld::reaches(&solids) {
-        let Some((welded, moved)) = weld::welded(&solids, reach) else {
-            continue;
-        };
-        if welded.iter().any(|s| check_operand(s, 0).is_err()) {
-            break;
+    let again = BooleanOptions {
+        check_operands: false,
+        ..options
+    };
+    let attempt = |moved_solids: &[Solid], moved: usize| {
+        if moved_solids.iter().any(|s| check_operand(s, 0).is_err()) {
+            return None;
         }
         let mut all: Vec<&Solid> = operands.to_vec();
-        for (&k, s) in named.iter().zip(&welded) {
+        for (&k, s) in named.iter().zip(moved_solids) {
             all[k] = s;
         }
-        let again = BooleanOptions {
-            check_operands: false,
-            ..options
-        };
-        if let Ok(mut result) = combine_once(&all, expression, again) {
-            result.stats.output.welded_vertices = moved;
-            return Ok(result);
-        }
-    }
-    first
+        let mut result = combine_once(&all, expression, again).ok()?;
+        result.stats.output.welded_vertices = moved;
+        Some(result)
+    };
+    weld::retried(&solids, attempt).map_or(first, Ok)
 }
 
 /// [`combine`] once, on the operands as given.

@@ -56,8 +56,9 @@ pub struct OutputWork {
     pub dropped_pieces: usize,
     /// Operand vertices moved onto a vertex of an earlier operand, or onto
     /// the plane of another operand's axis-aligned face, that `f64` could
-    /// not keep apart from them (the last resort, `weld`): the boolean was
-    /// run again on the welded operands.
+    /// not keep apart from them (the last resort, `weld`), or off the plane
+    /// of another operand's face they lay nearly in (`apart`): the boolean
+    /// was run again on the moved operands.
     pub welded_vertices: usize,
     /// Constructed points of the result written rounded: not exactly
     /// representable in `f64` (not a fix; 0 with nothing fixed means the
@@ -112,7 +113,7 @@ impl OutputWork {
         }
         let welded = if self.welded_vertices > 0 {
             format!(
-                ", after {} operand vertices were welded onto another operand's vertices or planes",
+                ", after {} operand vertices were welded onto another operand's vertices or planes, or pushed off its nearly coincident faces",
                 self.welded_vertices
             )
         } else {

@@ -15,6 +15,7 @@
 use glam::DVec3;
 use rustc_hash::FxHashMap as HashMap;
 
+use super::apart::{Side, pushed_apart};
 use crate::mesh::{Solid, VertexId};
 
 /// The smallest reach tried, in units in the last place of the largest
@@ -51,6 +52,39 @@ pub(super) fn reaches(operands: &[&Solid]) -> Vec<f64> {
     }
     out.push(cap.max(FIRST_REACH_ULPS * ulp));
     out
+}
+
+/// The last resorts, in order, until `attempt` (prove the moved operands
+/// valid and evaluate them again) succeeds: at each reach, smallest first,
+/// the operands welded ([`welded`]); then, from the welded operands (or
+/// the given ones when nothing welded), sheets nearly in one slanted
+/// plane pushed apart, the later operand's growing past the earlier's,
+/// then shrinking behind it ([`super::apart`]). `attempt` gets the moved
+/// operands and how many vertices moved in all.
+pub(super) fn retried<T>(
+    solids: &[&Solid],
+    mut attempt: impl FnMut(&[Solid], usize) -> Option<T>,
+) -> Option<T> {
+    for reach in reaches(solids) {
+        let welded = welded(solids, reach);
+        if let Some((welded, moved)) = &welded
+            && let Some(answer) = attempt(welded, *moved)
+        {
+            return Some(answer);
+        }
+        let (base, welded_count): (Vec<&Solid>, usize) = match &welded {
+            Some((w, moved)) => (w.iter().collect(), *moved),
+            None => (solids.to_vec(), 0),
+        };
+        for side in [Side::Grow, Side::Shrink] {
+            if let Some((pushed, moved)) = pushed_apart(&base, reach, side)
+                && let Some(answer) = attempt(&pushed, welded_count + moved)
+            {
+                return Some(answer);
+            }
+        }
+    }
+    None
 }
 
 /// The operands with every vertex of a later operand that lies within

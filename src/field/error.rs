@@ -112,7 +112,7 @@ pub enum FieldError {
         Readable(*.cell),
         Readable(*.coordinate),
         Readable(*.spacing),
-        super::marching::MIN_CELL_ULPS
+        .needed
     )]
     CellBelowResolution {
         /// The edge length of a cell.
@@ -121,6 +121,9 @@ pub enum FieldError {
         coordinate: f64,
         /// The spacing of `f64` there.
         spacing: f64,
+        /// How many such spacings a cell needs
+        /// (`field::MIN_CELL_ULPS`).
+        needed: f64,
     },
     /// An edge margin outside `[0, ½]`.
     #[error("the edge margin {} must lie in [0, 0.5]", Readable(*.0))]

@@ -39,15 +39,24 @@ pub fn write_atomically<T>(
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
     let temporary = builder.tempfile_in(folder)?;
-    let answer = {
-        let mut writer = BufWriter::new(temporary.as_file());
-        let answer = fill(&mut writer)?;
-        writer.flush()?;
-        answer
-    };
-    temporary.as_file().sync_all()?;
-    temporary.persist(path).map_err(|e| e.error)?;
-    Ok(answer)
+    #[cfg(target_os = "linux")]
+    let partial = temporary.path().to_path_buf();
+    #[cfg(target_os = "linux")]
+    super::interrupt::begin(&partial);
+    let written = (|| {
+        let answer = {
+            let mut writer = BufWriter::new(temporary.as_file());
+            let answer = fill(&mut writer)?;
+            writer.flush()?;
+            answer
+        };
+        temporary.as_file().sync_all()?;
+        temporary.persist(path).map_err(|e| e.error)?;
+        Ok(answer)
+    })();
+    #[cfg(target_os = "linux")]
+    super::interrupt::end(&partial);
+    written
 }
 
 #[cfg(test)]

@@ -15,9 +15,9 @@ use glam::{DMat4, DQuat, DVec3};
 use serde_json::{Value, json};
 
 use super::gltf_buffers::{Elements, accessor, buffer, refuse, split_glb, uint};
-use super::import::{MAX_PLACED_TRIANGLES, Parsed};
 use super::import_error::ImportError;
 use super::location::Location;
+use super::parsed::{MAX_PLACED_TRIANGLES, Parsed};
 use crate::mesh::{FaceAttributes, Polygon};
 
 /// The GLB magic, `glTF`.

@@ -10,11 +10,14 @@ mod gltf;
 mod gltf_buffers;
 mod import;
 mod import_error;
+#[cfg(target_os = "linux")]
+mod interrupt;
 pub(crate) mod json_value;
 mod location;
 mod obj;
 mod obj_write;
 mod off;
+mod parsed;
 mod ply;
 mod ply_header;
 mod read;
@@ -32,6 +35,8 @@ pub use export::{ExportError, ExportReport, export, export_bytes, export_soup};
 pub use format::{Format, UnknownFormat};
 pub use import::{Import, ImportOptions, MAX_PLACED_TRIANGLES, import, import_bytes, read_mesh};
 pub use import_error::ImportError;
+#[cfg(target_os = "linux")]
+pub use interrupt::remove_partial_files_on_signal;
 pub use json_value::{JsonError, MAX_JSON_BYTES, MAX_JSON_VALUES};
 pub use location::{Location, Sources};
 pub use obj::{

@@ -9,9 +9,9 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use super::import::{ImportOptions, Parsed};
 use super::import_error::{ImportError, excerpt};
 use super::location::{Location, Sources};
+use super::parsed::{ImportOptions, Parsed};
 use super::text::{as_text, count, number, numbered_lines, reservable};
 use crate::mesh::{FaceAttributes, Polygon};
 

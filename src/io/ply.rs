@@ -10,9 +10,9 @@ use std::path::Path;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::import::{ImportOptions, Parsed};
 use super::import_error::{ImportError, excerpt};
 use super::location::{Location, Sources};
+use super::parsed::{ImportOptions, Parsed};
 use super::ply_header::{Element, Encoding, Header, Property, Scalar, parse};
 use super::text::{as_text, number, reservable};
 use crate::mesh::{FaceAttributes, Polygon};

@@ -12,9 +12,9 @@ use std::path::Path;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::import::{ImportOptions, Parsed};
 use super::import_error::{ImportError, excerpt};
 use super::location::{Location, Sources};
+use super::parsed::{ImportOptions, Parsed};
 use super::text::{as_text, number, numbered_lines};
 use crate::mesh::{FaceAttributes, Polygon};
 

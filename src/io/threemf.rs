@@ -15,9 +15,9 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::import::Parsed;
 use super::import_error::{ImportError, excerpt};
 use super::location::Location;
+use super::parsed::Parsed;
 use super::threemf_model::{Model, Shape, Transform, parse};
 use crate::mesh::{FaceAttributes, Polygon};
 
@@ -25,7 +25,7 @@ use crate::mesh::{FaceAttributes, Polygon};
 /// meshes compresses about 3 to 10 times; a zip bomb, up to a thousand.
 pub(crate) const MAX_INFLATION: u64 = 100;
 
-use super::import::MAX_PLACED_TRIANGLES as MAX_TRIANGLES;
+use super::parsed::MAX_PLACED_TRIANGLES as MAX_TRIANGLES;
 
 /// How deep components may nest.
 const MAX_COMPONENT_DEPTH: usize = 32;

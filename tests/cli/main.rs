@@ -16,6 +16,7 @@ mod error_catalogue;
 mod formats;
 mod hostile_input;
 mod info;
+mod interrupt;
 mod mesh;
 mod messages;
 mod paths;

@@ -334,6 +334,9 @@ fn options(format: Option<Format>, paths: PathArgs) -> ImportOptions {
 }
 
 fn main() -> ExitCode {
+    // An interrupted write leaves the old file and no partial one.
+    #[cfg(target_os = "linux")]
+    wingedge::io::remove_partial_files_on_signal();
     let cli = Cli::parse();
     output::exit(match cli.command {
         Command::Info {

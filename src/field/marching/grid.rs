@@ -52,6 +52,7 @@ pub(crate) fn resolution_margin(
             cell,
             coordinate: reach,
             spacing,
+            needed: MIN_CELL_ULPS,
         });
     }
     Ok(VERTEX_ULPS * spacing / cell)
