@@ -47,6 +47,7 @@ mod operand;
 mod output;
 mod points;
 mod select;
+mod self_arrangement;
 mod sparse;
 mod split;
 mod stats;
@@ -65,6 +66,7 @@ use crate::validate::Report;
 pub use error::BooleanError;
 pub use expression::Expression;
 pub use operand::FaceOrigin;
+pub use self_arrangement::{SelfArrangement, arrange_soup};
 pub use stats::{BooleanStats, OutputWork};
 
 use classify::{Partner, Piece};
@@ -422,7 +424,7 @@ fn combine_once(
 }
 
 /// An operand's pieces and the edges of them that lie on segments.
-type Pieces = (Vec<Piece>, Vec<(u32, u32)>);
+pub(super) type Pieces = (Vec<Piece>, Vec<(u32, u32)>);
 
 /// The result when it is empty (`None`) or one operand as it is.
 fn as_is(chosen: Option<(&Solid, usize)>, stats: BooleanStats) -> Result<Boolean, BooleanError> {
@@ -453,15 +455,15 @@ fn as_is(chosen: Option<(&Solid, usize)>, stats: BooleanStats) -> Result<Boolean
 
 /// The points and segments found on one triangle (raw point indices).
 #[derive(Clone, Debug, Default)]
-struct Cuts {
-    points: Vec<u32>,
-    segments: Vec<Segment>,
+pub(super) struct Cuts {
+    pub points: Vec<u32>,
+    pub segments: Vec<Segment>,
 }
 
 /// With three or more operands: the crossings of segments of different
 /// operands inside each triangle, added to its points (and to the points
 /// that may coincide with others). Returns how many were made.
-fn cross_segments(
+pub(super) fn cross_segments(
     prepared: &[Prepared],
     vertices: &[glam::DVec3],
     made: &mut Vec<ImplicitPoint>,
@@ -548,7 +550,7 @@ pub fn prove(solid: &Solid) -> Result<Report, BooleanError> {
 
 /// The pieces of every triangle of `operand`: whole triangles where
 /// nothing cuts them, split ones elsewhere; and the constrained edges.
-fn pieces(
+pub(super) fn pieces(
     table: &PointTable,
     operand: &Prepared,
     base: u32,
