@@ -174,7 +174,8 @@ pub fn arrange_soup(
     let clock = Instant::now();
     stats.cut_triangles = cuts[0].len();
     let (all_pieces, constrained) = pieces(&table, &prepared, 0, &cuts[0])?;
-    let constrained: HashSet<(u32, u32)> = constrained.into_iter().collect();
+    let mut constrained: HashSet<(u32, u32)> = constrained.into_iter().collect();
+    constrained.extend(branching_edges(&all_pieces));
     stats.split_seconds = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
@@ -370,6 +371,27 @@ fn meet_only_along_shared_edge(operand: &Prepared, a: [u32; 3], b: [u32; 3]) -> 
         let sy = projected_orientation([u, v, p(y)], axis);
         sx != Sign::Zero && sy != Sign::Zero && sx != sy
     })
+}
+
+/// The edges of pieces that patches must not be joined across although no
+/// segment lies on them: those of more or fewer than two uses (where
+/// coplanar pieces or several sheets meet) and those whose two uses run
+/// the same way; as `(smaller, larger)` canonical point indices.
+fn branching_edges(pieces: &[Piece]) -> Vec<(u32, u32)> {
+    let mut uses: Vec<(u32, u32, bool)> = pieces
+        .iter()
+        .flat_map(|piece| {
+            (0..3).map(move |k| {
+                let (u, v) = (piece.corners[k], piece.corners[(k + 1) % 3]);
+                (u.min(v), u.max(v), u < v)
+            })
+        })
+        .collect();
+    uses.sort_unstable();
+    uses.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1))
+        .filter(|run| run.len() != 2 || run[0].2 == run[1].2)
+        .map(|run| (run[0].0, run[0].1))
+        .collect()
 }
 
 /// Each piece's fate: `None` when it does not bound `{w > ½}`, `Some(flip)`

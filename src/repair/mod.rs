@@ -12,7 +12,7 @@
 //!    exactly, optionally only up to `max_hole_edges` edges.
 //! 4. `orient` (outward): each closed piece turned to face out, a piece
 //!    nested in an odd number of others to face in.
-//! 5. resolve: when the soup is not yet a valid solid, it is arranged
+//! 5. resolve: the soup is arranged
 //!    against itself by the boolean's stages and reduced to the boundary
 //!    of the region where its winding number is positive
 //!    ([`crate::boolean::arrange_soup`]; Zhou, Grinspun, Zorin and
@@ -116,7 +116,15 @@ pub enum RepairError {
 /// [`RepairError`]: bad indices or positions; a soup that is no solid
 /// without resolving; the arrangement's errors.
 pub fn repair(soup: &PolygonSoup, options: &RepairOptions) -> Result<Repaired, RepairError> {
+    let clock = std::time::Instant::now();
+    let mut stage_seconds = Vec::new();
+    let mut lap = |name: &'static str, clock: &mut std::time::Instant| {
+        stage_seconds.push((name, clock.elapsed().as_secs_f64()));
+        *clock = std::time::Instant::now();
+    };
+    let mut clock = clock;
     let cleaned = clean::clean(soup)?;
+    lap("clean", &mut clock);
     let origin = cleaned.origin;
     let mut soup = cleaned.soup;
     let mut report = RepairReport {
@@ -132,7 +140,9 @@ pub fn repair(soup: &PolygonSoup, options: &RepairOptions) -> Result<Repaired, R
             whole_piece: false,
         });
     }
+    lap("orient", &mut clock);
     let filled = fill::fill(&mut soup, options.max_hole_edges);
+    lap("fill", &mut clock);
     let input_of = |p: usize| origin[p];
     report.filled = filled
         .filled
@@ -164,6 +174,7 @@ pub fn repair(soup: &PolygonSoup, options: &RepairOptions) -> Result<Repaired, R
             });
         }
     }
+    lap("face out", &mut clock);
     let all: Vec<usize> = (0..soup.polygons.len()).collect();
     let centre = crate::geom::Aabb::from_points(soup.positions.iter().copied()).center();
     report.volume_before = if soup.positions.is_empty() {
@@ -179,24 +190,22 @@ pub fn repair(soup: &PolygonSoup, options: &RepairOptions) -> Result<Repaired, R
             report,
         });
     }
-    // Already a valid solid: nothing to resolve.
-    if let Ok(solid) = Solid::try_from_soup(&soup)
-        && let Ok(validation) = prove(&solid)
-    {
+    report.stage_seconds = stage_seconds;
+    if !options.resolve {
+        // The soup as it is, if it is a valid solid.
+        let solid = Solid::try_from_soup(&soup).map_err(|e| RepairError::NotASolid(e.to_string()))?;
+        let validation = prove(&solid).map_err(|e| RepairError::NotASolid(e.to_string()))?;
         report.volume_after = solid.volume();
         return Ok(finish(solid, soup, validation, report));
     }
-    if !options.resolve {
-        let why = match Solid::try_from_soup(&soup) {
-            Err(e) => e.to_string(),
-            Ok(solid) => prove(&solid)
-                .err()
-                .map_or_else(|| "invalid".to_string(), |e| e.to_string()),
-        };
-        return Err(RepairError::NotASolid(why));
-    }
+    // Always arranged: on a soup that is already a valid solid nothing is
+    // cut and its faces come back as they were, and finding that out by
+    // validating first would cost as much as the arrangement's contacts.
     let arranged = arrange_soup(&soup, options.max_contacts)?;
     report.resolved = true;
+    report
+        .stage_seconds
+        .extend(arranged.stats.stages().into_iter().skip(1));
     report.crossing_pairs = arranged
         .crossing_polygons
         .iter()

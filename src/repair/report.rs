@@ -88,8 +88,7 @@ pub struct RepairReport {
     /// Pairs of input polygons that cross or overlap, resolved by the
     /// arrangement (smaller index first, sorted).
     pub crossing_pairs: Vec<(usize, usize)>,
-    /// Whether the arrangement ran (the cleaned, oriented and filled soup
-    /// was not yet a valid solid).
+    /// Whether the arrangement ran (always, unless resolving is off).
     pub resolved: bool,
     /// The volume `∫ w dV` of the cleaned, oriented and filled soup
     /// (`w` its winding number: counted twice where two shells overlap),
@@ -99,6 +98,9 @@ pub struct RepairReport {
     pub volume_after: f64,
     /// Why the result is empty, when it is.
     pub empty_because: Option<String>,
+    /// Seconds spent in each stage, in order (the arrangement's stages as
+    /// a boolean's, when it ran).
+    pub stage_seconds: Vec<(&'static str, f64)>,
 }
 
 impl RepairReport {

@@ -222,6 +222,7 @@ fn report_json(
         "input": name,
         "output": output.map(|p| p.display().to_string()),
         "seconds": seconds,
+        "stage_seconds": r.stage_seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
         "welded": r.welded + imported.weld.merged,
         "dropped": r.dropped.iter().map(|d| json!({
             "polygon": d.polygon, "at": at(d.polygon), "reason": d.reason.to_string(),

@@ -74,8 +74,16 @@ fn repaired_random_box_soups_classify_points_as_the_winding_number_does() {
         if next() < 0.5 {
             soup.polygons.remove(c);
         }
-        let r = repair(&soup, &RepairOptions::default())
-            .unwrap_or_else(|e| panic!("case {case}: {e}"));
+        let r = repair(&soup, &RepairOptions::default()).unwrap_or_else(|e| {
+            if let Ok(dir) = std::env::var("WINGEDGE_REPAIR_DUMP") {
+                let _ = wingedge::io::export_soup(
+                    &soup,
+                    &std::path::Path::new(&dir).join(format!("case{case}.obj")),
+                    wingedge::io::Format::Obj,
+                );
+            }
+            panic!("case {case}: {e}")
+        });
         let solid = r.solid.expect("no hole left open");
         assert!(
             r.validation.as_ref().is_some_and(|v| v.is_valid()),
