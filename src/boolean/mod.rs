@@ -106,6 +106,15 @@ pub struct BooleanOptions {
     /// ([`MAX_CONTACTS`]) keeps a boolean within a few gigabytes and refuses
     /// beyond it instead of running out of memory.
     pub max_contacts: usize,
+    /// Take an operand that is not a valid solid (self-intersecting,
+    /// overlapping or nested shells, turned inside out) by its winding
+    /// number instead of refusing it: a point is in the operand when its
+    /// winding number is positive. The operand is first arranged against
+    /// itself ([`arrange_soup`]); it must still be closed (every edge run
+    /// as often one way as the other: holes are `repair`'s to fill). The
+    /// result's [`FaceOrigin`]s then name faces of that arranged operand.
+    /// Off by default.
+    pub resolve_operands: bool,
 }
 
 /// The default limit on touching triangle pairs: 10 million.
@@ -116,6 +125,7 @@ impl Default for BooleanOptions {
         BooleanOptions {
             check_operands: true,
             max_contacts: MAX_CONTACTS,
+            resolve_operands: false,
         }
     }
 }
@@ -233,12 +243,28 @@ fn combine_once(
         });
     }
     let clock = Instant::now();
+    let mut resolved: Vec<Option<Solid>> = vec![None; operands.len()];
     if options.check_operands {
-        named
+        let checks: Vec<Result<(), BooleanError>> = named
             .par_iter()
             .map(|&k| check_operand(operands[k], k))
-            .collect::<Result<Vec<()>, _>>()?;
+            .collect();
+        for (&k, check) in named.iter().zip(checks) {
+            match check {
+                Err(BooleanError::InvalidOperand { .. }) if options.resolve_operands => {
+                    resolved[k] =
+                        Some(self_arrangement::resolve_operand(operands[k], k, options.max_contacts)?);
+                }
+                other => other?,
+            }
+        }
     }
+    let operands: Vec<&Solid> = operands
+        .iter()
+        .zip(&resolved)
+        .map(|(&o, r)| r.as_ref().unwrap_or(o))
+        .collect();
+    let operands = operands.as_slice();
     stats.check_seconds = clock.elapsed().as_secs_f64();
     let Some(expression) = expression.without_empty(&|k| operands[k].face_count() == 0) else {
         return as_is(None, stats);

@@ -220,6 +220,45 @@ pub fn arrange_soup(
     })
 }
 
+/// An operand that is not a valid solid, as the solid of the region where
+/// its winding number is positive.
+///
+/// # Errors
+///
+/// [`BooleanError::InvalidOperand`] when it is open (its winding number
+/// would depend on the ray); those of [`arrange_soup`].
+pub(crate) fn resolve_operand(
+    solid: &Solid,
+    operand: usize,
+    max_contacts: usize,
+) -> Result<Solid, BooleanError> {
+    let soup = solid.to_soup();
+    let open = unbalanced_edges(&soup);
+    if open > 0 {
+        return Err(BooleanError::InvalidOperand {
+            operand,
+            validity: "open".into(),
+            report: format!(
+                "{open} edges are run more often one way than the other, so its winding number is not defined; fill its holes first (wingedge repair)"
+            ),
+        });
+    }
+    Ok(arrange_soup(&soup, max_contacts)?.solid)
+}
+
+/// How many edges of `soup` are run more often one way than the other.
+fn unbalanced_edges(soup: &PolygonSoup) -> usize {
+    let mut net: HashMap<(usize, usize), i64> = HashMap::default();
+    for polygon in &soup.polygons {
+        let n = polygon.vertices.len();
+        for k in 0..n {
+            let (u, v) = (polygon.vertices[k], polygon.vertices[(k + 1) % n]);
+            *net.entry((u.min(v), u.max(v))).or_default() += if u < v { 1 } else { -1 };
+        }
+    }
+    net.values().filter(|&&c| c != 0).count()
+}
+
 /// The empty result.
 fn empty(stats: BooleanStats) -> Result<SelfArrangement, BooleanError> {
     let solid = Solid::default();

@@ -1,8 +1,9 @@
 //! Stage 2 and 4: every connected piece wound consistently (neighbours
 //! across an edge of exactly two polygons run it in opposite directions),
-//! and then each piece turned to face out when its signed volume is
-//! negative, unless it lies inside an odd number of other pieces (a cavity
-//! stays a cavity).
+//! and then each closed piece turned to face out when its signed volume
+//! is negative, unless it lies inside an odd number of other pieces (a
+//! cavity stays a cavity). A piece that is not closed by itself (a face
+//! whose every edge is shared by three or more) is left as it is.
 
 use glam::DVec3;
 
@@ -128,6 +129,20 @@ pub(crate) fn signed_volume(soup: &PolygonSoup, polygons: &[usize], origin: DVec
     total / 6.0
 }
 
+/// Whether the polygons run each of their edges as often one way as the
+/// other.
+fn closed(soup: &PolygonSoup, polygons: &[usize]) -> bool {
+    let mut net: std::collections::HashMap<(usize, usize), i64> = Default::default();
+    for &p in polygons {
+        let v = &soup.polygons[p].vertices;
+        for k in 0..v.len() {
+            let (a, b) = (v[k], v[(k + 1) % v.len()]);
+            *net.entry((a.min(b), a.max(b))).or_default() += if a < b { 1 } else { -1 };
+        }
+    }
+    net.values().all(|&c| c == 0)
+}
+
 /// Turns each piece to face out (see the module's documentation); returns
 /// the pieces turned over.
 pub(crate) fn face_out(soup: &mut PolygonSoup) -> Vec<Vec<usize>> {
@@ -193,6 +208,10 @@ pub(crate) fn face_out(soup: &mut PolygonSoup) -> Vec<Vec<usize>> {
             {
                 depth += 1;
             }
+        }
+        // Only a closed piece has an inside to face away from.
+        if !closed(soup, piece) {
+            continue;
         }
         // Inward and not nested: turned out. (An outward piece is left as
         // it is even when nested: shells that cross each other give

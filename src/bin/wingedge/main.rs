@@ -265,6 +265,11 @@ enum Command {
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
+        /// Take a mesh leaf that is not a valid solid (self-intersecting,
+        /// overlapping shells, holes, flipped faces) as `wingedge repair`
+        /// makes it, by its winding number, instead of refusing it.
+        #[arg(long)]
+        resolve: bool,
         #[command(flatten)]
         paths: PathArgs,
     },
@@ -454,8 +459,18 @@ fn main() -> ExitCode {
             output,
             tolerance,
             json,
+            resolve,
             paths,
-        } => csg::run(&scene, &output, tolerance, json, &options(None, paths)),
+        } => csg::run(
+            &scene,
+            &output,
+            tolerance,
+            json,
+            &ImportOptions {
+                resolve_leaves: resolve,
+                ..options(None, paths)
+            },
+        ),
         Command::Repair {
             input,
             output,
