@@ -20,4 +20,5 @@ mod mesh;
 mod messages;
 mod paths;
 mod query;
+mod repair;
 mod validate;
