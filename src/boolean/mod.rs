@@ -252,8 +252,11 @@ fn combine_once(
         for (&k, check) in named.iter().zip(checks) {
             match check {
                 Err(BooleanError::InvalidOperand { .. }) if options.resolve_operands => {
-                    resolved[k] =
-                        Some(self_arrangement::resolve_operand(operands[k], k, options.max_contacts)?);
+                    resolved[k] = Some(self_arrangement::resolve_operand(
+                        operands[k],
+                        k,
+                        options.max_contacts,
+                    )?);
                 }
                 other => other?,
             }

@@ -190,8 +190,8 @@ pub fn arrange_soup(
             let flip = (*decision)?;
             let [x, y, z] = piece.corners;
             let [p, q, r] = prepared.corners(piece.triangle);
-            let mut own = prepared.triangles[piece.triangle as usize]
-                .map(|i| table.canonical[i as usize]);
+            let mut own =
+                prepared.triangles[piece.triangle as usize].map(|i| table.canonical[i as usize]);
             own.sort_unstable();
             let mut corners = piece.corners;
             corners.sort_unstable();
@@ -376,10 +376,9 @@ fn self_contacts(operand: &Prepared) -> Vec<(u32, u32, Contact)> {
                 let shared_only = contact.first_cuts.is_empty()
                     && contact.second_cuts.is_empty()
                     && contact.coplanar_same.is_none()
-                    && contact
-                        .points
-                        .iter()
-                        .all(|p| matches!(p, PointRef::Vertex(v) if a.contains(v) && b.contains(v)));
+                    && contact.points.iter().all(
+                        |p| matches!(p, PointRef::Vertex(v) if a.contains(v) && b.contains(v)),
+                    );
                 if !shared_only {
                     found.push((first, second, contact));
                 }
@@ -578,7 +577,6 @@ impl<P: HasHomogeneous> HasHomogeneous for Turned<'_, P> {
     }
 
     fn known_coordinate(&self, axis: usize) -> Option<f64> {
-        self.point
-            .known_coordinate((axis + self.axis as usize) % 3)
+        self.point.known_coordinate((axis + self.axis as usize) % 3)
     }
 }

@@ -193,7 +193,8 @@ pub fn repair(soup: &PolygonSoup, options: &RepairOptions) -> Result<Repaired, R
     report.stage_seconds = stage_seconds;
     if !options.resolve {
         // The soup as it is, if it is a valid solid.
-        let solid = Solid::try_from_soup(&soup).map_err(|e| RepairError::NotASolid(e.to_string()))?;
+        let solid =
+            Solid::try_from_soup(&soup).map_err(|e| RepairError::NotASolid(e.to_string()))?;
         let validation = prove(&solid).map_err(|e| RepairError::NotASolid(e.to_string()))?;
         report.volume_after = solid.volume();
         return Ok(finish(solid, soup, validation, report));
@@ -221,7 +222,12 @@ pub fn repair(soup: &PolygonSoup, options: &RepairOptions) -> Result<Repaired, R
 }
 
 /// The repaired result, saying why when it is empty.
-fn finish(solid: Solid, soup: PolygonSoup, validation: Report, mut report: RepairReport) -> Repaired {
+fn finish(
+    solid: Solid,
+    soup: PolygonSoup,
+    validation: Report,
+    mut report: RepairReport,
+) -> Repaired {
     if solid.face_count() == 0 {
         report.empty_because = Some(if soup.polygons.is_empty() {
             "no polygon bounds anything after cleaning".to_string()

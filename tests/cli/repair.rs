@@ -54,7 +54,10 @@ fn a_sheet_gives_the_empty_result_saying_why() {
     let out = dir.arg("empty.obj");
     let (code, text, err) = wingedge(&["repair", input.to_str().unwrap(), "-o", &out]);
     assert_eq!(code, 0, "{text} {err}");
-    assert!(text.contains("empty result: the soup encloses no volume"), "{text}");
+    assert!(
+        text.contains("empty result: the soup encloses no volume"),
+        "{text}"
+    );
 }
 
 #[test]

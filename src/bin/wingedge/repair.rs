@@ -184,7 +184,11 @@ fn describe(name: &str, imported: &Import, repaired: &Repaired, seconds: f64) ->
             r.crossing_pairs.len()
         ));
         for &(p, q) in r.crossing_pairs.iter().take(5) {
-            line(format!("  {} and {}", place(imported, p), place(imported, q)));
+            line(format!(
+                "  {} and {}",
+                place(imported, p),
+                place(imported, q)
+            ));
         }
     }
     line(format!(

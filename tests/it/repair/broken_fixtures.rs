@@ -63,7 +63,10 @@ fn every_broken_fixture_that_describes_a_solid_comes_out_valid() {
         let after = r.report.volume_after;
         assert!(after > 0.0, "{name}: {after}");
         if volume > 0.0 {
-            assert!((after - volume).abs() < 1e-12, "{name}: {after} vs {volume}");
+            assert!(
+                (after - volume).abs() < 1e-12,
+                "{name}: {after} vs {volume}"
+            );
         }
     }
 }

@@ -8,7 +8,7 @@ use glam::DVec3;
 use wingedge::io::to_obj_string;
 use wingedge::mesh::PolygonSoup;
 use wingedge::query::{Accel, Containment};
-use wingedge::repair::{RepairOptions, repair};
+use wingedge::repair::{OpenReason, RepairOptions, repair};
 use wingedge::validate::{Options, validate_soup};
 
 use crate::common::test_rng;
@@ -47,6 +47,7 @@ fn repaired_random_box_soups_classify_points_as_the_winding_number_does() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(CASES);
+    let mut left_open = 0;
     for case in 0..cases {
         let grid = |x: f64| (x * 4.0).floor();
         let count = 1 + (next() * 3.0) as usize;
@@ -84,7 +85,19 @@ fn repaired_random_box_soups_classify_points_as_the_winding_number_does() {
             }
             panic!("case {case}: {e}")
         });
-        let solid = r.solid.expect("no hole left open");
+        let Some(solid) = r.solid else {
+            // A hole whose loop crosses itself in every projection (two
+            // removed or turned faces on one edge chain) stays open.
+            assert!(
+                r.report
+                    .left_open
+                    .iter()
+                    .all(|(_, why)| *why == OpenReason::NotTriangulable),
+                "case {case}"
+            );
+            left_open += 1;
+            continue;
+        };
         assert!(
             r.validation.as_ref().is_some_and(|v| v.is_valid()),
             "case {case}"
@@ -124,4 +137,5 @@ fn repaired_random_box_soups_classify_points_as_the_winding_number_does() {
             );
         }
     }
+    assert!(left_open * 20 <= cases, "{left_open} of {cases} left open");
 }
