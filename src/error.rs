@@ -51,6 +51,9 @@ pub enum Error {
     /// A boolean is refused.
     #[error(transparent)]
     Boolean(#[from] crate::boolean::BooleanError),
+    /// A soup cannot be repaired.
+    #[error(transparent)]
+    Repair(#[from] crate::repair::RepairError),
     /// A CSG tree is malformed.
     #[error(transparent)]
     Csg(#[from] crate::csg::CsgError),

@@ -47,6 +47,7 @@ pub mod io;
 pub mod mesh;
 pub mod query;
 pub mod render;
+pub mod repair;
 pub mod scene;
 mod set_op;
 pub mod shape;

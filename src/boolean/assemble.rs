@@ -338,9 +338,11 @@ pub(crate) fn soup_of(
             let piece = &pieces[i];
             let operand = &operands[piece.operand];
             let mut polygon = Polygon::new(c);
-            let face = operand.solid.face(piece.face);
-            polygon.attributes.group = face.attributes.group.clone();
-            polygon.attributes.material = face.attributes.material.clone();
+            if let Some(solid) = operand.solid {
+                let face = solid.face(piece.face);
+                polygon.attributes.group = face.attributes.group.clone();
+                polygon.attributes.material = face.attributes.material.clone();
+            }
             let whole = c.iter().all(|v| {
                 piece
                     .corners

@@ -99,7 +99,7 @@ pub(crate) fn keep_pieces(
 /// not by hashing every edge. The buckets are over the pieces' own points
 /// (numbered in the order of their canonical indices), so an operand costs
 /// what its pieces hold, not the points of all operands.
-fn patches_of(pieces: &[Piece], constrained: &HashSet<(u32, u32)>) -> DisjointSets {
+pub(super) fn patches_of(pieces: &[Piece], constrained: &HashSet<(u32, u32)>) -> DisjointSets {
     let mut points: Vec<u32> = pieces.iter().flat_map(|p| p.corners).collect();
     points.sort_unstable();
     points.dedup();

@@ -9,7 +9,9 @@ use crate::mesh::FaceId;
 pub enum BooleanError {
     /// An operand is not a valid closed solid; `report` lists the located
     /// defects the validator found.
-    #[error("operand {operand} is not a valid solid ({validity}): {report}")]
+    #[error(
+        "operand {operand} is not a valid solid ({validity}): {report}; resolve_operands (csg --resolve) takes it by its winding number instead"
+    )]
     InvalidOperand {
         /// Which operand, by its index (0 is the first).
         operand: usize,

@@ -48,6 +48,7 @@ mod operand;
 mod output;
 mod points;
 mod select;
+mod self_arrangement;
 mod sparse;
 mod split;
 mod stats;
@@ -66,6 +67,7 @@ use crate::validate::Report;
 pub use error::BooleanError;
 pub use expression::Expression;
 pub use operand::FaceOrigin;
+pub use self_arrangement::{SelfArrangement, arrange_soup};
 pub use stats::{BooleanStats, OutputWork};
 
 use classify::{Partner, Piece};
@@ -105,6 +107,15 @@ pub struct BooleanOptions {
     /// ([`MAX_CONTACTS`]) keeps a boolean within a few gigabytes and refuses
     /// beyond it instead of running out of memory.
     pub max_contacts: usize,
+    /// Take an operand that is not a valid solid (self-intersecting,
+    /// overlapping or nested shells, turned inside out) by its winding
+    /// number instead of refusing it: a point is in the operand when its
+    /// winding number is positive. The operand is first arranged against
+    /// itself ([`arrange_soup`]); it must still be closed (every edge run
+    /// as often one way as the other: holes are `repair`'s to fill). The
+    /// result's [`FaceOrigin`]s then name faces of that arranged operand.
+    /// Off by default.
+    pub resolve_operands: bool,
 }
 
 /// The default limit on touching triangle pairs: 10 million.
@@ -115,6 +126,7 @@ impl Default for BooleanOptions {
         BooleanOptions {
             check_operands: true,
             max_contacts: MAX_CONTACTS,
+            resolve_operands: false,
         }
     }
 }
@@ -229,12 +241,31 @@ fn combine_once(
         });
     }
     let clock = Instant::now();
+    let mut resolved: Vec<Option<Solid>> = vec![None; operands.len()];
     if options.check_operands {
-        named
+        let checks: Vec<Result<(), BooleanError>> = named
             .par_iter()
             .map(|&k| check_operand(operands[k], k))
-            .collect::<Result<Vec<()>, _>>()?;
+            .collect();
+        for (&k, check) in named.iter().zip(checks) {
+            match check {
+                Err(BooleanError::InvalidOperand { .. }) if options.resolve_operands => {
+                    resolved[k] = Some(self_arrangement::resolve_operand(
+                        operands[k],
+                        k,
+                        options.max_contacts,
+                    )?);
+                }
+                other => other?,
+            }
+        }
     }
+    let operands: Vec<&Solid> = operands
+        .iter()
+        .zip(&resolved)
+        .map(|(&o, r)| r.as_ref().unwrap_or(o))
+        .collect();
+    let operands = operands.as_slice();
     stats.check_seconds = clock.elapsed().as_secs_f64();
     let Some(expression) = expression.without_empty(&|k| operands[k].face_count() == 0) else {
         return as_is(None, stats);
@@ -420,7 +451,7 @@ fn combine_once(
 }
 
 /// An operand's pieces and the edges of them that lie on segments.
-type Pieces = (Vec<Piece>, Vec<(u32, u32)>);
+pub(super) type Pieces = (Vec<Piece>, Vec<(u32, u32)>);
 
 /// The result when it is empty (`None`) or one operand as it is.
 fn as_is(chosen: Option<(&Solid, usize)>, stats: BooleanStats) -> Result<Boolean, BooleanError> {
@@ -451,15 +482,15 @@ fn as_is(chosen: Option<(&Solid, usize)>, stats: BooleanStats) -> Result<Boolean
 
 /// The points and segments found on one triangle (raw point indices).
 #[derive(Clone, Debug, Default)]
-struct Cuts {
-    points: Vec<u32>,
-    segments: Vec<Segment>,
+pub(super) struct Cuts {
+    pub points: Vec<u32>,
+    pub segments: Vec<Segment>,
 }
 
 /// With three or more operands: the crossings of segments of different
 /// operands inside each triangle, added to its points (and to the points
 /// that may coincide with others). Returns how many were made.
-fn cross_segments(
+pub(super) fn cross_segments(
     prepared: &[Prepared],
     vertices: &[glam::DVec3],
     made: &mut Vec<ImplicitPoint>,
@@ -546,7 +577,7 @@ pub fn prove(solid: &Solid) -> Result<Report, BooleanError> {
 
 /// The pieces of every triangle of `operand`: whole triangles where
 /// nothing cuts them, split ones elsewhere; and the constrained edges.
-fn pieces(
+pub(super) fn pieces(
     table: &PointTable,
     operand: &Prepared,
     base: u32,

@@ -30,7 +30,9 @@ pub struct FaceOrigin {
 /// a face's triangles are consecutive; `order` lists triangle indices by
 /// BVH item position.
 pub(crate) struct Prepared<'s> {
-    pub solid: &'s Solid,
+    /// The solid the triangles came from; `None` for a soup (whose face
+    /// keys are minted for its polygons, see `self_arrangement`).
+    pub solid: Option<&'s Solid>,
     /// The operand's index in the operands' list.
     pub index: usize,
     pub positions: Vec<DVec3>,
@@ -78,7 +80,7 @@ impl<'s> Prepared<'s> {
             .collect();
         let (bvh, order) = Bvh::build(&bounds);
         Ok(Prepared {
-            solid,
+            solid: Some(solid),
             index: operand,
             positions,
             triangles,

@@ -35,6 +35,11 @@ pub struct ImportOptions {
     /// by default; a mesh file read directly ignores it. See
     /// [`crate::scene`] (the path policy) and docs/hostile-input.md.
     pub allowed_roots: Vec<PathBuf>,
+    /// Scenes only: a mesh leaf that is not a valid closed solid is
+    /// repaired ([`crate::repair::repair`]: its solid is where its winding
+    /// number is positive) instead of refused. Off by default (`csg
+    /// --resolve` turns it on).
+    pub resolve_leaves: bool,
 }
 
 impl Default for ImportOptions {
@@ -44,6 +49,7 @@ impl Default for ImportOptions {
             weld: WeldMode::default(),
             max_face_corners: DEFAULT_MAX_FACE_CORNERS,
             allowed_roots: Vec::new(),
+            resolve_leaves: false,
         }
     }
 }

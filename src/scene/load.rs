@@ -55,7 +55,7 @@ impl Scene {
         path: &Path,
         options: &crate::io::ImportOptions,
     ) -> Result<Scene, SceneError> {
-        let state = ReadState::new(&options.allowed_roots);
+        let state = ReadState::new(&options.allowed_roots, options.resolve_leaves);
         let (value, root) = read_scene_file(path, &state, Vec::new(), 0)?;
         object(&value, "scene")
             .and_then(|top| Scene::assemble(top, root))
@@ -85,7 +85,7 @@ impl Scene {
         base: &Path,
         options: &crate::io::ImportOptions,
     ) -> Result<Scene, SceneError> {
-        let state = ReadState::new(&options.allowed_roots);
+        let state = ReadState::new(&options.allowed_roots, options.resolve_leaves);
         let value = parse_json(text, name)?;
         let reader = Reader {
             base,

@@ -9,6 +9,7 @@ use std::sync::Arc;
 
 use crate::csg::{Polyhedron, Primitive};
 use crate::io::{Format, ImportOptions, import};
+use crate::repair::{RepairOptions, repair};
 use crate::validate::{Options, validate_and_build};
 
 /// How many violations a refused mesh's message lists.
@@ -30,9 +31,20 @@ type LeafKey = (PathBuf, Option<Format>);
 #[derive(Default)]
 pub(super) struct MeshLeaves {
     loaded: RefCell<HashMap<LeafKey, Arc<dyn Primitive>>>,
+    /// Whether a leaf that is no valid solid is repaired.
+    resolve: bool,
 }
 
 impl MeshLeaves {
+    /// No leaves loaded yet; those that are no valid solid are repaired
+    /// when `resolve`.
+    pub(super) fn new(resolve: bool) -> MeshLeaves {
+        MeshLeaves {
+            resolve,
+            ..MeshLeaves::default()
+        }
+    }
+
     /// The leaf of `file`, read as `format` (`None`: by its extension),
     /// loaded on first use.
     ///
@@ -59,6 +71,7 @@ impl MeshLeaves {
         }
         let options = ImportOptions {
             format,
+            resolve_leaves: self.resolve,
             ..ImportOptions::default()
         };
         let primitive = load_mesh(file, &options)?;
@@ -86,6 +99,19 @@ pub(super) fn load_mesh(
         Some(solid) if report.is_valid() => Polyhedron::try_new(solid)
             .map(|p| Arc::new(p) as Arc<dyn Primitive>)
             .map_err(|e| e.to_string()),
+        _ if options.resolve_leaves => {
+            let repaired = repair(&import.soup, &RepairOptions::default())
+                .map_err(|e| format!("not a valid closed solid, and repairing it failed: {e}"))?;
+            let Some(solid) = repaired.solid else {
+                return Err(format!(
+                    "not a valid closed solid, and repairing it left {} hole(s) open",
+                    repaired.report.left_open.len()
+                ));
+            };
+            Polyhedron::try_new(solid)
+                .map(|p| Arc::new(p) as Arc<dyn Primitive>)
+                .map_err(|e| e.to_string())
+        }
         _ => {
             let mut message = format!(
                 "not a valid closed solid ({}); {} violation(s)",
@@ -95,6 +121,9 @@ pub(super) fn load_mesh(
             for v in report.violations.iter().take(VIOLATIONS_SHOWN) {
                 message.push_str(&format!("\n  {}: {}", v.rule, v.message));
             }
+            message.push_str(
+                "\n  (csg --resolve, ImportOptions::resolve_leaves, takes it by its winding number instead: `wingedge repair` shows what that changes)",
+            );
             Err(message)
         }
     }

@@ -33,10 +33,12 @@ pub(super) struct ReadState {
 
 impl ReadState {
     /// The state of a scene read with leaves allowed in `allowed_roots`
-    /// (besides each scene file's folder and the working directory).
-    pub(super) fn new(allowed_roots: &[PathBuf]) -> ReadState {
+    /// (besides each scene file's folder and the working directory), mesh
+    /// leaves that are no valid solid repaired when `resolve_leaves`.
+    pub(super) fn new(allowed_roots: &[PathBuf], resolve_leaves: bool) -> ReadState {
         ReadState {
             paths: PathPolicy::new(allowed_roots),
+            meshes: MeshLeaves::new(resolve_leaves),
             ..ReadState::default()
         }
     }

@@ -21,4 +21,5 @@ mod mesh;
 mod messages;
 mod paths;
 mod query;
+mod repair;
 mod validate;

@@ -13,5 +13,6 @@ mod formats;
 mod mesh;
 mod oracles;
 mod query;
+mod repair;
 mod trust_scale;
 mod validate;

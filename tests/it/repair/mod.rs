@@ -1,0 +1,4 @@
+//! Repair: valid solids from imperfect soups.
+
+mod broken_fixtures;
+mod random;
