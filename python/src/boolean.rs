@@ -32,11 +32,13 @@ use crate::solid::{Inner, PySolid};
 /// `a op b` for `operation` one of `"union"`, `"intersection"`,
 /// `"difference"`, exact; the interpreter lock is released while it runs.
 #[pyfunction]
+#[pyo3(signature = (a, b, operation, resolve=false))]
 pub(crate) fn boolean(
     py: Python<'_>,
     a: PyRef<'_, PySolid>,
     b: PyRef<'_, PySolid>,
     operation: &str,
+    resolve: bool,
 ) -> PyResult<PySolid> {
     let operation = match operation {
         "union" => SetOp::Union,
@@ -49,31 +51,49 @@ pub(crate) fn boolean(
         }
     };
     let expression = Expression::of(operation, Expression::Operand(0), Expression::Operand(1));
-    run(py, vec![a.inner.clone(), b.inner.clone()], &expression)
+    run(
+        py,
+        vec![a.inner.clone(), b.inner.clone()],
+        &expression,
+        resolve,
+    )
 }
 
 /// The set `expression` (nested tuples over indices into `solids`, see
 /// `expression.rs`) in one exact pass.
 #[pyfunction]
+#[pyo3(signature = (solids, expression, resolve=false))]
 pub(crate) fn combine(
     py: Python<'_>,
     solids: Vec<PyRef<'_, PySolid>>,
     expression: &Bound<'_, PyAny>,
+    resolve: bool,
 ) -> PyResult<PySolid> {
     let expression = expression::parse(expression, solids.len()).map_err(BooleanError::new_err)?;
     let operands = solids.iter().map(|s| s.inner.clone()).collect();
-    run(py, operands, &expression)
+    run(py, operands, &expression, resolve)
 }
 
 /// Runs `combine` on the operands' solids without the interpreter lock and
-/// hands the result over with its face origins.
-fn run(py: Python<'_>, operands: Vec<Arc<Inner>>, expression: &Expression) -> PyResult<PySolid> {
+/// hands the result over with its face origins. With `resolve`, an operand
+/// that is not a valid solid is taken by its winding number
+/// (`BooleanOptions::resolve_operands`), and `combine` checks the operands
+/// itself.
+fn run(
+    py: Python<'_>,
+    operands: Vec<Arc<Inner>>,
+    expression: &Expression,
+    resolve: bool,
+) -> PyResult<PySolid> {
     let inner = py.detach(|| {
-        prove_operands(&operands, expression).map_err(errors::boolean)?;
+        if !resolve {
+            prove_operands(&operands, expression).map_err(errors::boolean)?;
+        }
         let solids: Vec<&Solid> = operands.iter().map(|o| &o.solid).collect();
-        // Every operand named was proven above.
+        // Every operand named was proven above, unless resolving.
         let options = BooleanOptions {
-            check_operands: false,
+            check_operands: resolve,
+            resolve_operands: resolve,
             ..BooleanOptions::default()
         };
         let result =

@@ -15,6 +15,7 @@ mod defects;
 mod errors;
 mod expression;
 mod face_index;
+mod repair;
 mod report;
 mod scene;
 mod solid;
@@ -39,6 +40,8 @@ fn _wingedge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solid::sphere, m)?)?;
     m.add_function(wrap_pyfunction!(boolean::boolean, m)?)?;
     m.add_function(wrap_pyfunction!(boolean::combine, m)?)?;
+    m.add_function(wrap_pyfunction!(repair::repair_path, m)?)?;
+    m.add_function(wrap_pyfunction!(repair::repair_flat, m)?)?;
     m.add_function(wrap_pyfunction!(report::validate_path, m)?)?;
     m.add_function(wrap_pyfunction!(report::validate_solid, m)?)?;
     m.add_function(wrap_pyfunction!(defects::render_defects_path, m)?)?;

@@ -327,7 +327,7 @@ impl PyReport {
 }
 
 /// A grade's snake-case name, as the JSON report writes it.
-fn validity_name(validity: Validity) -> String {
+pub(crate) fn validity_name(validity: Validity) -> String {
     match serde_json::to_value(validity) {
         Ok(serde_json::Value::String(name)) => name,
         _ => unreachable!("a validity serialises as its name"),

@@ -17,7 +17,7 @@ checks they share). Import from ``wingedge`` itself.
 """
 
 from . import _wingedge
-from ._io import load, load_obj
+from ._io import load, load_obj, repair
 from ._report import Report, Violation, render_defects, validate
 from ._scene import Scene
 from ._solid import (
@@ -55,6 +55,7 @@ __all__ = [
     "Violation",
     "load",
     "load_obj",
+    "repair",
     "render_defects",
     "validate",
     "combine",

@@ -274,7 +274,7 @@ def _native_of(solid, name: str) -> "_wingedge.NativeSolid":
     return solid._native
 
 
-def combine(solids: Sequence[Solid], expression) -> Solid:
+def combine(solids: Sequence[Solid], expression, *, resolve: bool = False) -> Solid:
     """The regularized set ``expression`` of ``solids`` as one valid
     :class:`Solid`, evaluated in one exact pass: every solid's surface is cut
     by every other's, and no constructed point is rounded before the result
@@ -286,11 +286,14 @@ def combine(solids: Sequence[Solid], expression) -> Solid:
     right: ``("difference", 0, ("union", 1, 2))`` is ``s0 − (s1 ∪ s2)``.
     A bad expression raises ``BooleanError`` naming the offending part as
     ``expression[2][0]``; an operand that is not a valid closed solid
-    raises ``BooleanError`` naming its index and defects. The result's
+    raises ``BooleanError`` naming its index and defects, unless
+    ``resolve`` is true: then such an operand (self-intersecting or
+    overlapping shells) is taken as the region where its winding number is
+    positive, as :func:`repair` makes it. The result's
     :attr:`Solid.face_origins` name operands by their index in ``solids``.
     The interpreter lock is released while the boolean runs."""
     natives = [_native_of(s, f"solids[{i}]") for i, s in enumerate(solids)]
-    return Solid(_wingedge.combine(natives, expression))
+    return Solid(_wingedge.combine(natives, expression, resolve))
 
 
 def builtin(name: str) -> Solid:

@@ -242,10 +242,24 @@ def prism(profile: Sequence[_Vec3], sweep: _Vec3) -> NativeSolid:
     """A planar polygon swept along a vector."""
 def sphere(rings: int) -> NativeSolid:
     """A triangulated UV sphere of radius 1."""
-def boolean(a: NativeSolid, b: NativeSolid, operation: str) -> NativeSolid:
+def boolean(a: NativeSolid, b: NativeSolid, operation: str, resolve: bool = False) -> NativeSolid:
     """``a op b`` for ``"union"``, ``"intersection"`` or ``"difference"``."""
-def combine(solids: Sequence[NativeSolid], expression: object) -> NativeSolid:
+def combine(solids: Sequence[NativeSolid], expression: object, resolve: bool = False) -> NativeSolid:
     """A set expression of nested tuples over indices into ``solids``."""
+def repair_path(
+    path: _Path,
+    max_hole_edges: Optional[int] = None,
+    weld: Optional[object] = None,
+    format: Optional[str] = None,
+) -> Tuple[Optional[NativeSolid], Dict[str, object]]:
+    """A mesh file made a valid solid, and what changed."""
+def repair_flat(
+    vertices: npt.NDArray[np.float64],
+    sizes: npt.NDArray[np.int64],
+    indices: npt.NDArray[np.int64],
+    max_hole_edges: Optional[int] = None,
+) -> Tuple[Optional[NativeSolid], Dict[str, object]]:
+    """A soup made a valid solid, and what changed."""
 def validate_path(
     path: _Path,
     weld: Optional[object] = None,
