@@ -1,17 +1,27 @@
-"""wingedge repair on real broken meshes: time, peak memory, whether the
-output is a valid solid (by wingedge's validator and by manifold3d's
-status) and the volume change. Prints a Markdown table.
+"""Repair of real broken meshes, wingedge beside its peers: for each model
+and tool, the whole process's time and peak memory, whether the output is
+a valid solid (by wingedge's validator and by manifold3d's status) and its
+volume against the input's winding-number volume. Prints a Markdown table.
 
     cargo build --release --bin wingedge
+    python3 -m pip install meshlib pymeshfix manifold3d trimesh
     python3 benches/peers/repair_peers.py MODEL.obj...
 
-Peers (MeshLib's fixSelfIntersections and fillHoles, PyMeshFix, CGAL's
-autorefine) are not run yet: their columns are to be added here.
+The tools, each run as its own process (`--one TOOL IN OUT`):
+
+- wingedge: `wingedge repair IN -o OUT` (clean, orient, fill, resolve by
+  winding number; exact).
+- MeshLib: `fillHoles` on every hole, then `fixSelfIntersections` (by
+  voxels, of size 1/500 of the box diagonal: it rebuilds the whole surface).
+- PyMeshFix: `MeshFix.repair()` (MeshFix: holes filled, the largest
+  component kept, intersecting faces removed and their holes filled).
+
+CGAL's pip package exposes `orient_polygon_soup` and hole filling but not
+`autorefine`, so it cannot resolve self-intersections and is not run.
 """
 
 import json
 import os
-import resource
 import subprocess
 import sys
 import tempfile
@@ -19,63 +29,120 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 WINGEDGE = os.path.join(ROOT, "target", "release", "wingedge")
+TOOLS = ("wingedge", "meshlib", "pymeshfix")
+TIMEOUT = 300
+
+
+def one(tool, source, target):
+    """Runs one tool in this process (the child of `measure`)."""
+    if tool == "meshlib":
+        import meshlib.mrmeshpy as mr
+
+        mesh = mr.loadMesh(source)
+        holes = mesh.topology.findHoleRepresentiveEdges()
+        if holes.size():
+            mr.fillHoles(mesh, holes)
+        box = mesh.computeBoundingBox()
+        mr.fixSelfIntersections(mesh, box.diagonal() / 500.0)
+        mr.saveMesh(mesh, target)
+    elif tool == "pymeshfix":
+        import numpy as np
+        import pymeshfix
+        import trimesh
+
+        t = trimesh.load(source, process=False, force="mesh")
+        fix = pymeshfix.MeshFix(np.asarray(t.vertices), np.asarray(t.faces))
+        fix.repair()
+        trimesh.Trimesh(fix.points, fix.faces, process=False).export(target)
+    else:
+        raise SystemExit(f"unknown tool {tool}")
+
+
+def measure(argv):
+    """Runs `argv`: (seconds, None, returncode, stdout, stderr), or Nones when stopped."""
+    start = time.perf_counter()
+    p = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        out, err = p.communicate(timeout=TIMEOUT)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        p.communicate()
+        return None, None, None, "", f"stopped after {TIMEOUT} s"
+    return time.perf_counter() - start, None, p.returncode, out, err
+
+
+def timed(argv):
+    """`measure` under /usr/bin/time -f %M for the child's own peak."""
+    seconds, _, code, out, err = measure(["/usr/bin/time", "-f", "%M"] + argv)
+    if seconds is None:
+        return None, None, None, out, err
+    lines = err.strip().splitlines()
+    peak = int(lines[-1]) / 1024 if lines and lines[-1].isdigit() else None
+    return seconds, peak, code, out, "\n".join(lines[:-1])
+
+
+def judged(path):
+    """wingedge's validity and volume of a written mesh, and manifold3d's status."""
+    p = subprocess.run([WINGEDGE, "validate", path, "--json"], capture_output=True, text=True)
+    try:
+        report = json.loads(p.stdout)[0]
+        validity, volume = report.get("validity"), report.get("volume")
+    except (ValueError, IndexError, KeyError):
+        validity, volume = "unreadable", None
+    return validity, volume, manifold_status(path)
 
 
 def manifold_status(path):
-    """manifold3d's status of an OBJ of triangles, or why it cannot say."""
+    """manifold3d's status of the mesh at `path` (triangulated)."""
+    import manifold3d
+    import numpy as np
+    import trimesh
+
     try:
-        import manifold3d
-        import numpy as np
-    except ImportError:
-        return "manifold3d not installed"
-    verts, tris = [], []
-    with open(path) as f:
-        for line in f:
-            parts = line.split()
-            if parts and parts[0] == "v":
-                verts.append([float(x) for x in parts[1:4]])
-            elif parts and parts[0] == "f":
-                idx = [int(p.split("/")[0]) - 1 for p in parts[1:]]
-                for k in range(1, len(idx) - 1):
-                    tris.append([idx[0], idx[k], idx[k + 1]])
-    if not tris:
+        t = trimesh.load(path, process=False, force="mesh")
+    except Exception as e:  # noqa: BLE001 - any reader failure is the answer
+        return f"unreadable ({type(e).__name__})"
+    if len(t.faces) == 0:
         return "empty"
     mesh = manifold3d.Mesh(
-        vert_properties=np.array(verts, dtype=np.float32),
-        tri_verts=np.array(tris, dtype=np.uint32),
+        vert_properties=np.asarray(t.vertices, dtype=np.float32),
+        tri_verts=np.asarray(t.faces, dtype=np.uint32),
     )
     return str(manifold3d.Manifold(mesh).status()).split(".")[-1]
 
 
-def run(model):
-    out = os.path.join(tempfile.mkdtemp(), "repaired.obj")
-    start = time.perf_counter()
-    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
-    p = subprocess.run(
-        [WINGEDGE, "repair", model, "-o", out, "--json"],
-        capture_output=True,
-        text=True,
-    )
-    seconds = time.perf_counter() - start
-    peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+def row(model, tool, before):
+    out = os.path.join(tempfile.mkdtemp(), f"{tool}.obj")
+    if tool == "wingedge":
+        argv = [WINGEDGE, "repair", model, "-o", out, "--json"]
+    else:
+        argv = [sys.executable, os.path.abspath(__file__), "--one", tool, model, out]
+    seconds, peak, code, stdout, err = timed(argv)
     name = os.path.basename(model)
-    if p.returncode != 0:
-        first = (p.stderr.strip().splitlines() or ["?"])[0][:100]
-        return f"| {name} | {seconds:.2f} | {peak // 1024} | refused: {first} | | | |"
-    d = json.loads(p.stdout)
-    status = manifold_status(out)
-    del before
-    return (
-        f"| {name} | {seconds:.2f} | {peak // 1024} | {d['validity']} | {status} "
-        f"| {d['volume_before']:.6g} | {d['volume_after']:.6g} |"
-    )
+    if seconds is None:
+        return f"| {name} | {tool} | > {TIMEOUT} s | | stopped | | |", before
+    if tool == "wingedge" and code == 0:
+        before = json.loads(stdout)["volume_before"]
+    if not os.path.exists(out):
+        first = (err.strip().splitlines() or ["?"])[-1][:80]
+        return f"| {name} | {tool} | {seconds:.2f} | {peak:.0f} | no output: {first} | | |", before
+    validity, volume, status = judged(out)
+    change = "" if volume is None or not before else f"{(volume - before) / before:+.2e}"
+    vol = "" if volume is None else f"{volume:.6g}"
+    return f"| {name} | {tool} | {seconds:.2f} | {peak:.0f} | {validity} | {status} | {vol} ({change}) |", before
 
 
 def main():
-    print("| model | seconds | peak MiB (largest child so far) | wingedge validator | manifold3d status | volume before | volume after |")
-    print("|---|---|---|---|---|---|---|")
+    if sys.argv[1:2] == ["--one"]:
+        one(*sys.argv[2:5])
+        return
+    print("| model | tool | seconds | peak MiB | wingedge validator | manifold3d status | volume (change against the input's winding-number volume) |")
+    print("|---|---|---:|---:|---|---|---|")
     for model in sys.argv[1:]:
-        print(run(model), flush=True)
+        before = None
+        for tool in TOOLS:
+            line, before = row(model, tool, before)
+            print(line, flush=True)
 
 
 if __name__ == "__main__":
