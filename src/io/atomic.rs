@@ -33,16 +33,20 @@ pub fn write_atomically<T>(
     let prefix = format!(".{name}.");
     let mut builder = tempfile::Builder::new();
     builder.prefix(&prefix).suffix(".partial");
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    let temporary = builder.tempfile_in(folder)?;
+    // The name is listed for the signal handler before the file exists, so
+    // a signal at any moment finds every temporary file there is.
+    let temporary = builder.make_in(folder, |candidate| {
+        #[cfg(target_os = "linux")]
+        super::interrupt::begin(candidate);
+        let created = create_new(candidate);
+        #[cfg(target_os = "linux")]
+        if created.is_err() {
+            super::interrupt::end(candidate);
+        }
+        created
+    })?;
     #[cfg(target_os = "linux")]
     let partial = temporary.path().to_path_buf();
-    #[cfg(target_os = "linux")]
-    super::interrupt::begin(&partial);
     let written = (|| {
         let answer = {
             let mut writer = BufWriter::new(temporary.as_file());
@@ -57,6 +61,19 @@ pub fn write_atomically<T>(
     #[cfg(target_os = "linux")]
     super::interrupt::end(&partial);
     written
+}
+
+/// Creates `path`, failing if it exists, with the permissions a freshly
+/// created file gets (`0666` less the umask).
+fn create_new(path: &Path) -> io::Result<File> {
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true).write(true).create_new(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.mode(0o666);
+    }
+    options.open(path)
 }
 
 #[cfg(test)]
