@@ -22,6 +22,7 @@ CGAL's pip package exposes `orient_polygon_soup` and hole filling but not
 
 import json
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -61,11 +62,15 @@ def one(tool, source, target):
 def measure(argv):
     """Runs `argv`: (seconds, None, returncode, stdout, stderr), or Nones when stopped."""
     start = time.perf_counter()
-    p = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # A session of its own, so that a timeout stops the tool under
+    # /usr/bin/time too (killing only `time` would leave it holding the pipes).
+    p = subprocess.Popen(
+        argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True
+    )
     try:
         out, err = p.communicate(timeout=TIMEOUT)
     except subprocess.TimeoutExpired:
-        p.kill()
+        os.killpg(p.pid, signal.SIGKILL)
         p.communicate()
         return None, None, None, "", f"stopped after {TIMEOUT} s"
     return time.perf_counter() - start, None, p.returncode, out, err
