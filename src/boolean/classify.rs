@@ -62,13 +62,7 @@ pub(crate) fn keep_pieces(
     partners: &HashMap<u32, Vec<Partner>>,
     expression: &SparseExpression,
 ) -> Result<Vec<Option<bool>>, BooleanError> {
-    let mut sets = patches_of(pieces, constrained);
-    // Each patch's pieces in piece order, patches by their root.
-    let roots: Vec<usize> = (0..pieces.len()).map(|i| sets.find(i)).collect();
-    let (start, by_root) = compressed_rows(
-        pieces.len(),
-        roots.iter().enumerate().map(|(i, &r)| (r, i as u32)),
-    );
+    let (start, by_root) = patch_rows(pieces, constrained);
     let mut decisions = vec![None; pieces.len()];
     for root in 0..pieces.len() {
         let members = &by_root[start[root]..start[root + 1]];
@@ -90,6 +84,21 @@ pub(crate) fn keep_pieces(
         }
     }
     Ok(decisions)
+}
+
+/// The patches of `pieces` ([`patches_of`]) as compressed rows: row
+/// `root` holds the pieces of the patch whose root is `root`, in piece
+/// order; every other row is empty.
+pub(super) fn patch_rows(
+    pieces: &[Piece],
+    constrained: &HashSet<(u32, u32)>,
+) -> (Vec<usize>, Vec<u32>) {
+    let mut sets = patches_of(pieces, constrained);
+    let roots: Vec<usize> = (0..pieces.len()).map(|i| sets.find(i)).collect();
+    compressed_rows(
+        pieces.len(),
+        roots.iter().enumerate().map(|(i, &r)| (r, i as u32)),
+    )
 }
 
 /// The pieces joined across their edges that are not on a segment in

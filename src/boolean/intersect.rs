@@ -63,6 +63,24 @@ pub(crate) struct Contact {
     pub touched: SmallVec<[u32; 4]>,
 }
 
+impl Contact {
+    /// The global ids of the contact's points: an operand vertex keeps its
+    /// own; a new point is appended to `made` and numbered `base` plus its
+    /// place there.
+    pub(crate) fn point_ids(&self, base: usize, made: &mut Vec<ImplicitPoint>) -> Vec<u32> {
+        self.points
+            .iter()
+            .map(|r| match r {
+                PointRef::Vertex(v) => *v,
+                PointRef::New(p) => {
+                    made.push(p.clone());
+                    (base + made.len() - 1) as u32
+                }
+            })
+            .collect()
+    }
+}
+
 /// A triangle of one operand with the global indices of its corners.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Tri {

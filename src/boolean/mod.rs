@@ -72,7 +72,7 @@ pub use stats::{BooleanStats, OutputWork};
 
 use classify::{Partner, Piece};
 use crossings::{Line, Segment};
-use intersect::{Carrier, PointRef};
+use intersect::Carrier;
 use nearby::Nearby;
 use operand::Prepared;
 use points::PointTable;
@@ -320,17 +320,7 @@ fn combine_once(
     let mut candidates: Vec<u32> = Vec::new();
     for (i, j, found) in &all_contacts {
         for (ta, tb, contact) in found {
-            let ids: Vec<u32> = contact
-                .points
-                .iter()
-                .map(|r| match r {
-                    PointRef::Vertex(v) => *v,
-                    PointRef::New(p) => {
-                        made.push(p.clone());
-                        (base + made.len() - 1) as u32
-                    }
-                })
-                .collect();
+            let ids = contact.point_ids(base, &mut made);
             candidates.extend(&ids);
             candidates.extend(&contact.touched);
             let corners = [prepared[*i].corners(*ta), prepared[*j].corners(*tb)];

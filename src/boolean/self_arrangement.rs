@@ -27,7 +27,6 @@ use std::time::Instant;
 use glam::DVec3;
 use slotmap::SlotMap;
 
-use crate::compressed_rows::compressed_rows;
 use crate::geom::dyadic::Dyadic;
 use crate::geom::implicit::{
     Arithmetic, Centroid, HasHomogeneous, Homogeneous, ImplicitPoint, Interval, XRayCrossing,
@@ -39,7 +38,7 @@ use crate::spatial::Bvh;
 use crate::validate::Report;
 
 use super::assemble::KeptPiece;
-use super::classify::{Piece, patches_of};
+use super::classify::{Piece, patch_rows};
 use super::crossings::{Line, Segment};
 use super::intersect::{self, Carrier, Contact, PointRef, Tri};
 use super::operand::Prepared;
@@ -122,17 +121,7 @@ pub fn arrange_soup(
     let mut cuts: Vec<HashMap<u32, Cuts>> = vec![HashMap::default()];
     let mut candidates: Vec<u32> = Vec::new();
     for (ta, tb, contact) in &found {
-        let ids: Vec<u32> = contact
-            .points
-            .iter()
-            .map(|r| match r {
-                PointRef::Vertex(v) => *v,
-                PointRef::New(p) => {
-                    made.push(p.clone());
-                    (base + made.len() - 1) as u32
-                }
-            })
-            .collect();
+        let ids = contact.point_ids(base, &mut made);
         candidates.extend(&ids);
         candidates.extend(&contact.touched);
         let corners = [prepared.corners(*ta), prepared.corners(*tb)];
@@ -441,12 +430,7 @@ fn decide(
     constrained: &HashSet<(u32, u32)>,
 ) -> Result<Vec<Option<bool>>, BooleanError> {
     use rayon::prelude::*;
-    let mut sets = patches_of(pieces, constrained);
-    let roots: Vec<usize> = (0..pieces.len()).map(|i| sets.find(i)).collect();
-    let (start, by_root) = compressed_rows(
-        pieces.len(),
-        roots.iter().enumerate().map(|(i, &r)| (r, i as u32)),
-    );
+    let (start, by_root) = patch_rows(pieces, constrained);
     let patch_decisions: Vec<(usize, Option<bool>)> = (0..pieces.len())
         .into_par_iter()
         .filter(|&root| start[root] < start[root + 1])
