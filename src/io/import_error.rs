@@ -1,4 +1,4 @@
-//! The error of [`import`](crate::io::import): an OBJ file's own error as it
+//! The error of `io::import`: an OBJ file's own error as it
 //! always was, and for every other format the file and the place in it
 //! (line, byte offset, element, XML or JSON path).
 

@@ -24,7 +24,7 @@ pub struct ImportOptions {
     pub format: Option<Format>,
     /// Which coincident vertices to merge; see [`WeldMode`]. STL repeats
     /// every corner, so the default ([`WeldMode::Exact`]) is what makes an
-    /// STL file a solid; [`Import::weld`](super::Import::weld) says how many were merged.
+    /// STL file a solid; `Import::weld` says how many were merged.
     pub weld: WeldMode,
     /// The most corners one face may have (OBJ, PLY, OFF, ASCII STL); see
     /// [`ObjOptions::max_face_corners`](super::ObjOptions::max_face_corners).
