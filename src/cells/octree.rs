@@ -298,7 +298,11 @@ impl Octree {
             let [x, y, z] = cell.at;
             let bounds = tree.cell_box(cell.depth, x, y, z);
             match target.judge(&bounds, &mut cell.known) {
-                Judgement::Meets => stack.extend(cell.children(target)),
+                Judgement::Meets => stack.extend(cell.children(
+                    target,
+                    &tree.child_boxes(&cell),
+                    cell.depth + 1 == depth,
+                )),
                 judgement => tasks.push(Task::Leaf {
                     cell: cell.leaf(judgement),
                     free: judgement == Judgement::Free,
@@ -338,7 +342,11 @@ impl Octree {
             let bounds = self.cell_box(cell.depth, x, y, z);
             let judgement = target.judge(&bounds, &mut cell.known);
             if judgement == Judgement::Meets && cell.depth < self.depth {
-                stack.extend(cell.children(target));
+                stack.extend(cell.children(
+                    target,
+                    &self.child_boxes(&cell),
+                    cell.depth + 1 == self.depth,
+                ));
                 continue;
             }
             if judgement == Judgement::Free {
@@ -413,6 +421,16 @@ impl Octree {
             self.leaves[i].label = label;
         }
         self.regions = region_label.len();
+    }
+
+    /// The closed boxes of the eight children of `cell`, child `k` at
+    /// offset `(k & 1, k >> 1 & 1, k >> 2)`.
+    fn child_boxes<K>(&self, cell: &Pending<K>) -> [Aabb; 8] {
+        let [x, y, z] = cell.at.map(|v| 2 * v);
+        std::array::from_fn(|k| {
+            let k = k as u32;
+            self.cell_box(cell.depth + 1, x + (k & 1), y + (k >> 1 & 1), z + (k >> 2))
+        })
     }
 
     /// The closed box of cell `(x, y, z)` at depth `d`: exact corners.

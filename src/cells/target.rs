@@ -41,28 +41,33 @@ pub(crate) trait CellTarget {
     fn judge(&self, cell: &Aabb, known: &mut Self::Known) -> Judgement;
 
     /// What each of the eight children of a cell starts from, child `k`
-    /// at offset `(k & 1, k >> 1 & 1, k >> 2)`.
-    fn split(&self, known: &Self::Known) -> [Self::Known; 8];
+    /// at offset `(k & 1, k >> 1 & 1, k >> 2)` with the closed box
+    /// `children[k]`; `finest` when the children are at the octree's finest
+    /// depth, where they are judged but never split.
+    fn split(&self, known: &Self::Known, children: &[Aabb; 8], finest: bool) -> [Self::Known; 8];
 
     /// The label of a point of a [`Judgement::Free`] region.
     fn classify(&self, p: DVec3) -> Label;
 }
 
 /// A closed solid: `Meets` exactly when a face meets the cell, every other
-/// cell `Free`. The triangles that meet a refined cell are handed down to
-/// its sub-cells, which test only those (see [`BoundaryTiles::meeting`]):
-/// a cell costs what meets its parent, whatever the triangles' boxes.
+/// cell `Free`. A refined cell sorts the triangles that meet it among its
+/// eight sub-cells in one pass (see [`BoundaryTiles::meeting_children`]),
+/// and a sub-cell is judged by its list alone: a cell costs what meets its
+/// parent, whatever the triangles' boxes.
 pub(crate) struct SolidTarget {
     pub(crate) accel: Accel,
     pub(crate) tiles: BoundaryTiles,
 }
 
-/// What a cell of a solid knows: the triangles that meet its parent
-/// (`None` at the root: all), and its own box once judged.
+/// What a cell of a solid knows: the triangles that may meet it, made by
+/// its parent's split (`None` at the root until it is judged), and whether
+/// they certainly do. The list holds every triangle that meets the cell;
+/// at the finest depth it holds one that meets it exactly, or none.
 #[derive(Clone, Debug)]
 pub(crate) struct SolidKnown {
-    among: Option<Arc<[u32]>>,
-    cell: Aabb,
+    meeting: Option<Arc<[u32]>>,
+    certain: bool,
 }
 
 impl CellTarget for SolidTarget {
@@ -70,27 +75,33 @@ impl CellTarget for SolidTarget {
 
     fn root_known(&self) -> SolidKnown {
         SolidKnown {
-            among: None,
-            cell: Aabb::EMPTY,
+            meeting: None,
+            certain: false,
         }
     }
 
-    fn split(&self, known: &SolidKnown) -> [SolidKnown; 8] {
-        // Made only for cells that are refined: a cell at the finest depth
-        // needs one triangle that meets it, not all of them.
-        let among: Arc<[u32]> = self
-            .tiles
-            .meeting(&known.cell, known.among.as_deref())
-            .into();
-        std::array::from_fn(|_| SolidKnown {
-            among: Some(Arc::clone(&among)),
-            cell: Aabb::EMPTY,
-        })
+    fn split(&self, known: &SolidKnown, children: &[Aabb; 8], finest: bool) -> [SolidKnown; 8] {
+        let parent = known.meeting.as_deref().unwrap_or_default();
+        self.tiles
+            .meeting_children(parent, children, finest)
+            .map(|list| SolidKnown {
+                meeting: Some(list.into()),
+                certain: finest,
+            })
     }
 
     fn judge(&self, cell: &Aabb, known: &mut SolidKnown) -> Judgement {
-        known.cell = *cell;
-        if self.tiles.meets_among(cell, known.among.as_deref()) {
+        let meets = match &known.meeting {
+            None => {
+                let list: Arc<[u32]> = self.tiles.meeting(cell).into();
+                let meets = !list.is_empty();
+                known.meeting = Some(list);
+                meets
+            }
+            Some(list) if known.certain => !list.is_empty(),
+            Some(list) => self.tiles.meets_among(cell, list),
+        };
+        if meets {
             Judgement::Meets
         } else {
             Judgement::Free
@@ -141,7 +152,7 @@ impl CellTarget for CsgTarget<'_> {
         }
     }
 
-    fn split(&self, known: &CsgKnown) -> [CsgKnown; 8] {
+    fn split(&self, known: &CsgKnown, _children: &[Aabb; 8], _finest: bool) -> [CsgKnown; 8] {
         let family = Rc::default();
         std::array::from_fn(|position| CsgKnown {
             sides: known.sides.clone(),

@@ -3,6 +3,7 @@
 
 use super::label::{Cell, Label};
 use super::target::{CellTarget, Judgement};
+use crate::geom::Aabb;
 
 /// A cell still to be judged, with what its parent learnt.
 pub(super) struct Pending<K> {
@@ -12,16 +13,19 @@ pub(super) struct Pending<K> {
 }
 
 impl<K> Pending<K> {
-    /// Its eight children, child `k` at offset `(k & 1, k >> 1 & 1, k >> 2)`,
-    /// in the order they are pushed on a stack.
+    /// Its eight children, child `k` at offset `(k & 1, k >> 1 & 1, k >> 2)`
+    /// with the closed box `boxes[k]`, in the order they are pushed on a
+    /// stack; `finest` when they are at the octree's finest depth.
     pub(super) fn children<T: CellTarget<Known = K>>(
         &self,
         target: &T,
+        boxes: &[Aabb; 8],
+        finest: bool,
     ) -> impl Iterator<Item = Pending<K>> {
         let [x, y, z] = self.at;
         let depth = self.depth + 1;
         (0u32..)
-            .zip(target.split(&self.known))
+            .zip(target.split(&self.known, boxes, finest))
             .map(move |(k, known)| Pending {
                 depth,
                 at: [2 * x + (k & 1), 2 * y + (k >> 1 & 1), 2 * z + (k >> 2)],

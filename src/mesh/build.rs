@@ -239,12 +239,10 @@ fn pair_twins(
             .into_par_iter()
             .map(|e| {
                 let (a, b) = (h.from[e], h.to[e]);
-                let mut opposite = out.towards(b, a, &h.to);
-                let first_opposite = opposite.next();
                 EdgeUses {
-                    same: out.towards(a, b, &h.to).count(),
-                    opposite: usize::from(first_opposite.is_some()) + opposite.count(),
-                    first_opposite,
+                    same: out.count_towards(a, b, &h.to),
+                    opposite: out.count_towards(b, a, &h.to),
+                    first_opposite: out.towards(b, a, &h.to).next(),
                 }
             })
             .collect()

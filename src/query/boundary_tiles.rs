@@ -4,7 +4,7 @@
 use glam::DVec3;
 use thiserror::Error;
 
-use crate::geom::{Aabb, TriangulateError, box_meets_triangle};
+use crate::geom::{Aabb, TriangleFilter, TriangulateError, box_meets_triangle};
 use crate::mesh::{FaceId, Solid};
 use crate::spatial::Bvh;
 
@@ -28,12 +28,14 @@ pub struct TileError {
 ///
 /// # Invariants
 ///
-/// `triangles` and `boxes` are in the BVH's item order; `boxes[i]` is the
-/// exact box of `triangles[i]`.
+/// `triangles`, `boxes` and `filters` are in the BVH's item order;
+/// `boxes[i]` is the exact box of `triangles[i]` and `filters[i]` its
+/// floating-point filter, which rejects only boxes the triangle misses.
 #[derive(Clone, Debug)]
 pub struct BoundaryTiles {
     triangles: Vec<[DVec3; 3]>,
     boxes: Vec<Aabb>,
+    filters: Vec<TriangleFilter>,
     bvh: Bvh,
 }
 
@@ -57,11 +59,13 @@ impl BoundaryTiles {
             .map(|t| Aabb::from_points(t.iter().copied()))
             .collect();
         let (bvh, order) = Bvh::build(&boxes);
-        let triangles = order.iter().map(|&i| triangles[i as usize]).collect();
+        let triangles: Vec<[DVec3; 3]> = order.iter().map(|&i| triangles[i as usize]).collect();
         let boxes = order.iter().map(|&i| boxes[i as usize]).collect();
+        let filters = triangles.iter().map(TriangleFilter::new).collect();
         Ok(BoundaryTiles {
             triangles,
             boxes,
+            filters,
             bvh,
         })
     }
@@ -75,62 +79,93 @@ impl BoundaryTiles {
         self.bvh.items_overlapping(
             cell,
             |p| self.boxes[p],
-            |p| met = met || box_meets_triangle(cell, &self.triangles[p]),
+            |p| met = met || self.filtered_meets(cell, p),
         );
         met
     }
 
-    /// Whether one of the triangles `among` (by index; all when `None`)
-    /// meets the closed box `cell`: [`BoundaryTiles::meets`] over a list
-    /// that [`BoundaryTiles::meeting`] made for a box holding `cell`.
+    /// Whether one of the triangles `among` (by index) meets the closed box
+    /// `cell`, exactly: [`BoundaryTiles::meets`] over a list that holds
+    /// every triangle meeting `cell` (and perhaps more), as
+    /// [`BoundaryTiles::meeting_children`] makes them.
     #[must_use]
-    pub fn meets_among(&self, cell: &Aabb, among: Option<&[u32]>) -> bool {
-        match among {
-            None => self.meets(cell),
-            Some(list) => list.iter().any(|&t| self.tile_meets(cell, t)),
-        }
+    pub fn meets_among(&self, cell: &Aabb, among: &[u32]) -> bool {
+        among.iter().any(|&t| self.tile_meets(cell, t))
     }
 
-    /// The triangles among `among` (by index; all when `None`) that meet
-    /// the closed box `cell`, in increasing order.
+    /// The triangles that meet the closed box `cell`, exactly, in
+    /// increasing order: the start of the lists handed down an octree.
+    #[must_use]
+    pub fn meeting(&self, cell: &Aabb) -> Vec<u32> {
+        let mut found = Vec::new();
+        self.bvh.items_overlapping(
+            cell,
+            |p| self.boxes[p],
+            |p| {
+                if self.filtered_meets(cell, p) {
+                    found.push(p as u32);
+                }
+            },
+        );
+        found.sort_unstable();
+        found
+    }
+
+    /// Sorts the triangles of `parent` — a list holding every triangle
+    /// that meets a box made of the eight `children` — among the children,
+    /// in one pass over `parent`: a triangle is tried only on the children
+    /// its box meets.
     ///
     /// Handed down an octree, a cell's list is made from its parent's: a
-    /// triangle that meets a cell meets every box holding it, so the
-    /// lists stay exact, and each costs what its parent's list holds, not
-    /// what the triangles' boxes overlap. The boxes of long thin triangles
-    /// (the sides of a cone of many segments, each from its apex to its
-    /// rim) overlap most cells near the surface; the triangles themselves
-    /// meet few.
+    /// triangle that meets a cell meets every box holding it, so each list
+    /// holds every triangle that meets its cell, and costs what its
+    /// parent's list holds, not what the triangles' boxes overlap. The
+    /// boxes of long thin triangles (the sides of a cone of many segments,
+    /// each from its apex to its rim) overlap most cells near the surface;
+    /// the triangles themselves meet few.
+    ///
+    /// A list is kept by the floating-point filter alone, so it may hold
+    /// a few triangles that only come close (decide with
+    /// [`BoundaryTiles::meets_among`]). With `finest`, the children are not
+    /// split again and need only whether the boundary meets them: each
+    /// list then stops at its first triangle, and that triangle meets the
+    /// child exactly.
     #[must_use]
-    pub fn meeting(&self, cell: &Aabb, among: Option<&[u32]>) -> Vec<u32> {
-        match among {
-            None => {
-                let mut found = Vec::new();
-                self.bvh.items_overlapping(
-                    cell,
-                    |p| self.boxes[p],
-                    |p| {
-                        if box_meets_triangle(cell, &self.triangles[p]) {
-                            found.push(p as u32);
-                        }
-                    },
-                );
-                found.sort_unstable();
-                found
+    pub fn meeting_children(
+        &self,
+        parent: &[u32],
+        children: &[Aabb; 8],
+        finest: bool,
+    ) -> [Vec<u32>; 8] {
+        let mut lists: [Vec<u32>; 8] = Default::default();
+        for &t in parent {
+            let i = t as usize;
+            let bounds = self.boxes[i];
+            for (child, list) in children.iter().zip(lists.iter_mut()) {
+                if finest && !list.is_empty()
+                    || bounds.intersection(*child).is_empty()
+                    || !self.filters[i].may_meet(child)
+                {
+                    continue;
+                }
+                if !finest || box_meets_triangle(child, &self.triangles[i]) {
+                    list.push(t);
+                }
             }
-            Some(list) => list
-                .iter()
-                .copied()
-                .filter(|&t| self.tile_meets(cell, t))
-                .collect(),
         }
+        lists
     }
 
     /// Whether triangle `t` meets the closed box `cell` (its box first).
     fn tile_meets(&self, cell: &Aabb, t: u32) -> bool {
         let t = t as usize;
-        !self.boxes[t].intersection(*cell).is_empty()
-            && box_meets_triangle(cell, &self.triangles[t])
+        !self.boxes[t].intersection(*cell).is_empty() && self.filtered_meets(cell, t)
+    }
+
+    /// [`box_meets_triangle`] after the triangle's floating-point filter,
+    /// which settles most boxes a triangle misses without the exact test.
+    fn filtered_meets(&self, cell: &Aabb, t: usize) -> bool {
+        self.filters[t].may_meet(cell) && box_meets_triangle(cell, &self.triangles[t])
     }
 
     /// The number of triangles.

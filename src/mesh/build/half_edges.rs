@@ -69,14 +69,34 @@ impl Outgoing {
         b: usize,
         to: &'a [usize],
     ) -> impl Iterator<Item = usize> + Clone + 'a {
+        self.candidates(a, b, to)
+            .iter()
+            .copied()
+            .filter(move |&g| to[g] == b)
+    }
+
+    /// The number of half-edges from `a` to `b`: a binary search in a
+    /// sorted list, so that the many uses of one edge (a fan of faces on
+    /// it) are not each counted by walking all the others.
+    pub(super) fn count_towards(&self, a: usize, b: usize, to: &[usize]) -> usize {
         let list = self.of(a);
-        let candidates = if list.len() <= SCANNED {
+        if list.len() <= SCANNED {
+            list.iter().filter(|&&g| to[g] == b).count()
+        } else {
+            self.candidates(a, b, to).len()
+        }
+    }
+
+    /// The half-edges out of `a` that may end at `b`: the whole short
+    /// list, or exactly those ending at `b` in a sorted long one.
+    fn candidates<'a>(&'a self, a: usize, b: usize, to: &[usize]) -> &'a [usize] {
+        let list = self.of(a);
+        if list.len() <= SCANNED {
             list
         } else {
             let start = list.partition_point(|&g| to[g] < b);
             let end = start + list[start..].partition_point(|&g| to[g] == b);
             &list[start..end]
-        };
-        candidates.iter().copied().filter(move |&g| to[g] == b)
+        }
     }
 }
