@@ -119,7 +119,9 @@ impl Accel {
     /// the face's plane, where the rounded quotient can be off in its third
     /// digit). Crossing lists and first hits both report this value.
     pub(super) fn accurate_t(&self, ray: &Ray, i: u32, t: f64, error: f64) -> f64 {
-        let t = if error <= T_ACCURACY * t.abs() {
+        // A rounded denominator of zero makes `t` infinite with an infinite
+        // bound, which `≤` would accept: only a finite `t` is kept.
+        let t = if t.is_finite() && error <= T_ACCURACY * t.abs() {
             t
         } else {
             let (num, den) = plane_parts(self.tris[i as usize].corners(), ray);

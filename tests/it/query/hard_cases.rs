@@ -565,3 +565,44 @@ fn far_from_the_origin_answers_are_identical_and_culling_still_works() {
     );
     println!("node visits: near {nodes_near}, far {nodes_far}; {hits} hits");
 }
+
+/// A ray grazing a face (made by the peer harness's `grazing` set from a
+/// triangle of the spot model, in its plane up to rounding) crosses it
+/// where the rounded denominator `n·d` of its `t` is zero: `t` came out
+/// infinite with an infinite error bound, which was taken as exact, and
+/// the ray was refused as "so short that a crossing's t overflows". The
+/// exact quotient gives the crossing, here and for the first hit alike.
+#[test]
+fn a_ray_whose_rounded_plane_denominator_is_zero_is_answered() {
+    let solid = build(&PolygonSoup::new(
+        vec![
+            DVec3::new(-0.264169, 0.646946, -0.369897),
+            DVec3::new(-0.278055, 0.600765, -0.320108),
+            DVec3::new(-0.28588, 0.662049, -0.349089),
+            DVec3::new(-0.237852, 0.654242, -0.31934),
+        ],
+        [[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]],
+    ));
+    let accel = Accel::new(&solid);
+    let ray = Ray::new(
+        DVec3::new(-1.718738791722612, 2.651804986357582, 0.37544708960758655),
+        DVec3::new(
+            0.5607160791555195,
+            -0.7777340092320298,
+            -0.28412548189195225,
+        ),
+    );
+    let ts: Vec<f64> = accel
+        .ray_crossings(&ray)
+        .unwrap()
+        .hits
+        .iter()
+        .map(|h| h.t)
+        .collect();
+    assert_eq!(ts.len(), 2, "{ts:?}");
+    // The grazed face is entered at t ≈ 2.5763 (its rounded quotient).
+    assert!((ts[0] - 2.576_308_093_219_729).abs() < 1e-12, "{ts:?}");
+    assert!(ts[1] > ts[0] && ts[1] < 2.6, "{ts:?}");
+    let first = accel.first_hit(&ray).unwrap().expect("a hit");
+    assert_eq!(first.t, ts[0]);
+}
