@@ -49,6 +49,7 @@ mod output;
 mod points;
 mod select;
 mod self_arrangement;
+mod self_pairs;
 mod sparse;
 mod split;
 mod stats;

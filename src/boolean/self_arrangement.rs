@@ -3,10 +3,10 @@
 //! (Zhou, Grinspun, Zorin and Jacobson, *Mesh arrangements for solid
 //! geometry*, 2016).
 //!
-//! The soup's polygons are triangulated exactly into one operand; the BVH's
-//! self pair walk hands over the pairs of its triangles that may meet
-//! (pairs that share an edge and lie on either side of it meet only along
-//! it and are skipped); `intersect`, `crossings` (segments of different
+//! The soup's polygons are triangulated exactly into one operand;
+//! `self_pairs` hands over the pairs of its triangles that meet (pairs
+//! that share an edge and lie on either side of it meet only along it and
+//! are skipped); `intersect`, `crossings` (segments of different
 //! triangles crossing inside a third), `points` and `split` then arrange it
 //! exactly as they arrange two operands. Each patch of pieces separates two
 //! cells of space whose winding numbers are read off one exact ray from an
@@ -32,7 +32,7 @@ use crate::geom::implicit::{
     Arithmetic, Centroid, HasHomogeneous, Homogeneous, ImplicitPoint, Interval, XRayCrossing,
     enclosing_box, x_ray_crossing,
 };
-use crate::geom::{Aabb, Sign, orient2d, orient3d, triangulate_3d};
+use crate::geom::{Aabb, Sign, orient2d, triangulate_3d};
 use crate::mesh::{FaceId, PolygonSoup, Solid};
 use crate::spatial::Bvh;
 use crate::validate::Report;
@@ -40,9 +40,10 @@ use crate::validate::Report;
 use super::assemble::KeptPiece;
 use super::classify::{Piece, patch_rows};
 use super::crossings::{Line, Segment};
-use super::intersect::{self, Carrier, Contact, PointRef, Tri};
+use super::intersect::Carrier;
 use super::operand::Prepared;
 use super::points::PointTable;
+use super::self_pairs::self_contacts;
 use super::{BooleanError, BooleanStats, Cuts, cross_segments, output, pieces};
 
 /// A soup arranged against itself and reduced to the boundary of the
@@ -321,83 +322,10 @@ fn degenerate(t: [DVec3; 3]) -> bool {
 
 /// The orientation of triangle `t` seen along `axis` (its projection on
 /// the other two coordinates, in cyclic order).
-fn projected_orientation(t: [DVec3; 3], axis: u8) -> Sign {
+pub(super) fn projected_orientation(t: [DVec3; 3], axis: u8) -> Sign {
     let (u, v) = (((axis + 1) % 3) as usize, ((axis + 2) % 3) as usize);
     let flat = t.map(|p| glam::DVec2::new(p[u], p[v]));
     orient2d(flat[0], flat[1], flat[2])
-}
-
-/// Every pair of distinct triangles of the operand that meet, each once
-/// (smaller index first), with its contact. Two triangles sharing an edge
-/// meet only along it when they are not coplanar or lie on either side of
-/// it, and are skipped; a contact that is only shared corners is dropped.
-fn self_contacts(operand: &Prepared) -> Vec<(u32, u32, Contact)> {
-    let tri = |t: u32| Tri {
-        corners: operand.corners(t),
-        ids: operand.triangles[t as usize],
-    };
-    operand.bvh.par_self_leaf_pairs(|la, lb, found| {
-        let (Some(items_a), Some(items_b)) = (operand.bvh.leaf(la), operand.bvh.leaf(lb)) else {
-            return;
-        };
-        for pa in items_a.range() {
-            let ta = operand.order[pa];
-            let box_a = operand.bounds[ta as usize];
-            for pb in items_b.range() {
-                let tb = operand.order[pb];
-                if (la == lb && tb <= ta) || ta == tb {
-                    continue;
-                }
-                if box_a.intersection(operand.bounds[tb as usize]).is_empty() {
-                    continue;
-                }
-                let (first, second) = (ta.min(tb), ta.max(tb));
-                let (a, b) = (
-                    operand.triangles[first as usize],
-                    operand.triangles[second as usize],
-                );
-                if meet_only_along_shared_edge(operand, a, b) {
-                    continue;
-                }
-                let Some(contact) = intersect::contact(&tri(first), &tri(second)) else {
-                    continue;
-                };
-                let shared_only = contact.first_cuts.is_empty()
-                    && contact.second_cuts.is_empty()
-                    && contact.coplanar_same.is_none()
-                    && contact.points.iter().all(
-                        |p| matches!(p, PointRef::Vertex(v) if a.contains(v) && b.contains(v)),
-                    );
-                if !shared_only {
-                    found.push((first, second, contact));
-                }
-            }
-        }
-    })
-}
-
-/// Whether triangles `a` and `b` (vertex indices) share an edge and can
-/// meet nowhere else: not coplanar, or coplanar with their third corners
-/// on either side of the edge.
-fn meet_only_along_shared_edge(operand: &Prepared, a: [u32; 3], b: [u32; 3]) -> bool {
-    let shared: Vec<u32> = a.iter().copied().filter(|v| b.contains(v)).collect();
-    if shared.len() != 2 {
-        return false;
-    }
-    let third = |t: [u32; 3]| t.into_iter().find(|v| !shared.contains(v));
-    let (Some(x), Some(y)) = (third(a), third(b)) else {
-        return false;
-    };
-    let p = |i: u32| operand.positions[i as usize];
-    let (u, v) = (p(shared[0]), p(shared[1]));
-    if orient3d(u, v, p(x), p(y)) != Sign::Zero {
-        return true;
-    }
-    (0..3u8).any(|axis| {
-        let sx = projected_orientation([u, v, p(x)], axis);
-        let sy = projected_orientation([u, v, p(y)], axis);
-        sx != Sign::Zero && sy != Sign::Zero && sx != sy
-    })
 }
 
 /// The edges of pieces that patches must not be joined across although no

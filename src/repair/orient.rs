@@ -3,36 +3,95 @@
 //! and then each closed piece turned to face out when its signed volume
 //! is negative, unless it lies inside an odd number of other pieces (a
 //! cavity stays a cavity). A piece that is not closed by itself (a face
-//! whose every edge is shared by three or more) is left as it is.
+//! whose every edge is shared by three or more) is left as it is: its
+//! edges stay unbalanced, and filling closes them with the same plane
+//! wound the other way, which gives the winding number the face would have
+//! given wound right.
+//!
+//! Two polygons join across an edge only when it has exactly two uses and
+//! they lie on either side of it: two coplanar polygons folded onto each
+//! other across their shared edge (the bottoms of two boxes standing on
+//! one floor, left sharing an edge when the boxes' common face cancelled
+//! in cleaning) overlap rather than continue each other, and joining them
+//! would turn one box inside out to match the other.
 
 use glam::DVec3;
 
 use crate::disjoint_sets::DisjointSets;
+use crate::geom::{Sign, orient3d};
 use crate::mesh::PolygonSoup;
 use crate::query::{Containment, SoupWinding};
 
-/// The uses of each undirected edge: `(low, high, polygon, runs low→high)`,
-/// sorted so that an edge's uses are consecutive.
-fn edge_uses(soup: &PolygonSoup) -> Vec<(usize, usize, usize, bool)> {
+use super::projected_orientation;
+
+/// One use of an undirected edge by a polygon.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct EdgeUse {
+    /// The edge's smaller vertex.
+    low: usize,
+    /// The edge's larger vertex.
+    high: usize,
+    /// The polygon.
+    polygon: usize,
+    /// Whether the polygon runs the edge `low → high`.
+    forward: bool,
+    /// The polygon's corner after the edge: on the polygon's side of it
+    /// (for a polygon convex at that corner, as triangles are).
+    beyond: usize,
+}
+
+/// The uses of each undirected edge, sorted so that an edge's uses are
+/// consecutive.
+fn edge_uses(soup: &PolygonSoup) -> Vec<EdgeUse> {
     let mut uses = Vec::new();
     for (p, polygon) in soup.polygons.iter().enumerate() {
         let n = polygon.vertices.len();
         for k in 0..n {
             let (u, v) = (polygon.vertices[k], polygon.vertices[(k + 1) % n]);
-            uses.push((u.min(v), u.max(v), p, u < v));
+            uses.push(EdgeUse {
+                low: u.min(v),
+                high: u.max(v),
+                polygon: p,
+                forward: u < v,
+                beyond: polygon.vertices[(k + 2) % n],
+            });
         }
     }
     uses.sort_unstable();
     uses
 }
 
-/// The pairs of polygons across edges of exactly two uses, with whether
-/// they run the edge the same way (disagree).
+/// Whether the two uses' polygons are coplanar and on one side of their
+/// shared edge (folded onto each other), exactly.
+fn folded(soup: &PolygonSoup, a: EdgeUse, b: EdgeUse) -> bool {
+    let p = |i: usize| soup.positions[i];
+    let (u, v, x, y) = (p(a.low), p(a.high), p(a.beyond), p(b.beyond));
+    if orient3d(u, v, x, y) != Sign::Zero {
+        return false;
+    }
+    (0..3u8).any(|axis| {
+        let sx = projected_orientation([u, v, x], axis);
+        let sy = projected_orientation([u, v, y], axis);
+        sx != Sign::Zero && sx == sy
+    })
+}
+
+/// The pairs of polygons across edges of exactly two uses that are not
+/// folded onto each other, with whether they run the edge the same way
+/// (disagree).
 fn manifold_pairs(soup: &PolygonSoup) -> Vec<(usize, usize, bool)> {
     let uses = edge_uses(soup);
-    uses.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1))
-        .filter(|run| run.len() == 2 && run[0].2 != run[1].2)
-        .map(|run| (run[0].2, run[1].2, run[0].3 == run[1].3))
+    uses.chunk_by(|a, b| (a.low, a.high) == (b.low, b.high))
+        .filter(|run| {
+            run.len() == 2 && run[0].polygon != run[1].polygon && !folded(soup, run[0], run[1])
+        })
+        .map(|run| {
+            (
+                run[0].polygon,
+                run[1].polygon,
+                run[0].forward == run[1].forward,
+            )
+        })
         .collect()
 }
 

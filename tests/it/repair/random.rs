@@ -75,16 +75,16 @@ fn repaired_random_box_soups_classify_points_as_the_winding_number_does() {
         if next() < 0.5 {
             soup.polygons.remove(c);
         }
-        let r = repair(&soup, &RepairOptions::default()).unwrap_or_else(|e| {
-            if let Ok(dir) = std::env::var("WINGEDGE_REPAIR_DUMP") {
-                let _ = wingedge::io::export_soup(
-                    &soup,
-                    &std::path::Path::new(&dir).join(format!("case{case}.obj")),
-                    wingedge::io::Format::Obj,
-                );
-            }
-            panic!("case {case}: {e}")
-        });
+        // Every case's soup, to reproduce a failure by hand.
+        if let Ok(dir) = std::env::var("WINGEDGE_REPAIR_DUMP") {
+            let _ = wingedge::io::export_soup(
+                &soup,
+                &std::path::Path::new(&dir).join(format!("case{case}.obj")),
+                wingedge::io::Format::Obj,
+            );
+        }
+        let r =
+            repair(&soup, &RepairOptions::default()).unwrap_or_else(|e| panic!("case {case}: {e}"));
         let Some(solid) = r.solid else {
             // A hole whose loop crosses itself in every projection (two
             // removed or turned faces on one edge chain) stays open.
@@ -138,4 +138,38 @@ fn repaired_random_box_soups_classify_points_as_the_winding_number_does() {
         }
     }
     assert!(left_open * 20 <= cases, "{left_open} of {cases} left open");
+}
+
+/// Regression (case 1697 of the random test): two boxes on one floor share
+/// their face `x = 3`, one of the two copies turned over. The copies
+/// cancel in cleaning, leaving the two open boxes sharing the square's
+/// edges, each with two uses that run it the same way; the boxes' bottoms
+/// are folded onto each other across those edges. Joined there, one box
+/// was turned inside out to match the other and the result was their
+/// difference; kept apart, filling closes each box and the result is their
+/// union.
+#[test]
+fn boxes_whose_shared_face_cancelled_are_not_joined_across_a_fold() {
+    let mut soup = PolygonSoup::default();
+    let boxes = [
+        (DVec3::new(3.0, 3.0, 2.0), DVec3::new(5.0, 4.0, 3.0)),
+        (DVec3::new(3.0, 3.0, 2.0), DVec3::new(6.0, 4.0, 3.0)),
+        (DVec3::new(2.0, 3.0, 3.0), DVec3::new(4.0, 4.0, 6.0)),
+    ];
+    for (lo, hi) in boxes {
+        push_box(&mut soup, lo, hi);
+    }
+    // The second box's face x = 3, turned over.
+    soup.polygons[10].vertices.reverse();
+    let r = repair(&soup, &RepairOptions::default()).unwrap();
+    let solid = r.solid.unwrap();
+    assert!(r.validation.is_some_and(|v| v.is_valid()));
+    // The union: 3 (the longer box holds the shorter) + 6, less nothing
+    // shared in volume.
+    assert!((solid.volume() - 9.0).abs() < 1e-12, "{}", solid.volume());
+    let accel = Accel::new(&solid);
+    assert_eq!(
+        accel.classify(DVec3::new(4.25, 3.75, 2.75)).unwrap(),
+        Containment::Inside
+    );
 }
