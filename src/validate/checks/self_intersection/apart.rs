@@ -73,7 +73,6 @@ pub(super) fn pairs_apart<T: Send>(
     let (hub_of, hubs) = hubs(ctx.soup.positions.len(), triangles, min_hub_valence);
     // Group 0: triangles of no hub, one piece each (its own box). A piece
     // is its triangle and its index along it; its box is made when asked.
-    let mut pieces: Vec<Vec<(u32, u8)>> = vec![Vec::new(); hubs.len() + 1];
     let mut members: Vec<Vec<u32>> = vec![Vec::new(); hubs.len() + 1];
     let mut halvings_of = vec![0u8; triangles.len()];
     for (i, t) in triangles.iter().enumerate() {
@@ -84,14 +83,11 @@ pub(super) fn pairs_apart<T: Send>(
             .min()
             .map_or(0, |h| h + 1);
         members[group].push(i as u32);
-        if group == 0 {
-            pieces[0].push((i as u32, 0));
-        } else {
-            let cuts = halvings(ctx, t, hubs[group - 1]);
-            halvings_of[i] = cuts;
-            pieces[group].extend((0..piece_count(cuts)).map(|k| (i as u32, k)));
+        if group > 0 {
+            halvings_of[i] = halvings(ctx, t, hubs[group - 1]);
         }
     }
+    drop(hub_of);
     let box_of = |group: usize, (i, piece): (u32, u8)| {
         let i = i as usize;
         if group == 0 {
@@ -101,58 +97,66 @@ pub(super) fn pairs_apart<T: Send>(
             piece_box(ctx, &triangles[i], hub, boxes[i], halvings_of[i], piece)
         }
     };
-    // A hub's group is walked only against the other groups, so its pieces
-    // whose boxes miss every other group's bounds pair with nothing (a
-    // cone's side above its base's plane): they are left out of its tree.
-    let bounds: Vec<Aabb> = pieces
+    let bounds: Vec<Aabb> = members
         .iter()
-        .map(|p| {
-            p.iter()
-                .filter(|piece| piece.1 == 0)
-                .fold(Aabb::EMPTY, |b, piece| b.union(boxes[piece.0 as usize]))
+        .map(|m| {
+            m.iter()
+                .fold(Aabb::EMPTY, |b, &i| b.union(boxes[i as usize]))
         })
         .collect();
-    for (group, p) in pieces.iter_mut().enumerate().skip(1) {
+    // The pieces of one group. A hub's group is walked only against the
+    // other groups, so its pieces whose boxes miss every other group's
+    // bounds pair with nothing (a cone's side above its base's plane):
+    // they are left out of its tree.
+    let pieces_of = |group: usize| -> Vec<(u32, u8)> {
+        if group == 0 {
+            return members[0].iter().map(|&i| (i, 0)).collect();
+        }
         let others = (0..bounds.len())
             .filter(|&h| h != group)
             .fold(Aabb::EMPTY, |b, h| b.union(bounds[h]));
-        p.retain(|&piece| overlap(&box_of(group, piece), &others));
-    }
-    let trees: Vec<PieceTree> = pieces
-        .iter()
-        .enumerate()
-        .map(|(group, p)| {
-            let (bvh, order) = Bvh::build_by(p.len(), |k| box_of(group, p[k]));
-            PieceTree {
-                bvh,
-                order,
-                pieces: p,
-            }
-        })
-        .collect();
-    // The triangles of no hub: one piece each, so each pair once.
-    let mut found = if trees[0].pieces.len() >= 2 {
-        let tree = &trees[0];
-        tree.bvh.par_self_leaf_pairs(|la, lb, found| {
-            for (k, a) in tree.triangles(la).enumerate() {
-                let from = if la == lb { k + 1 } else { 0 };
-                found.extend(tree.triangles(lb).skip(from).filter_map(|b| try_pair(a, b)));
-            }
-        })
-    } else {
-        Vec::new()
+        members[group]
+            .iter()
+            .flat_map(|&i| (0..piece_count(halvings_of[i as usize])).map(move |k| (i, k)))
+            .filter(|&piece| overlap(&box_of(group, piece), &others))
+            .collect()
     };
-    // Group against group, streamed: each triangle of the later group asks
-    // the earlier group's tree for the pieces whose boxes overlap its own,
-    // opening only the nodes whose boxes its triangle may meet (a pair
-    // that meets has a common point, in a piece of the one and in the
-    // other, so no pair the test would report is left out, and a sliver
-    // opens the nodes along it, not all its box overlaps). The triangles
-    // of the pieces one triangle finds are tested once each, as they are
-    // found: nothing is kept but what the test returns and, while one
-    // triangle asks, the triangles it found.
-    for (g, tree) in trees.iter().enumerate() {
-        for later in &members[g + 1..] {
+    // One group's tree at a time: built, walked by the triangles of no hub
+    // (group 0 only) and by every later group, then dropped, so the trees
+    // of the pieces (many per sliver) are never all held at once; the last
+    // group, which no later group walks against, gets none.
+    let mut found = Vec::new();
+    for g in 0..members.len() {
+        let walked_by = &members[g + 1..];
+        if g > 0 && walked_by.iter().all(Vec::is_empty) {
+            continue;
+        }
+        let pieces = pieces_of(g);
+        let (bvh, order) = Bvh::build_by(pieces.len(), |k| box_of(g, pieces[k]));
+        let tree = PieceTree {
+            bvh,
+            order,
+            pieces: &pieces,
+        };
+        // The triangles of no hub: one piece each, so each pair once.
+        if g == 0 && tree.pieces.len() >= 2 {
+            found = tree.bvh.par_self_leaf_pairs(|la, lb, found| {
+                for (k, a) in tree.triangles(la).enumerate() {
+                    let from = if la == lb { k + 1 } else { 0 };
+                    found.extend(tree.triangles(lb).skip(from).filter_map(|b| try_pair(a, b)));
+                }
+            });
+        }
+        // Group against group, streamed: each triangle of the later group
+        // asks the earlier group's tree for the pieces whose boxes overlap
+        // its own, opening only the nodes whose boxes its triangle may meet
+        // (a pair that meets has a common point, in a piece of the one and
+        // in the other, so no pair the test would report is left out, and a
+        // sliver opens the nodes along it, not all its box overlaps). The
+        // triangles of the pieces one triangle finds are tested once each,
+        // as they are found: nothing is kept but what the test returns and,
+        // while one triangle asks, the triangles it found.
+        for later in walked_by {
             if tree.pieces.is_empty() || later.is_empty() {
                 continue;
             }
