@@ -62,14 +62,17 @@ pub(super) fn pairs_apart<T: Send>(
 ) -> Apart<T> {
     let tested = AtomicUsize::new(0);
     let held = AtomicUsize::new(0);
-    let try_pair = |a: usize, b: usize| -> Option<T> {
+    // Whether a pair is one to test: cheap index and box comparisons.
+    let candidate = |a: usize, b: usize| -> bool {
         let (ta, tb) = (&triangles[a], &triangles[b]);
-        if ta.face == tb.face || ta.shared_vertices(tb) != 0 || !overlap(&boxes[a], &boxes[b]) {
-            return None;
-        }
+        ta.face != tb.face && ta.shared_vertices(tb) == 0 && overlap(&boxes[a], &boxes[b])
+    };
+    let decide = |a: usize, b: usize| -> Option<T> {
         tested.fetch_add(1, Ordering::Relaxed);
         test(a.min(b), a.max(b))
     };
+    let try_pair =
+        |a: usize, b: usize| -> Option<T> { if candidate(a, b) { decide(a, b) } else { None } };
     let (hub_of, hubs) = hubs(ctx.soup.positions.len(), triangles, min_hub_valence);
     // Group 0: triangles of no hub, one piece each (its own box). A piece
     // is its triangle and its index along it; its box is made when asked.
@@ -178,9 +181,12 @@ pub(super) fn pairs_apart<T: Send>(
                     near.dedup();
                 }
                 held.fetch_max(near.len(), Ordering::Relaxed);
+                // The cheap comparisons first; the triangle against the
+                // other's box only for a pair that passes them.
                 near.into_iter()
-                    .filter(|&a| g > 0 || filter.may_meet(&boxes[a as usize]))
-                    .filter_map(|a| try_pair(a as usize, b))
+                    .map(|a| a as usize)
+                    .filter(|&a| candidate(a, b) && (g > 0 || filter.may_meet(&boxes[a])))
+                    .filter_map(|a| decide(a, b))
                     .collect::<Vec<_>>()
             }));
         }
