@@ -14,7 +14,7 @@ fn budget(triangles: usize) -> u64 {
 }
 
 /// A UV sphere's positions and triangles (0-based), the poles first.
-fn uv_sphere(centre: [f64; 3], rings: usize, segments: usize) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
+fn uv_sphere(centre: [f64; 3], rings: usize, segments: usize) -> Mesh {
     let mut positions = vec![
         [centre[0], centre[1], centre[2] + 1.0],
         [centre[0], centre[1], centre[2] - 1.0],
@@ -44,8 +44,11 @@ fn uv_sphere(centre: [f64; 3], rings: usize, segments: usize) -> (Vec<[f64; 3]>,
     (positions, triangles)
 }
 
-/// Positions and triangles as OBJ text.
-fn obj(parts: &[(Vec<[f64; 3]>, Vec<[usize; 3]>)]) -> String {
+/// Positions and triangles (0-based indices into them).
+type Mesh = (Vec<[f64; 3]>, Vec<[usize; 3]>);
+
+/// Meshes as the OBJ text of one soup.
+fn obj(parts: &[Mesh]) -> String {
     let mut text = String::new();
     for (positions, _) in parts {
         for p in positions {
@@ -64,7 +67,7 @@ fn obj(parts: &[(Vec<[f64; 3]>, Vec<[usize; 3]>)]) -> String {
 
 /// A closed cone of `n` rim vertices whose base is fanned from one rim
 /// vertex: two hubs of `n` slivers each.
-fn corner_fan_cone(n: usize) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
+fn corner_fan_cone(n: usize) -> Mesh {
     let mut positions = vec![[0.0, 0.0, 1.0]];
     for k in 0..n {
         let a = std::f64::consts::TAU * k as f64 / n as f64;

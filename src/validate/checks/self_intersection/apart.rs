@@ -51,12 +51,13 @@ pub(super) struct Apart<T> {
 
 /// Calls `test(a, b)` (triangle indices, `a < b`) once on every pair of
 /// triangles of different faces that share no vertex and whose exact boxes
-/// overlap (closed boxes), and collects what it returns. `min_hub_valence`:
+/// overlap (closed boxes; `box_of_triangle(i)` is triangle `i`'s exact box),
+/// and collects what it returns. `min_hub_valence`:
 /// a vertex of more triangles than that can be a hub.
 pub(super) fn pairs_apart<T: Send>(
     ctx: &Context,
     triangles: &[Triangle],
-    boxes: &[Aabb],
+    box_of_triangle: impl Fn(usize) -> Aabb + Sync,
     min_hub_valence: usize,
     test: impl Fn(usize, usize) -> Option<T> + Sync,
 ) -> Apart<T> {
@@ -65,7 +66,9 @@ pub(super) fn pairs_apart<T: Send>(
     // Whether a pair is one to test: cheap index and box comparisons.
     let candidate = |a: usize, b: usize| -> bool {
         let (ta, tb) = (&triangles[a], &triangles[b]);
-        ta.face != tb.face && ta.shared_vertices(tb) == 0 && overlap(&boxes[a], &boxes[b])
+        ta.face != tb.face
+            && ta.shared_vertices(tb) == 0
+            && overlap(&box_of_triangle(a), &box_of_triangle(b))
     };
     let decide = |a: usize, b: usize| -> Option<T> {
         tested.fetch_add(1, Ordering::Relaxed);
@@ -94,17 +97,24 @@ pub(super) fn pairs_apart<T: Send>(
     let box_of = |group: usize, (i, piece): (u32, u8)| {
         let i = i as usize;
         if group == 0 {
-            boxes[i]
+            box_of_triangle(i)
         } else {
             let hub = hubs[group - 1];
-            piece_box(ctx, &triangles[i], hub, boxes[i], halvings_of[i], piece)
+            piece_box(
+                ctx,
+                &triangles[i],
+                hub,
+                box_of_triangle(i),
+                halvings_of[i],
+                piece,
+            )
         }
     };
     let bounds: Vec<Aabb> = members
         .iter()
         .map(|m| {
             m.iter()
-                .fold(Aabb::EMPTY, |b, &i| b.union(boxes[i as usize]))
+                .fold(Aabb::EMPTY, |b, &i| b.union(box_of_triangle(i as usize)))
         })
         .collect();
     // The pieces of one group. A hub's group is walked only against the
@@ -170,7 +180,7 @@ pub(super) fn pairs_apart<T: Send>(
                 // is the filter (the pair test checks the whole boxes).
                 let mut near = Vec::new();
                 tree.bvh.leaves_overlapping_where(
-                    &boxes[b],
+                    &box_of_triangle(b),
                     |node| filter.may_meet(node),
                     |leaf| near.extend(tree.triangles(leaf).map(|a| a as u32)),
                 );
@@ -185,7 +195,7 @@ pub(super) fn pairs_apart<T: Send>(
                 // other's box only for a pair that passes them.
                 near.into_iter()
                     .map(|a| a as usize)
-                    .filter(|&a| candidate(a, b) && (g > 0 || filter.may_meet(&boxes[a])))
+                    .filter(|&a| candidate(a, b) && (g > 0 || filter.may_meet(&box_of_triangle(a))))
                     .filter_map(|a| decide(a, b))
                     .collect::<Vec<_>>()
             }));
