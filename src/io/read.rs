@@ -22,7 +22,20 @@ pub const MAX_INPUT_BYTES: usize = 1 << 31;
 /// What opening or reading the file gives, and [`io::ErrorKind::InvalidData`]
 /// for input longer than [`MAX_INPUT_BYTES`].
 pub fn read_input(path: &Path) -> io::Result<Vec<u8>> {
-    read_bounded(File::open(path)?, MAX_INPUT_BYTES)
+    let file = File::open(path)?;
+    // Room for the whole file up front when it says its size (a regular
+    // file): grown by doubling, the buffer would briefly hold the old and
+    // the new copy and end up to twice the file's size.
+    let hint = file
+        .metadata()
+        .ok()
+        .filter(std::fs::Metadata::is_file)
+        .map_or(0, |m| usize::try_from(m.len()).unwrap_or(usize::MAX));
+    read_bounded_into(
+        Vec::with_capacity(hint.min(MAX_INPUT_BYTES).saturating_add(1)),
+        file,
+        MAX_INPUT_BYTES,
+    )
 }
 
 /// [`read_input`] with a smaller limit than [`MAX_INPUT_BYTES`] (JSON
@@ -81,8 +94,17 @@ pub fn text_len(bytes: &[u8]) -> usize {
 }
 
 /// [`read_input`] on any reader, with the size limit given.
-fn read_bounded(mut reader: impl Read, limit: usize) -> io::Result<Vec<u8>> {
-    let mut bytes = Vec::new();
+fn read_bounded(reader: impl Read, limit: usize) -> io::Result<Vec<u8>> {
+    read_bounded_into(Vec::new(), reader, limit)
+}
+
+/// [`read_bounded`] appending to `bytes` (empty, with the capacity the
+/// caller expects to need).
+fn read_bounded_into(
+    mut bytes: Vec<u8>,
+    mut reader: impl Read,
+    limit: usize,
+) -> io::Result<Vec<u8>> {
     let mut chunk = vec![0u8; 1 << 16];
     loop {
         let n = match reader.read(&mut chunk) {

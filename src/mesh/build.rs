@@ -98,7 +98,7 @@ enum EdgeSharing {
 
 fn build(soup: &PolygonSoup, sharing: EdgeSharing) -> Result<Solid, BuildError> {
     check_polygons(soup, RepeatedVertices::Refuse)?;
-    let mut halves = corner_half_edges(soup);
+    let mut halves = corner_half_edges(soup, Links::Fill);
     let mut outgoing = Outgoing::new(soup.positions.len(), &halves.from);
     pair_twins(soup, &mut halves, &mut outgoing, sharing)?;
     link_holes(&mut halves);
@@ -109,6 +109,34 @@ fn build(soup: &PolygonSoup, sharing: EdgeSharing) -> Result<Solid, BuildError> 
     // Freed before the solid's tables are allocated (lowers the peak).
     drop(outgoing);
     Ok(assemble(soup, &halves))
+}
+
+/// Whether [`Solid::try_from_soup`] of `soup` succeeds, and its error when
+/// not, without building the solid: the build's checks only (polygons,
+/// then the pairing of half-edges into twins), which are all the steps
+/// that can fail, on tables without the loop links. For a caller that
+/// needs the verdict alone (validation's report), at a fraction of the
+/// build's memory.
+///
+/// # Errors
+///
+/// Exactly the error [`Solid::try_from_soup`] returns.
+pub(crate) fn check_buildable(soup: &PolygonSoup) -> Result<(), BuildError> {
+    check_polygons(soup, RepeatedVertices::Refuse)?;
+    let mut halves = corner_half_edges(soup, Links::Skip);
+    let mut outgoing = Outgoing::new(soup.positions.len(), &halves.from);
+    pair_twins(soup, &mut halves, &mut outgoing, EdgeSharing::Manifold)
+}
+
+/// Whether the half-edge tables get their loop links (`next`, `prev`):
+/// the assembly needs them, the pairing of twins of a manifold build does
+/// not.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Links {
+    /// Filled for every face half-edge.
+    Fill,
+    /// Left empty.
+    Skip,
 }
 
 /// Whether a polygon may visit a vertex twice.
@@ -180,14 +208,15 @@ pub(crate) fn check_polygons(
     Ok(())
 }
 
-fn corner_half_edges(soup: &PolygonSoup) -> HalfEdges {
+fn corner_half_edges(soup: &PolygonSoup, links: Links) -> HalfEdges {
     let corners: usize = soup.polygons.iter().map(|p| p.vertices.len()).sum();
+    let linked = if links == Links::Fill { corners } else { 0 };
     let mut h = HalfEdges {
         from: Vec::with_capacity(corners),
         to: Vec::with_capacity(corners),
         polygon: Vec::with_capacity(corners),
-        next: Vec::with_capacity(corners),
-        prev: Vec::with_capacity(corners),
+        next: Vec::with_capacity(linked),
+        prev: Vec::with_capacity(linked),
         twin: Vec::new(),
         face_count: corners,
         split_from: Vec::new(),
@@ -199,8 +228,10 @@ fn corner_half_edges(soup: &PolygonSoup) -> HalfEdges {
             h.from.push(p.vertices[i]);
             h.to.push(p.vertices[(i + 1) % n]);
             h.polygon.push(index);
-            h.next.push(base + (i + 1) % n);
-            h.prev.push(base + (i + n - 1) % n);
+            if links == Links::Fill {
+                h.next.push(base + (i + 1) % n);
+                h.prev.push(base + (i + n - 1) % n);
+            }
         }
     }
     h.twin = vec![usize::MAX; corners];
@@ -228,64 +259,85 @@ fn pair_twins(
     sharing: EdgeSharing,
 ) -> Result<(), BuildError> {
     out.sort_by_end(&h.to);
-    let line = |h: &HalfEdges, e: usize| soup.polygons[h.polygon[e]].attributes.line;
-    // Each half-edge's uses are read from the lists in parallel; the
-    // pairing below then visits the half-edges in order, as a serial scan
-    // would, and lists the uses again only where an edge has more than
-    // two or two the same way.
-    let uses: Vec<EdgeUses> = {
-        let (out, h) = (&*out, &*h);
-        (0..h.face_count)
-            .into_par_iter()
-            .map(|e| {
+    // Each half-edge's uses are read from the lists in parallel, a chunk
+    // of half-edges at a time (the chunk's counts are all that is held);
+    // the pairing below then visits the half-edges in order, as a serial
+    // scan would, and lists the uses again only where an edge has more
+    // than two or two the same way. The counts depend on the lists alone,
+    // which the pairing does not change.
+    let mut uses: Vec<EdgeUses> = Vec::with_capacity(USES_CHUNK.min(h.face_count));
+    for chunk in (0..h.face_count).step_by(USES_CHUNK) {
+        let chunk = chunk..(chunk + USES_CHUNK).min(h.face_count);
+        uses.clear();
+        {
+            let (out, h) = (&*out, &*h);
+            uses.par_extend(chunk.clone().into_par_iter().map(|e| {
                 let (a, b) = (h.from[e], h.to[e]);
                 EdgeUses {
                     same: out.count_towards(a, b, &h.to),
                     opposite: out.count_towards(b, a, &h.to),
                     first_opposite: out.towards(b, a, &h.to).next(),
                 }
-            })
-            .collect()
-    };
-    for (e, &counted) in uses.iter().enumerate() {
-        if h.twin[e] != usize::MAX {
-            // Paired with the other uses of a shared edge.
-            continue;
+            }));
         }
-        let (a, b) = (h.from[e], h.to[e]);
-        if counted.same + counted.opposite >= 3 {
-            let same: smallvec::SmallVec<[usize; 2]> = out.towards(a, b, &h.to).collect();
-            let opposite: smallvec::SmallVec<[usize; 2]> = out.towards(b, a, &h.to).collect();
-            let pairs = match sharing {
-                EdgeSharing::Touching => pair_touching(soup, h, a, b, &same, &opposite),
-                EdgeSharing::Manifold => None,
-            };
-            if let Some(pairs) = pairs {
-                for (g, t) in pairs {
-                    h.twin[g] = t;
-                    h.twin[t] = g;
-                }
-                continue;
+        for (e, &counted) in chunk.zip(&uses) {
+            pair_one(soup, h, out, sharing, e, counted)?;
+        }
+    }
+    Ok(())
+}
+
+/// How many half-edges [`pair_twins`] counts the uses of at once.
+const USES_CHUNK: usize = 1 << 16;
+
+/// Pairs face half-edge `e`, whose uses are `counted`, unless an earlier
+/// half-edge of its edge already did.
+fn pair_one(
+    soup: &PolygonSoup,
+    h: &mut HalfEdges,
+    out: &Outgoing,
+    sharing: EdgeSharing,
+    e: usize,
+    counted: EdgeUses,
+) -> Result<(), BuildError> {
+    let line = |h: &HalfEdges, e: usize| soup.polygons[h.polygon[e]].attributes.line;
+    if h.twin[e] != usize::MAX {
+        // Paired with the other uses of a shared edge.
+        return Ok(());
+    }
+    let (a, b) = (h.from[e], h.to[e]);
+    if counted.same + counted.opposite >= 3 {
+        let same: smallvec::SmallVec<[usize; 2]> = out.towards(a, b, &h.to).collect();
+        let opposite: smallvec::SmallVec<[usize; 2]> = out.towards(b, a, &h.to).collect();
+        let pairs = match sharing {
+            EdgeSharing::Touching => pair_touching(soup, h, a, b, &same, &opposite),
+            EdgeSharing::Manifold => None,
+        };
+        if let Some(pairs) = pairs {
+            for (g, t) in pairs {
+                h.twin[g] = t;
+                h.twin[t] = g;
             }
-            let mut users: Vec<usize> = same.iter().chain(&opposite).copied().collect();
-            users.sort_unstable();
-            return Err(BuildError::NonManifoldEdge {
-                vertices: [a.min(b), a.max(b)],
-                polygons: users.iter().map(|&g| h.polygon[g]).collect(),
-                lines: users.iter().map(|&g| line(h, g)).collect(),
-            });
+            return Ok(());
         }
-        if counted.same == 2 {
-            let same: smallvec::SmallVec<[usize; 2]> = out.towards(a, b, &h.to).collect();
-            return Err(BuildError::InconsistentOrientation {
-                vertices: [a, b],
-                polygons: [h.polygon[same[0]], h.polygon[same[1]]],
-                lines: [line(h, same[0]), line(h, same[1])],
-            });
-        }
-        if let Some(t) = counted.first_opposite {
-            h.twin[e] = t;
-        }
+        let mut users: Vec<usize> = same.iter().chain(&opposite).copied().collect();
+        users.sort_unstable();
+        return Err(BuildError::NonManifoldEdge {
+            vertices: [a.min(b), a.max(b)],
+            polygons: users.iter().map(|&g| h.polygon[g]).collect(),
+            lines: users.iter().map(|&g| line(h, g)).collect(),
+        });
+    }
+    if counted.same == 2 {
+        let same: smallvec::SmallVec<[usize; 2]> = out.towards(a, b, &h.to).collect();
+        return Err(BuildError::InconsistentOrientation {
+            vertices: [a, b],
+            polygons: [h.polygon[same[0]], h.polygon[same[1]]],
+            lines: [line(h, same[0]), line(h, same[1])],
+        });
+    }
+    if let Some(t) = counted.first_opposite {
+        h.twin[e] = t;
     }
     Ok(())
 }

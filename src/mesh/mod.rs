@@ -26,7 +26,7 @@ mod traverse;
 mod vertex;
 
 pub use build::BuildError;
-pub(crate) use build::{RepeatedVertices, check_polygons};
+pub(crate) use build::{RepeatedVertices, check_buildable, check_polygons};
 pub use consistency::ConsistencyError;
 pub use edge::{Edge, EdgeUse, Side};
 pub use euler::{Corner, EulerError};

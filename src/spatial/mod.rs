@@ -15,3 +15,4 @@ pub(crate) mod raw;
 pub(crate) mod rounding;
 
 pub use bvh::{Bvh, LEAF_SIZE, LeafItems};
+pub use raw::large_frees::return_large_frees_to_the_system;

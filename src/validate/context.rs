@@ -85,13 +85,14 @@ pub(crate) struct Context<'a> {
     /// Its diagonal: the model size tolerances are scaled by.
     pub diagonal: f64,
     /// Corners of each face with consecutive repeats (cyclically) removed.
-    corner_offsets: Vec<usize>,
+    /// (Offsets as `u32`: there are at most [`MAX_ELEMENTS`] corners.)
+    corner_offsets: Vec<u32>,
     corner_list: Vec<usize>,
     /// Faces that listed a vertex twice in a row: (face, vertex).
     pub loop_edges: Vec<(usize, usize)>,
     pub shape: Vec<Shape>,
     /// For a later copy of a duplicate face: the first copy.
-    pub duplicate_of: Vec<Option<usize>>,
+    pub duplicate_of: Vec<Option<u32>>,
     /// Whether the face counts in the edge and vertex tables.
     pub in_topology: Vec<bool>,
     /// Whether a polygon-shaped face is degenerate (see [`Context::degeneracy`]).
@@ -99,7 +100,7 @@ pub(crate) struct Context<'a> {
     pub edges: Vec<EdgeRecord>,
     pub edge_uses: Vec<EdgeUse>,
     /// Vertex → faces (in topology), as offsets into a list.
-    vertex_face_offsets: Vec<usize>,
+    vertex_face_offsets: Vec<u32>,
     vertex_face_list: Vec<u32>,
     /// Vertex → edges, as offsets into a list.
     vertex_edge_offsets: Vec<usize>,
@@ -140,7 +141,7 @@ impl<'a> Context<'a> {
                 // Every corner was the same vertex: the closing edge loops too.
                 loop_edges.push((face, corner_list[start]));
             }
-            corner_offsets.push(corner_list.len());
+            corner_offsets.push(corner_list.len() as u32);
         }
         let bounds = crate::geom::Aabb::from_points(
             soup.positions
@@ -198,7 +199,8 @@ impl<'a> Context<'a> {
 
     /// The corners of `face`, consecutive repeats removed.
     pub fn corners(&self, face: usize) -> &[usize] {
-        &self.corner_list[self.corner_offsets[face]..self.corner_offsets[face + 1]]
+        &self.corner_list
+            [self.corner_offsets[face] as usize..self.corner_offsets[face + 1] as usize]
     }
 
     /// The position of vertex `v`.
@@ -234,8 +236,8 @@ impl<'a> Context<'a> {
 
     /// The faces (in topology) around `vertex`, in face order.
     pub fn vertex_faces(&self, vertex: usize) -> &[u32] {
-        &self.vertex_face_list
-            [self.vertex_face_offsets[vertex]..self.vertex_face_offsets[vertex + 1]]
+        &self.vertex_face_list[self.vertex_face_offsets[vertex] as usize
+            ..self.vertex_face_offsets[vertex + 1] as usize]
     }
 
     /// The edges at `vertex`.
@@ -401,7 +403,8 @@ impl<'a> Context<'a> {
                 .collect();
             for i in 1..run.len() {
                 if let Some(j) = (0..i).find(|&j| cycles[j] == cycles[i]) {
-                    let first = self.duplicate_of[run[j].1].unwrap_or(run[j].1);
+                    // Face numbers fit: there are at most `MAX_ELEMENTS`.
+                    let first = self.duplicate_of[run[j].1].unwrap_or(run[j].1 as u32);
                     self.duplicate_of[run[i].1] = Some(first);
                 }
             }
@@ -469,7 +472,9 @@ impl<'a> Context<'a> {
                 )
             },
         );
-        self.vertex_face_offsets = face_offsets;
+        // The face offsets fit `u32`: they count corners, at most
+        // `MAX_ELEMENTS`.
+        self.vertex_face_offsets = face_offsets.into_iter().map(|o| o as u32).collect();
         self.vertex_face_list = face_list;
         self.vertex_edge_offsets = edge_offsets;
         self.vertex_edge_list = edge_list;

@@ -210,6 +210,8 @@ enum Keep {
 /// unclean); an edge used three or more times is a
 /// [`Rule::EdgeInMoreThanTwoFaces`], an edge run twice one way a
 /// [`Rule::InconsistentOrientation`]; no polygons at all is excluded.
+/// Otherwise only the build's checks run (`solid_view::check_builds`):
+/// the verdict needs whether it fails and why, not the solid.
 fn run(
     soup: &PolygonSoup,
     vertex_lines: Option<&[usize]>,
@@ -272,7 +274,7 @@ fn run(
                 || match raw {
                     Some(Ok(solid)) if ctx.is_clean() => Ok(Some(solid)),
                     Some(_) => solid_view::build(&ctx).map(Some),
-                    None if needs_build => solid_view::build(&ctx).map(|_| None),
+                    None if needs_build => solid_view::check_builds(&ctx).map(|()| None),
                     None => Ok(None),
                 },
                 || solid_view::measure(&ctx),

@@ -42,7 +42,30 @@ const NESTING_PROBES: usize = 16;
 ///
 /// The build error, as text, when the faces do not form a winged-edge solid.
 pub(crate) fn build(ctx: &Context) -> Result<Solid, String> {
-    let soup = PolygonSoup {
+    Solid::try_from_soup(&topology_soup(ctx)).map_err(|e| e.to_string())
+}
+
+/// Whether [`build`] succeeds, and its error when not, without building
+/// the solid (`mesh::check_buildable`) and, when the context is clean,
+/// without copying the soup: then the faces in the topology are the
+/// soup's own, corner for corner.
+///
+/// # Errors
+///
+/// The error [`build`] returns.
+pub(crate) fn check_builds(ctx: &Context) -> Result<(), String> {
+    let checked = if ctx.is_clean() {
+        crate::mesh::check_buildable(ctx.soup)
+    } else {
+        crate::mesh::check_buildable(&topology_soup(ctx))
+    };
+    checked.map_err(|e| e.to_string())
+}
+
+/// The faces that count in the topology, repeats in a row collapsed, as a
+/// soup of their own.
+fn topology_soup(ctx: &Context) -> PolygonSoup {
+    PolygonSoup {
         positions: ctx.soup.positions.clone(),
         polygons: (0..ctx.face_count())
             .filter(|&f| ctx.in_topology[f])
@@ -51,8 +74,7 @@ pub(crate) fn build(ctx: &Context) -> Result<Solid, String> {
                 attributes: ctx.soup.polygons[f].attributes.clone(),
             })
             .collect(),
-    };
-    Solid::try_from_soup(&soup).map_err(|e| e.to_string())
+    }
 }
 
 /// Shells, volumes, genus and nesting, measured on the soup's topology (the

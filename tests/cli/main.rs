@@ -23,3 +23,4 @@ mod paths;
 mod query;
 mod repair;
 mod validate;
+mod validate_memory;

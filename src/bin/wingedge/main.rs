@@ -374,6 +374,9 @@ fn options(format: Option<Format>, paths: PathArgs) -> ImportOptions {
 }
 
 fn main() -> ExitCode {
+    // Stages that build and drop large tables then hold the largest of
+    // them, not their sum.
+    wingedge::spatial::return_large_frees_to_the_system();
     // An interrupted write leaves the old file and no partial one.
     #[cfg(target_os = "linux")]
     wingedge::io::remove_partial_files_on_signal();

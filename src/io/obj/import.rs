@@ -124,6 +124,8 @@ pub fn import_obj_bytes(
     let models = run_tobj(path, bytes)?;
     let parsed = start.elapsed().as_secs_f64();
     let positions = align_positions(path, bytes, &scan, &models)?;
+    // tobj's copy of the file is read: freed before the soup is made.
+    drop(models);
     let mut soup = PolygonSoup {
         positions,
         polygons: Vec::with_capacity(scan.faces.len()),

@@ -54,7 +54,12 @@ impl Bvh {
             for k in (0..WIDTH).rev() {
                 let child = n.child[k];
                 let meets = child != u32::MAX
-                    && (0..3).all(|a| n.bounds[a][k] <= hi[a] && lo[a] <= n.bounds[3 + a][k])
+                    && n.bounds[0][k] <= hi[0]
+                    && lo[0] <= n.bounds[3][k]
+                    && n.bounds[1][k] <= hi[1]
+                    && lo[1] <= n.bounds[4][k]
+                    && n.bounds[2][k] <= hi[2]
+                    && lo[2] <= n.bounds[5][k]
                     && open(n, k);
                 if !meets {
                     continue;
@@ -76,8 +81,16 @@ impl Bvh {
         let f = self.frame();
         let back = |row: usize, a: usize| f64::from(n.bounds[row][k]) / f.scale + f.centre[a];
         Aabb {
-            min: DVec3::from_array([0, 1, 2].map(|a| f64_below(back(a, a)))),
-            max: DVec3::from_array([0, 1, 2].map(|a| f64_above(back(3 + a, a)))),
+            min: DVec3::new(
+                f64_below(back(0, 0)),
+                f64_below(back(1, 1)),
+                f64_below(back(2, 2)),
+            ),
+            max: DVec3::new(
+                f64_above(back(3, 0)),
+                f64_above(back(4, 1)),
+                f64_above(back(5, 2)),
+            ),
         }
     }
 

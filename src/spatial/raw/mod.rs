@@ -5,7 +5,9 @@
 //!   2 MiB pages (raw allocation, `madvise`);
 //! - [`lanes`]: four `f32` lanes as SSE registers (intrinsics);
 //! - [`prefetch`]: requests for memory ahead of its use (a hint that never
-//!   faults).
+//!   faults);
+//! - [`large_frees`]: large arrays given back to the system when freed
+//!   (`mallopt`).
 //!
 //! The AVX2 and AVX-512 node openers (`spatial::bvh::open_avx2`,
 //! `spatial::bvh::open_avx512`, and `spatial::bvh::open_widest`, which
@@ -14,4 +16,5 @@
 
 pub(crate) mod huge_pages;
 pub(crate) mod lanes;
+pub(crate) mod large_frees;
 pub(crate) mod prefetch;

@@ -7,7 +7,7 @@ use super::super::report::{Rule, Violation};
 /// copies are left out of the edge and vertex counts of the other rules.
 pub(crate) fn check(ctx: &Context) -> Vec<Violation> {
     (0..ctx.face_count())
-        .filter_map(|f| ctx.duplicate_of[f].map(|first| (first, f)))
+        .filter_map(|f| ctx.duplicate_of[f].map(|first| (first as usize, f)))
         .map(|(first, f)| {
             let same = same_direction(ctx.corners(first), ctx.corners(f));
             let lines: Vec<usize> = [first, f]

@@ -51,29 +51,34 @@ pub(super) struct Apart<T> {
 
 /// Calls `test(a, b)` (triangle indices, `a < b`) once on every pair of
 /// triangles of different faces that share no vertex and whose exact boxes
-/// overlap (closed boxes), and collects what it returns. `min_hub_valence`:
+/// overlap (closed boxes; `box_of_triangle(i)` is triangle `i`'s exact box),
+/// and collects what it returns. `min_hub_valence`:
 /// a vertex of more triangles than that can be a hub.
 pub(super) fn pairs_apart<T: Send>(
     ctx: &Context,
     triangles: &[Triangle],
-    boxes: &[Aabb],
+    box_of_triangle: impl Fn(usize) -> Aabb + Sync,
     min_hub_valence: usize,
     test: impl Fn(usize, usize) -> Option<T> + Sync,
 ) -> Apart<T> {
     let tested = AtomicUsize::new(0);
     let held = AtomicUsize::new(0);
-    let try_pair = |a: usize, b: usize| -> Option<T> {
+    // Whether a pair is one to test: cheap index and box comparisons.
+    let candidate = |a: usize, b: usize| -> bool {
         let (ta, tb) = (&triangles[a], &triangles[b]);
-        if ta.face == tb.face || ta.shared_vertices(tb) != 0 || !overlap(&boxes[a], &boxes[b]) {
-            return None;
-        }
+        ta.face != tb.face
+            && ta.shared_vertices(tb) == 0
+            && overlap(&box_of_triangle(a), &box_of_triangle(b))
+    };
+    let decide = |a: usize, b: usize| -> Option<T> {
         tested.fetch_add(1, Ordering::Relaxed);
         test(a.min(b), a.max(b))
     };
+    let try_pair =
+        |a: usize, b: usize| -> Option<T> { if candidate(a, b) { decide(a, b) } else { None } };
     let (hub_of, hubs) = hubs(ctx.soup.positions.len(), triangles, min_hub_valence);
     // Group 0: triangles of no hub, one piece each (its own box). A piece
     // is its triangle and its index along it; its box is made when asked.
-    let mut pieces: Vec<Vec<(u32, u8)>> = vec![Vec::new(); hubs.len() + 1];
     let mut members: Vec<Vec<u32>> = vec![Vec::new(); hubs.len() + 1];
     let mut halvings_of = vec![0u8; triangles.len()];
     for (i, t) in triangles.iter().enumerate() {
@@ -84,75 +89,87 @@ pub(super) fn pairs_apart<T: Send>(
             .min()
             .map_or(0, |h| h + 1);
         members[group].push(i as u32);
-        if group == 0 {
-            pieces[0].push((i as u32, 0));
-        } else {
-            let cuts = halvings(ctx, t, hubs[group - 1]);
-            halvings_of[i] = cuts;
-            pieces[group].extend((0..piece_count(cuts)).map(|k| (i as u32, k)));
+        if group > 0 {
+            halvings_of[i] = halvings(ctx, t, hubs[group - 1]);
         }
     }
+    drop(hub_of);
     let box_of = |group: usize, (i, piece): (u32, u8)| {
         let i = i as usize;
         if group == 0 {
-            boxes[i]
+            box_of_triangle(i)
         } else {
             let hub = hubs[group - 1];
-            piece_box(ctx, &triangles[i], hub, boxes[i], halvings_of[i], piece)
+            piece_box(
+                ctx,
+                &triangles[i],
+                hub,
+                box_of_triangle(i),
+                halvings_of[i],
+                piece,
+            )
         }
     };
-    // A hub's group is walked only against the other groups, so its pieces
-    // whose boxes miss every other group's bounds pair with nothing (a
-    // cone's side above its base's plane): they are left out of its tree.
-    let bounds: Vec<Aabb> = pieces
+    let bounds: Vec<Aabb> = members
         .iter()
-        .map(|p| {
-            p.iter()
-                .filter(|piece| piece.1 == 0)
-                .fold(Aabb::EMPTY, |b, piece| b.union(boxes[piece.0 as usize]))
+        .map(|m| {
+            m.iter()
+                .fold(Aabb::EMPTY, |b, &i| b.union(box_of_triangle(i as usize)))
         })
         .collect();
-    for (group, p) in pieces.iter_mut().enumerate().skip(1) {
+    // The pieces of one group. A hub's group is walked only against the
+    // other groups, so its pieces whose boxes miss every other group's
+    // bounds pair with nothing (a cone's side above its base's plane):
+    // they are left out of its tree.
+    let pieces_of = |group: usize| -> Vec<(u32, u8)> {
+        if group == 0 {
+            return members[0].iter().map(|&i| (i, 0)).collect();
+        }
         let others = (0..bounds.len())
             .filter(|&h| h != group)
             .fold(Aabb::EMPTY, |b, h| b.union(bounds[h]));
-        p.retain(|&piece| overlap(&box_of(group, piece), &others));
-    }
-    let trees: Vec<PieceTree> = pieces
-        .iter()
-        .enumerate()
-        .map(|(group, p)| {
-            let (bvh, order) = Bvh::build_by(p.len(), |k| box_of(group, p[k]));
-            PieceTree {
-                bvh,
-                order,
-                pieces: p,
-            }
-        })
-        .collect();
-    // The triangles of no hub: one piece each, so each pair once.
-    let mut found = if trees[0].pieces.len() >= 2 {
-        let tree = &trees[0];
-        tree.bvh.par_self_leaf_pairs(|la, lb, found| {
-            for (k, a) in tree.triangles(la).enumerate() {
-                let from = if la == lb { k + 1 } else { 0 };
-                found.extend(tree.triangles(lb).skip(from).filter_map(|b| try_pair(a, b)));
-            }
-        })
-    } else {
-        Vec::new()
+        members[group]
+            .iter()
+            .flat_map(|&i| (0..piece_count(halvings_of[i as usize])).map(move |k| (i, k)))
+            .filter(|&piece| overlap(&box_of(group, piece), &others))
+            .collect()
     };
-    // Group against group, streamed: each triangle of the later group asks
-    // the earlier group's tree for the pieces whose boxes overlap its own,
-    // opening only the nodes whose boxes its triangle may meet (a pair
-    // that meets has a common point, in a piece of the one and in the
-    // other, so no pair the test would report is left out, and a sliver
-    // opens the nodes along it, not all its box overlaps). The triangles
-    // of the pieces one triangle finds are tested once each, as they are
-    // found: nothing is kept but what the test returns and, while one
-    // triangle asks, the triangles it found.
-    for (g, tree) in trees.iter().enumerate() {
-        for later in &members[g + 1..] {
+    // One group's tree at a time: built, walked by the triangles of no hub
+    // (group 0 only) and by every later group, then dropped, so the trees
+    // of the pieces (many per sliver) are never all held at once; the last
+    // group, which no later group walks against, gets none.
+    let mut found = Vec::new();
+    for g in 0..members.len() {
+        let walked_by = &members[g + 1..];
+        if g > 0 && walked_by.iter().all(Vec::is_empty) {
+            continue;
+        }
+        let pieces = pieces_of(g);
+        let (bvh, order) = Bvh::build_by(pieces.len(), |k| box_of(g, pieces[k]));
+        let tree = PieceTree {
+            bvh,
+            order,
+            pieces: &pieces,
+        };
+        // The triangles of no hub: one piece each, so each pair once.
+        if g == 0 && tree.pieces.len() >= 2 {
+            found = tree.bvh.par_self_leaf_pairs(|la, lb, found| {
+                for (k, a) in tree.triangles(la).enumerate() {
+                    let from = if la == lb { k + 1 } else { 0 };
+                    found.extend(tree.triangles(lb).skip(from).filter_map(|b| try_pair(a, b)));
+                }
+            });
+        }
+        // Group against group, streamed: each triangle of the later group
+        // asks the earlier group's tree for the pieces whose boxes overlap
+        // its own, opening only the nodes whose boxes its triangle may meet
+        // (a pair that meets has a common point, in a piece of the one and
+        // in the other, so no pair the test would report is left out, and a
+        // sliver opens the nodes along it, not all its box overlaps). The
+        // triangles of the pieces one triangle finds are tested once each,
+        // as they are found: nothing is kept but what the test returns and,
+        // while one triangle asks, the triangles it found.
+        for later in walked_by {
             if tree.pieces.is_empty() || later.is_empty() {
                 continue;
             }
@@ -163,7 +180,7 @@ pub(super) fn pairs_apart<T: Send>(
                 // is the filter (the pair test checks the whole boxes).
                 let mut near = Vec::new();
                 tree.bvh.leaves_overlapping_where(
-                    &boxes[b],
+                    &box_of_triangle(b),
                     |node| filter.may_meet(node),
                     |leaf| near.extend(tree.triangles(leaf).map(|a| a as u32)),
                 );
@@ -174,9 +191,12 @@ pub(super) fn pairs_apart<T: Send>(
                     near.dedup();
                 }
                 held.fetch_max(near.len(), Ordering::Relaxed);
+                // The cheap comparisons first; the triangle against the
+                // other's box only for a pair that passes them.
                 near.into_iter()
-                    .filter(|&a| g > 0 || filter.may_meet(&boxes[a as usize]))
-                    .filter_map(|a| try_pair(a as usize, b))
+                    .map(|a| a as usize)
+                    .filter(|&a| candidate(a, b) && (g > 0 || filter.may_meet(&box_of_triangle(a))))
+                    .filter_map(|a| decide(a, b))
                     .collect::<Vec<_>>()
             }));
         }

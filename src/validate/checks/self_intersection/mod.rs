@@ -147,8 +147,15 @@ fn intersecting_face_pairs_counted(
             .then(|| (ta.face.min(tb.face), ta.face.max(tb.face)))
     };
     let sharing = sharing::pairs_sharing_corners(ctx, triangles, meet);
-    let boxes: Vec<Aabb> = triangles.par_iter().map(|t| bounds(ctx, t)).collect();
-    let apart = apart::pairs_apart(ctx, triangles, &boxes, sharing::SMALL_FAN, meet);
+    // Boxes are made when asked (three positions each) rather than kept:
+    // 48 bytes a triangle at the check's peak.
+    let apart = apart::pairs_apart(
+        ctx,
+        triangles,
+        |i| bounds(ctx, &triangles[i]),
+        sharing::SMALL_FAN,
+        meet,
+    );
     let mut pairs = apart.found;
     pairs.extend(sharing.found);
     pairs.par_sort_unstable();

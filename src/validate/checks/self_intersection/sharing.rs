@@ -77,30 +77,48 @@ pub(super) fn pairs_sharing_corners<T: Send>(
         found
     };
     let (star_start, stars) = stars(ctx.soup.positions.len(), triangles);
-    let mut found: Vec<T> = (0..ctx.soup.positions.len())
+    // Per vertex `u`: the pairs around `u`, then the pairs around each
+    // edge `uw` with `w > u`, whose triangles are those of `u`'s star that
+    // hold `w` (in index order, as the star lists them). Each edge is met
+    // once, at its lower vertex, and nothing is listed for all edges at
+    // once.
+    let found: Vec<T> = (0..ctx.soup.positions.len())
         .into_par_iter()
         .with_min_len(256)
-        .flat_map_iter(|v| {
-            let star = &stars[star_start[v] as usize..star_start[v + 1] as usize];
-            run(1, &|visit| {
+        .flat_map_iter(|u| {
+            let star = &stars[star_start[u] as usize..star_start[u + 1] as usize];
+            let mut found = run(1, &|visit| {
                 if star.len() <= SMALL_FAN {
                     all_pairs(star, visit);
                 } else {
-                    corners_that_can_overlap(ctx, triangles, v, star, visit);
+                    corners_that_can_overlap(ctx, triangles, u, star, visit);
                 }
-            })
+            });
+            let mut far: Vec<(usize, u32)> = star
+                .iter()
+                .flat_map(|&t| {
+                    triangles[t as usize]
+                        .vertices
+                        .into_iter()
+                        .filter(move |&w| w > u)
+                        .map(move |w| (w, t))
+                })
+                .collect();
+            far.sort_unstable();
+            for edge in far.chunk_by(|x, y| x.0 == y.0).filter(|e| e.len() >= 2) {
+                let run_of: Vec<u32> = edge.iter().map(|x| x.1).collect();
+                let w = edge[0].0;
+                found.extend(run(2, &|visit| {
+                    if run_of.len() <= SMALL_FAN {
+                        all_pairs(&run_of, visit);
+                    } else {
+                        triangles_in_one_half_plane(ctx, triangles, (u, w), &run_of, visit);
+                    }
+                }));
+            }
+            found
         })
         .collect();
-    let edges = edge_runs(triangles);
-    found.par_extend(edges.par_iter().flat_map_iter(|(u, w, run_of)| {
-        run(2, &|visit| {
-            if run_of.len() <= SMALL_FAN {
-                all_pairs(run_of, visit);
-            } else {
-                triangles_in_one_half_plane(ctx, triangles, (*u, *w), run_of, visit);
-            }
-        })
-    }));
     Sharing {
         found,
         tested: tested.into_inner(),
@@ -128,32 +146,6 @@ fn stars(vertex_count: usize, triangles: &[Triangle]) -> (Vec<u32>, Vec<u32>) {
         }
     }
     (start, stars)
-}
-
-/// The triangles of every edge used by at least two of them: its two
-/// vertices and the triangles.
-fn edge_runs(triangles: &[Triangle]) -> Vec<(usize, usize, Vec<u32>)> {
-    let mut uses: Vec<(u32, u32, u32)> = triangles
-        .iter()
-        .enumerate()
-        .flat_map(|(i, t)| {
-            (0..3).map(move |k| {
-                let (a, b) = (t.vertices[k], t.vertices[(k + 1) % 3]);
-                (a.min(b) as u32, a.max(b) as u32, i as u32)
-            })
-        })
-        .collect();
-    uses.par_sort_unstable();
-    uses.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1))
-        .filter(|run| run.len() >= 2)
-        .map(|run| {
-            (
-                run[0].0 as usize,
-                run[0].1 as usize,
-                run.iter().map(|x| x.2).collect(),
-            )
-        })
-        .collect()
 }
 
 /// Visits every pair of the listed triangles.
