@@ -59,13 +59,7 @@ impl PlaneFilter {
         let w = p - self.corner;
         let det = w.dot(self.normal);
         let bound = w.abs().dot(self.normal_abs) * (1.0 / (1u64 << 49) as f64);
-        if det > bound {
-            Sign::Positive
-        } else if det < -bound {
-            Sign::Negative
-        } else {
-            Sign::Zero
-        }
+        certain_sign(det, bound)
     }
 
     /// Whether the corners of `t` (vertex ids `ids`) all lie strictly on
@@ -212,6 +206,12 @@ fn orient2d_filtered(p: glam::DVec2, q: glam::DVec2, x: glam::DVec2) -> Sign {
     let (l, r) = (e.x * f.y, e.y * f.x);
     let det = l - r;
     let bound = (l.abs() + r.abs()) * (1.0 / (1u64 << 50) as f64);
+    certain_sign(det, bound)
+}
+
+/// The sign of a rounded `det` whose error is below `bound`, or `Zero`
+/// when the bound does not settle it.
+fn certain_sign(det: f64, bound: f64) -> Sign {
     if det > bound {
         Sign::Positive
     } else if det < -bound {
