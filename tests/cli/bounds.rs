@@ -112,38 +112,6 @@ fn a_document_of_too_many_values_is_refused_before_it_is_parsed() {
     }
 }
 
-/// Runs `wingedge ARGS` (output discarded) and returns its exit code and
-/// its own peak resident memory in bytes (`wait4`'s resource usage of
-/// that one child, as `common::cli::run` reports it).
-#[cfg(target_os = "linux")]
-#[allow(
-    clippy::zombie_processes,
-    reason = "the child is reaped by wait4, which also gives its resource usage"
-)]
-fn run_alone(args: &[&str]) -> (i32, u64) {
-    use std::process::{Command, Stdio};
-    let child = Command::new(env!("CARGO_BIN_EXE_wingedge"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("the binary runs");
-    let pid = child.id() as libc::pid_t;
-    let mut status = 0;
-    // SAFETY: rusage is plain data, written by wait4.
-    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-    // SAFETY: waits for our own child, writing into the two locals.
-    let reaped = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
-    assert_eq!(reaped, pid, "wait4");
-    let code = if libc::WIFEXITED(status) {
-        libc::WEXITSTATUS(status)
-    } else {
-        -1
-    };
-    (code, u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024)
-}
-
 /// An image one pixel wide and 300,000 rows tall holds three bytes a pixel
 /// and shades in bands of rows: the command's memory (under 40 MiB) stays below the
 /// 168 bytes a row it took when every row kept its own buffers (50 MB).
@@ -157,15 +125,20 @@ fn a_tall_image_costs_bytes_per_row_not_buffers_per_row() {
             "camera": {"eye": [3, -4, 2], "look_at": [0.5, 0.5, 0.5], "up": [0, 0, 1], "fov_deg": 30}}"#,
     );
     let png = dir.arg("tall.png");
-    let (code, peak) = run_alone(&[
-        "render",
-        &scene.to_string_lossy(),
-        "-o",
-        &png,
-        "--size",
-        "1x300000",
-    ]);
-    assert_eq!(code, 0);
+    let o = run(
+        &[
+            "render",
+            &scene.to_string_lossy(),
+            "-o",
+            &png,
+            "--size",
+            "1x300000",
+        ],
+        "",
+        &[],
+    );
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let peak = o.peak_rss.expect("the peak is measured on Linux");
     assert!(peak < 40 << 20, "render peaked at {} MiB", peak >> 20);
 }
 
