@@ -74,21 +74,39 @@ impl<'s> Prepared<'s> {
                 faces.push(face);
             }
         }
+        Ok(Prepared::from_tables(
+            Some(solid),
+            operand,
+            positions,
+            triangles,
+            faces,
+        ))
+    }
+
+    /// The triangles `triangles` (indices into `positions`, each with its
+    /// face in `faces`) indexed by a BVH over their boxes.
+    pub fn from_tables(
+        solid: Option<&'s Solid>,
+        index: usize,
+        positions: Vec<DVec3>,
+        triangles: Vec<[u32; 3]>,
+        faces: Vec<FaceId>,
+    ) -> Prepared<'s> {
         let bounds: Vec<Aabb> = triangles
             .iter()
             .map(|t| Aabb::from_points(t.iter().map(|&i| positions[i as usize])))
             .collect();
         let (bvh, order) = Bvh::build(&bounds);
-        Ok(Prepared {
-            solid: Some(solid),
-            index: operand,
+        Prepared {
+            solid,
+            index,
             positions,
             triangles,
             faces,
             bounds,
             bvh,
             order,
-        })
+        }
     }
 
     /// Whether triangle `t` is the whole of its face (the face is a

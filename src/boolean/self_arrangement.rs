@@ -32,9 +32,8 @@ use crate::geom::implicit::{
     Arithmetic, Centroid, HasHomogeneous, Homogeneous, ImplicitPoint, Interval, XRayCrossing,
     enclosing_box, x_ray_crossing,
 };
-use crate::geom::{Aabb, Sign, orient2d, triangulate_3d};
+use crate::geom::{Sign, collinear3d, projected_orientation, triangulate_3d};
 use crate::mesh::{FaceId, PolygonSoup, Solid};
-use crate::spatial::Bvh;
 use crate::validate::Report;
 
 use super::assemble::KeptPiece;
@@ -292,40 +291,14 @@ fn prepare<'s>(
         };
         for t in local {
             let t = t.map(|k| corners[k] as u32);
-            if !degenerate(t.map(|i| positions[i as usize])) {
+            let [a, b, c] = t.map(|i| positions[i as usize]);
+            if !collinear3d(a, b, c) {
                 triangles.push(t);
                 faces.push(face);
             }
         }
     }
-    let bounds: Vec<Aabb> = triangles
-        .iter()
-        .map(|t| Aabb::from_points(t.iter().map(|&i| positions[i as usize])))
-        .collect();
-    let (bvh, order) = Bvh::build(&bounds);
-    Ok(Prepared {
-        solid: None,
-        index: 0,
-        positions,
-        triangles,
-        faces,
-        bounds,
-        bvh,
-        order,
-    })
-}
-
-/// Whether a triangle has zero area (its corners on one line), exactly.
-fn degenerate(t: [DVec3; 3]) -> bool {
-    (0..3u8).all(|axis| projected_orientation(t, axis) == Sign::Zero)
-}
-
-/// The orientation of triangle `t` seen along `axis` (its projection on
-/// the other two coordinates, in cyclic order).
-pub(super) fn projected_orientation(t: [DVec3; 3], axis: u8) -> Sign {
-    let (u, v) = (((axis + 1) % 3) as usize, ((axis + 2) % 3) as usize);
-    let flat = t.map(|p| glam::DVec2::new(p[u], p[v]));
-    orient2d(flat[0], flat[1], flat[2])
+    Ok(Prepared::from_tables(None, 0, positions, triangles, faces))
 }
 
 /// The edges of pieces that patches must not be joined across although no

@@ -19,11 +19,10 @@
 
 use rayon::prelude::*;
 
-use crate::geom::{Sign, orient3d};
+use crate::geom::{Sign, orient3d, projected_orientation};
 
 use super::intersect::{self, Contact, PointRef, Tri};
 use super::operand::Prepared;
-use super::self_arrangement::projected_orientation;
 
 /// A triangle's plane as a fast, conservative filter: `separates(t)` only
 /// when every corner of `t` lies strictly on one side of it. The sign of

@@ -65,6 +65,16 @@ pub fn collinear3d(a: DVec3, b: DVec3, c: DVec3) -> bool {
         && orient2d(zx(a), zx(b), zx(c)) == Sign::Zero
 }
 
+/// The orientation of triangle `t` seen along `axis` (its projection on
+/// the other two coordinates, in cyclic order: `y, z` along `x`, `z, x`
+/// along `y`, `x, y` along `z`), exact.
+#[must_use]
+pub(crate) fn projected_orientation(t: [DVec3; 3], axis: u8) -> Sign {
+    let (u, v) = (((axis + 1) % 3) as usize, ((axis + 2) % 3) as usize);
+    let flat = t.map(|p| DVec2::new(p[u], p[v]));
+    orient2d(flat[0], flat[1], flat[2])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,5 +1,5 @@
 //! What the format readers share with the driver that calls them
-//! ([`import`](super::import)): the options they read under and what they
+//! (`io::import`): the options they read under and what they
 //! hand back, kept apart so that neither needs the other's file.
 
 use std::path::{Path, PathBuf};

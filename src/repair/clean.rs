@@ -8,11 +8,11 @@ use std::collections::HashMap;
 use glam::DVec3;
 use smallvec::SmallVec;
 
-use crate::geom::Sign;
 use crate::mesh::{Polygon, PolygonSoup};
 
+use super::RepairError;
 use super::report::{DropReason, DroppedPolygon};
-use super::{RepairError, projected_orientation};
+use crate::geom::collinear3d;
 
 /// The cleaned soup: its polygons, each with its index in the input.
 pub(crate) struct Cleaned {
@@ -180,10 +180,9 @@ fn has_repeat(corners: &[usize]) -> bool {
 /// Whether every corner lies on the line through the first two, exactly.
 fn zero_area(corners: &[usize], positions: &[DVec3]) -> bool {
     let (a, b) = (positions[corners[0]], positions[corners[1]]);
-    corners[2..].iter().all(|&c| {
-        let t = [a, b, positions[c]];
-        (0..3u8).all(|axis| projected_orientation(t, axis) == Sign::Zero)
-    })
+    corners[2..]
+        .iter()
+        .all(|&c| collinear3d(a, b, positions[c]))
 }
 
 /// Whether `a` is `b` turned cyclically.

@@ -10,10 +10,9 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::geom::{Sign, triangulate_3d};
+use crate::geom::{collinear3d, triangulate_3d};
 use crate::mesh::{Polygon, PolygonSoup};
 
-use super::projected_orientation;
 use super::report::{HoleLoop, OpenReason};
 
 /// What filling did: loops filled and left open. Added triangles are
@@ -64,9 +63,7 @@ pub(crate) fn fill(soup: &mut PolygonSoup, max_edges: Option<usize>) -> Filled {
 
 /// Whether every point lies on the line through the first two.
 fn collinear(ring: &[DVec3]) -> bool {
-    ring[2..].iter().all(|&c| {
-        (0..3u8).all(|axis| projected_orientation([ring[0], ring[1], c], axis) == Sign::Zero)
-    })
+    ring[2..].iter().all(|&c| collinear3d(ring[0], ring[1], c))
 }
 
 /// The soup's holes: cycles of unpartnered edge uses, each as the vertices

@@ -28,11 +28,9 @@ mod fill;
 mod orient;
 mod report;
 
-use glam::DVec3;
 use thiserror::Error;
 
 use crate::boolean::{BooleanError, MAX_CONTACTS, arrange_soup, prove};
-use crate::geom::{Sign, orient2d};
 use crate::mesh::{PolygonSoup, Solid};
 use crate::validate::Report;
 
@@ -249,12 +247,4 @@ fn sorted(items: impl IntoIterator<Item = usize>) -> Vec<usize> {
     let mut v: Vec<usize> = items.into_iter().collect();
     v.sort_unstable();
     v
-}
-
-/// The orientation of triangle `t` seen along `axis` (its projection on
-/// the other two coordinates, in cyclic order), exact.
-pub(crate) fn projected_orientation(t: [DVec3; 3], axis: u8) -> Sign {
-    let (u, v) = (((axis + 1) % 3) as usize, ((axis + 2) % 3) as usize);
-    let flat = t.map(|p| glam::DVec2::new(p[u], p[v]));
-    orient2d(flat[0], flat[1], flat[2])
 }

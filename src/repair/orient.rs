@@ -22,7 +22,7 @@ use crate::geom::{Sign, orient3d};
 use crate::mesh::PolygonSoup;
 use crate::query::{Containment, SoupWinding};
 
-use super::projected_orientation;
+use crate::geom::projected_orientation;
 
 /// One use of an undirected edge by a polygon.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
